@@ -1,0 +1,84 @@
+#pragma once
+// The boundary between the renderer (lib/render) and the visibility estimators (lib/estimate).
+// The renderer owns cameras, lights, shading and the Embree scenes; an estimator only decides
+// which rays to trace for the light samples of one shading point and how to weight them.
+// DRAFT CONTRACT written before either side: lib/estimate owns this file and may extend it;
+// keep the renderer's calls (estimate(), beginPass(), endPass(), makeEstimator()) working.
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "trace/trace_scene.h"
+#include "util/proxy_class.h"
+#include "util/rng.h"
+
+namespace proxyvis {
+
+enum class EstimatorKind { kExact, kCulling, kPaperEqual, kPaperOptimal, kPaperCost, kRoulette };
+
+// "exact", "culling", "paper-equal", "paper-optimal", "paper-cost", "roulette".
+const char* estimatorName(EstimatorKind kind);
+// Throws proxyvis::Error for an unknown name (message lists the valid ones).
+EstimatorKind parseEstimatorName(const std::string& name);
+std::vector<EstimatorKind> allEstimators();
+
+// Rays traced, by kind. Summed per pixel into the cost AOVs and per run into the tables.
+struct RayCounts {
+  uint64_t proxy = 0;     // segments traced against proxies
+  uint64_t original = 0;  // segments traced against the original geometry
+  uint64_t probe = 0;     // probe segments (each traced against both; counted here only)
+  RayCounts& operator+=(const RayCounts& o) {
+    proxy += o.proxy; original += o.original; probe += o.probe;
+    return *this;
+  }
+};
+
+// Traces one shadow segment. Implemented by the renderer, which applies the self-shadowing rule
+// (rays leaving object A use A's original, the proxies of everything else).
+class SegmentTracer {
+ public:
+  virtual ~SegmentTracer() = default;
+  virtual bool proxyVisible(const Segment& s) const = 0;     // V'
+  virtual bool originalVisible(const Segment& s) const = 0;  // V
+};
+
+// The light samples of one shading point.
+struct ShadingPointQuery {
+  std::span<const Segment> segments;  // one per light sample; estimate one visibility per segment
+  const SegmentTracer* tracer = nullptr;
+  uint32_t region = 0;      // learning region (screen tile x light), < EstimatorSetup::num_regions
+  // Extra light-sample segments for the probe-based estimators (paper-optimal, paper-cost);
+  // drawn independently of `segments` from the same distribution.
+  std::span<const Segment> probes;
+};
+
+struct EstimatorSetup {
+  EstimatorKind kind = EstimatorKind::kExact;
+  // Verified class of the scene's proxies; only a verified class lets an estimator drop a
+  // correction branch (DESIGN.md pitfall 4).
+  ProxyClass proxy_class = ProxyClass::kGeneral;
+  uint32_t num_regions = 1;
+  int probes_per_point = 16;   // paper-optimal / paper-cost
+  double q_min = 0.05;         // roulette floor where an error class is possible
+};
+
+class VisibilityEstimator {
+ public:
+  virtual ~VisibilityEstimator() = default;
+  // Single-threaded, before pass `pass` (one pass = every pixel's light samples once). Roulette
+  // freezes the statistics learned in passes < pass here, which keeps it unbiased.
+  virtual void beginPass(int pass) { (void)pass; }
+  // Thread-safe. Writes one unbiased visibility estimate per segment into out (same size).
+  virtual void estimate(const ShadingPointQuery& query, Rng& rng, std::span<double> out,
+                        RayCounts& counts) = 0;
+  // Single-threaded, after the pass: merge per-thread statistics.
+  virtual void endPass() {}
+  // How many probe segments estimate() wants per shading point (0 for most).
+  virtual int probesPerPoint() const { return 0; }
+};
+
+std::unique_ptr<VisibilityEstimator> makeEstimator(const EstimatorSetup& setup);
+
+}  // namespace proxyvis

@@ -1,0 +1,31 @@
+#pragma once
+// Loading and saving TriMesh: OBJ, PLY (ASCII and binary), OFF through OpenMesh; Draco .drc through
+// the Draco library. The format is chosen by the extension (case-insensitive).
+//
+// Loading never trusts a header: a PLY claiming 2^31 vertices in a 1 KB file is an Error, not an
+// 8 GB allocation. Every failure (missing, empty, truncated, corrupt file, unknown extension,
+// NaN/inf coordinates, index out of range, no triangles) throws proxyvis::Error whose message
+// names the file, what is wrong and why.
+#include <filesystem>
+
+#include "mesh/tri_mesh.h"
+
+namespace proxyvis {
+
+struct SaveOptions {
+  bool binary = true;          // PLY only: binary_little_endian (true) or ASCII
+  int draco_quantization = 16; // .drc only: position quantization bits (0 = lossless float)
+  int draco_speed = 5;         // .drc only: encoder speed 0 (best) .. 10 (fastest)
+};
+
+// Loads a triangle mesh; polygons are fan-triangulated. Vertex order is kept.
+TriMesh loadMesh(const std::filesystem::path& path);
+
+// Saves atomically (temporary file + rename). Throws WriteError when the file cannot be written,
+// Error for an unknown extension.
+void saveMesh(const TriMesh& mesh, const std::filesystem::path& path, const SaveOptions& options = {});
+
+// True if the extension is one loadMesh/saveMesh understands (.obj .ply .off .drc).
+bool isSupportedMeshExtension(const std::filesystem::path& path);
+
+}  // namespace proxyvis

@@ -1,0 +1,65 @@
+#include "util/app_main.h"
+
+#include <fmt/core.h>
+#include <tbb/global_control.h>
+#include <tbb/task_arena.h>
+
+#include <cstdio>
+#include <exception>
+#include <new>
+
+#include "util/error.h"
+#include "util/progress.h"
+
+namespace proxyvis {
+
+void addCommonOptions(CLI::App& app, CommonOptions& options) {
+  app.set_version_flag("--version", std::string("proxyvis ") + PROXYVIS_VERSION);
+  app.add_option("--seed", options.seed, "Random seed; the same seed gives the same result at any thread count")
+      ->capture_default_str();
+  app.add_option("--threads", options.threads, "Worker threads (0 = all cores)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  app.add_flag("-q,--quiet", options.quiet, "No progress bars");
+  app.add_option("--json", options.json_path, "Write the report as JSON to this file ('-' = stdout)");
+  app.footer(
+      "Exit codes: 0 success, 1 a check failed, 2 bad input or usage, 3 output cannot be "
+      "written.\nOutputs are written to a temporary file and renamed at the end: nothing partial "
+      "is left on failure.");
+}
+
+int runApp(CLI::App& app, int argc, char** argv, const CommonOptions& options,
+           const std::function<int()>& body) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    std::fprintf(stderr, "Run with --help for usage.\n");
+    return kExitBadInput;
+  }
+  Progress::setGloballyQuiet(options.quiet);
+  const std::string name = app.get_name();
+  try {
+    int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    return body();
+  } catch (const Error& e) {
+    std::fprintf(stderr, "%s: error: %s\n", name.c_str(), e.what());
+    return e.exitCode();
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "%s: error: out of memory; the input is too large for this machine\n",
+                 name.c_str());
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: error: %s\n", name.c_str(), e.what());
+    return kExitBadInput;
+  }
+}
+
+}  // namespace proxyvis

@@ -1,0 +1,29 @@
+#pragma once
+// What every proxyvis app shares: the standard flags (--version, --seed, --threads, --quiet,
+// --json) and the mapping from errors to exit codes (0 ok, 1 check failed, 2 bad input or usage,
+// 3 cannot write output).
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+
+namespace proxyvis {
+
+struct CommonOptions {
+  uint64_t seed = 0;
+  int threads = 0;  // 0 = all hardware threads
+  bool quiet = false;
+  std::string json_path;  // empty = no JSON; "-" = stdout
+};
+
+// Adds the standard flags to `app` and the exit-code table to its footer.
+void addCommonOptions(CLI::App& app, CommonOptions& options);
+
+// Parses argv and runs `body` under a TBB arena limited to options.threads. Exceptions become
+// one line on stderr ("<app>: error: <message>") and the documented exit code. CLI11 parse
+// errors exit through app.exit(), with usage errors mapped to exit code 2.
+int runApp(CLI::App& app, int argc, char** argv, const CommonOptions& options,
+           const std::function<int()>& body);
+
+}  // namespace proxyvis

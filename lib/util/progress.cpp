@@ -1,0 +1,60 @@
+#include "util/progress.h"
+
+#include <cstdio>
+#include <unistd.h>
+
+namespace proxyvis {
+
+namespace {
+std::atomic<bool> g_quiet{false};
+}
+
+void Progress::setGloballyQuiet(bool quiet) { g_quiet = quiet; }
+
+Progress::Progress(std::string title, uint64_t total_work, bool quiet)
+    : title_(std::move(title)),
+      total_(total_work == 0 ? 1 : total_work),
+      enabled_(!quiet && !g_quiet && ::isatty(STDERR_FILENO)),
+      start_(std::chrono::steady_clock::now()),
+      last_draw_(start_) {}
+
+Progress::~Progress() { done(); }
+
+double Progress::elapsedSeconds() const {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+}
+
+void Progress::update(uint64_t work) {
+  uint64_t now_done = done_.fetch_add(work) + work;
+  if (!enabled_) return;
+  auto now = std::chrono::steady_clock::now();
+  if (now - last_draw_ < std::chrono::milliseconds(200)) return;
+  std::unique_lock lock(mutex_, std::try_to_lock);
+  if (!lock.owns_lock()) return;
+  last_draw_ = now;
+  draw(now_done, false);
+}
+
+void Progress::done() {
+  if (finished_.exchange(true)) return;
+  if (enabled_) {
+    std::lock_guard lock(mutex_);
+    draw(total_, true);
+  }
+}
+
+void Progress::draw(uint64_t done_work, bool final) {
+  constexpr int kWidth = 40;
+  double frac = std::min(1.0, double(done_work) / double(total_));
+  int filled = int(frac * kWidth);
+  char bar[kWidth + 1];
+  for (int i = 0; i < kWidth; ++i) bar[i] = i < filled ? '=' : (i == filled ? '>' : ' ');
+  bar[kWidth] = 0;
+  double t = elapsedSeconds();
+  double eta = frac > 0 ? t / frac - t : 0;
+  std::fprintf(stderr, "\r%s [%s] %5.1f%% %6.1fs%s", title_.c_str(), bar, 100 * frac, t,
+               final ? "       \n" : (std::string(" eta ") + std::to_string(int(eta)) + "s").c_str());
+  std::fflush(stderr);
+}
+
+}  // namespace proxyvis

@@ -1,0 +1,33 @@
+#pragma once
+// Exact containment of two triangle meshes (CGAL, exact predicates): does the proxy contain the
+// original (an outside proxy), is it contained in it (an inside proxy), or neither?
+// Owned by the proxy-check work; proxy-gen calls it to verify a proxy before writing it.
+#include <cstdint>
+#include <string>
+
+#include "mesh/tri_mesh.h"
+
+namespace proxyvis {
+
+enum class ContainmentVerdict {
+  kContains,      // proxy closed; surfaces do not intersect; original lies inside the proxy
+  kContained,     // both closed; surfaces do not intersect; proxy lies inside the original
+  kIntersecting,  // the two surfaces intersect (or touch)
+  kDisjoint,      // closed, not intersecting, neither inside the other (mismatched pair)
+  kUndecidable    // the proxy is open (or the original is open and the proxy is not outside)
+};
+
+const char* containmentName(ContainmentVerdict v);  // "contains", "contained", ...
+
+struct ContainmentResult {
+  ContainmentVerdict verdict = ContainmentVerdict::kUndecidable;
+  bool proxy_closed = false, original_closed = false;
+  uint64_t intersecting_face_pairs = 0;  // 0 unless kIntersecting (may stop counting early)
+  std::string detail;                    // human-readable reason, e.g. where they intersect
+};
+
+// For an open original, "contains" means: no surface intersection and every original vertex
+// strictly inside the closed proxy.
+ContainmentResult checkContainment(const TriMesh& original, const TriMesh& proxy);
+
+}  // namespace proxyvis
