@@ -1,7 +1,15 @@
 #!/usr/bin/env bash
-# Installs every proxyvis dependency from Debian 12 packages. Idempotent: when every package
-# is already installed it only checks (no apt-get update, well under a second).
+# proxyvis setup: installs the Debian 12 dependencies, builds in Release and runs things.
+#   ./setup.sh          install the dependencies only (idempotent; under a second when present)
+#   ./setup.sh build    install + configure + build (build/)
+#   ./setup.sh demo     install + build + the main job on the bundled dragon-plane scene:
+#                       proxy-gen -> proxy-check -> render-compare (MSE table + HTML report)
+#   ./setup.sh test     install + build + the whole test suite (ctest)
 set -euo pipefail
+cd "$(dirname "$0")"
+BUILD_DIR=${PROXYVIS_BUILD_DIR:-build}
+JOBS=${PROXYVIS_JOBS:-$(nproc)}
+
 PKGS=(
   build-essential cmake ninja-build ccache pkg-config git
   libcgal-dev libgmp-dev libmpfr-dev libeigen3-dev
@@ -11,17 +19,44 @@ PKGS=(
   libcli11-dev libfmt-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
 )
-missing=()
-for p in "${PKGS[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if [ ${#missing[@]} -eq 0 ]; then
-  echo "setup: all ${#PKGS[@]} packages present"
-  exit 0
-fi
-echo "setup: installing ${missing[*]}"
-SUDO=""
-[ "$(id -u)" -eq 0 ] || SUDO="sudo"
-export DEBIAN_FRONTEND=noninteractive
-$SUDO apt-get update -qq
-$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+
+install_deps() {
+  local missing=()
+  for p in "${PKGS[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  if [ ${#missing[@]} -eq 0 ]; then
+    echo "setup: all ${#PKGS[@]} packages present"
+    return
+  fi
+  echo "setup: installing ${missing[*]}"
+  local sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  $sudo apt-get update -qq
+  $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+}
+
+build() {
+  cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release
+  cmake --build "$BUILD_DIR" -j "$JOBS"
+}
+
+demo() {
+  local bin="$BUILD_DIR/bin" out=out/dragon-plane
+  mkdir -p "$out"
+  echo "== 1/3 proxy-gen: outside proxies for every mesh of scenes/dragon-plane.json"
+  "$bin/proxy-gen" scenes/dragon-plane.json --kind outside --out-dir "$out/proxies" --json "$out/proxy-gen.json"
+  echo "== 2/3 proxy-check: classify every proxy with sampled rays + exact containment"
+  "$bin/proxy-check" "$out/proxies/scene.json" --rays 200000 --json "$out/proxy-check.json"
+  echo "== 3/3 render-compare: every estimator against a converged reference"
+  "$bin/render-compare" "$out/proxies/scene.json" --out "$out/report" ${PROXYVIS_DEMO_FLAGS:-}
+}
+
+case "${1:-install}" in
+  install) install_deps ;;
+  build) install_deps; build ;;
+  demo) install_deps; build; demo ;;
+  test) install_deps; build; ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$JOBS" ;;
+  *) echo "usage: $0 [install|build|demo|test]" >&2; exit 2 ;;
+esac
