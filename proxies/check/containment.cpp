@@ -1,0 +1,255 @@
+// Exact containment of two triangle meshes.
+//
+// Method (all predicates exact: CGAL Exact_predicates_inexact_constructions_kernel):
+//  1. Each mesh becomes a repaired polygon soup (exactly equal positions welded, faces with a
+//     repeated corner and duplicated faces dropped) and, when it is a closed surface, a
+//     Surface_mesh for point location.
+//  2. Surface intersection: box_intersection_d (Zomorodian & Edelsbrunner, "Fast software for
+//     box intersections", SoCG 2000) pairs faces whose boxes overlap, then an exact
+//     triangle-triangle test. Touching counts as intersecting.
+//  3. Without a surface intersection every connected piece of one surface lies entirely inside or
+//     entirely outside the other solid, so point location of every vertex (Side_of_triangle_mesh:
+//     ray parity on an AABB tree) settles contains / contained / disjoint. Testing every vertex,
+//     not one, also handles several components and cavities.
+#include "proxies/check/containment.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
+#include <CGAL/Side_of_triangle_mesh.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/box_intersection_d.h>
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <array>
+#include <limits>
+#include <optional>
+#include <vector>
+
+#include "util/error.h"
+
+namespace proxyvis {
+
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Kernel::Point_3;
+using Segment3 = Kernel::Segment_3;
+using Triangle3 = Kernel::Triangle_3;
+using SurfaceMesh = CGAL::Surface_mesh<Point>;
+using SideOfMesh = CGAL::Side_of_triangle_mesh<SurfaceMesh, Kernel>;
+using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::size_t>;
+namespace PMP = CGAL::Polygon_mesh_processing;
+
+// A mesh prepared for the exact tests.
+struct ExactMesh {
+  std::vector<Point> points;
+  std::vector<std::array<std::size_t, 3>> faces;
+  bool closed = false;
+  SurfaceMesh surface;  // filled only when closed
+};
+
+ExactMesh prepare(const TriMesh& mesh, const char* role) {
+  if (mesh.empty())
+    throw Error(mesh.source, fmt::format("the {} has no triangles", role),
+                "containment needs two non-empty surfaces");
+  ExactMesh m;
+  m.points.reserve(mesh.vertices.size());
+  for (const Vec3f& v : mesh.vertices) {
+    if (!isFinite(v))
+      throw Error(mesh.source, fmt::format("the {} has a non-finite vertex", role),
+                  "exact predicates need finite coordinates");
+    m.points.emplace_back(v.x, v.y, v.z);
+  }
+  std::vector<std::vector<std::size_t>> polygons;
+  polygons.reserve(mesh.triangles.size());
+  for (const Triangle& t : mesh.triangles) {
+    for (uint32_t i : t)
+      if (i >= mesh.vertices.size())
+        throw Error(mesh.source, fmt::format("the {} has a vertex index out of range", role));
+    polygons.push_back({t[0], t[1], t[2]});
+  }
+  PMP::repair_polygon_soup(m.points, polygons);
+  if (polygons.empty())
+    throw Error(mesh.source, fmt::format("the {} has only degenerate triangles", role),
+                "containment needs a surface");
+  // Closed = every edge shared by exactly two consistently orientable faces. orient_polygon_soup
+  // splits non-manifold or non-orientable spots, which then show up as boundary edges.
+  std::vector<Point> oriented_points = m.points;
+  std::vector<std::vector<std::size_t>> oriented = polygons;
+  PMP::orient_polygon_soup(oriented_points, oriented);
+  PMP::polygon_soup_to_polygon_mesh(oriented_points, oriented, m.surface);
+  m.closed = CGAL::is_closed(m.surface);
+  if (!m.closed) m.surface.clear();
+  m.faces.reserve(polygons.size());
+  for (const auto& p : polygons) m.faces.push_back({p[0], p[1], p[2]});
+  return m;
+}
+
+Triangle3 triangleOf(const ExactMesh& m, std::size_t f) {
+  const auto& t = m.faces[f];
+  return {m.points[t[0]], m.points[t[1]], m.points[t[2]]};
+}
+
+// Exact intersection of two (possibly degenerate, i.e. collinear) triangles. A degenerate
+// triangle is the union of its edges; edges have positive length after welding.
+bool trianglesIntersect(const Triangle3& a, const Triangle3& b) {
+  const bool da = a.is_degenerate(), db = b.is_degenerate();
+  if (!da && !db) return CGAL::do_intersect(a, b);
+  auto edges = [](const Triangle3& t) {
+    return std::array<Segment3, 3>{Segment3(t[0], t[1]), Segment3(t[1], t[2]),
+                                   Segment3(t[2], t[0])};
+  };
+  if (da && db) {
+    for (const Segment3& s : edges(a))
+      for (const Segment3& r : edges(b))
+        if (CGAL::do_intersect(s, r)) return true;
+    return false;
+  }
+  const Triangle3& degenerate = da ? a : b;
+  const Triangle3& proper = da ? b : a;
+  for (const Segment3& s : edges(degenerate))
+    if (CGAL::do_intersect(s, proper)) return true;
+  return false;
+}
+
+std::vector<Box> faceBoxes(const ExactMesh& m) {
+  std::vector<Box> boxes;
+  boxes.reserve(m.faces.size());
+  for (std::size_t f = 0; f < m.faces.size(); ++f) boxes.emplace_back(triangleOf(m, f).bbox(), f);
+  return boxes;
+}
+
+struct IntersectionSummary {
+  uint64_t pairs = 0;
+  // The lexicographically first intersecting (original face, proxy face): deterministic.
+  std::size_t first_original = std::numeric_limits<std::size_t>::max(), first_proxy = 0;
+};
+
+IntersectionSummary intersectSurfaces(const ExactMesh& original, const ExactMesh& proxy) {
+  std::vector<Box> a = faceBoxes(original), b = faceBoxes(proxy);
+  IntersectionSummary s;
+  auto callback = [&](const Box& ba, const Box& bb) {
+    const std::size_t fa = ba.info(), fb = bb.info();
+    if (!trianglesIntersect(triangleOf(original, fa), triangleOf(proxy, fb))) return;
+    ++s.pairs;
+    if (std::pair(fa, fb) < std::pair(s.first_original, s.first_proxy)) {
+      s.first_original = fa;
+      s.first_proxy = fb;
+    }
+  };
+  // Closed boxes: touching boxes are reported, so touching triangles are found.
+  CGAL::box_intersection_d(a.begin(), a.end(), b.begin(), b.end(), callback);
+  return s;
+}
+
+// How many points of `m` lie strictly inside the closed `solid`, and one that does not
+// (or does) for the report.
+struct InsideCount {
+  std::size_t inside = 0, total = 0;
+  std::optional<Point> example_outside, example_inside;
+};
+
+InsideCount countInside(const ExactMesh& m, const ExactMesh& solid) {
+  SideOfMesh side(solid.surface);
+  InsideCount c;
+  c.total = m.points.size();
+  for (const Point& p : m.points) {
+    if (side(p) == CGAL::ON_BOUNDED_SIDE) {
+      ++c.inside;
+      if (!c.example_inside) c.example_inside = p;
+    } else if (!c.example_outside) {
+      c.example_outside = p;
+    }
+  }
+  return c;
+}
+
+std::string str(const Point& p) {
+  return fmt::format("({:.6g}, {:.6g}, {:.6g})", p.x(), p.y(), p.z());
+}
+
+}  // namespace
+
+const char* containmentName(ContainmentVerdict v) {
+  switch (v) {
+    case ContainmentVerdict::kContains:
+      return "contains";
+    case ContainmentVerdict::kContained:
+      return "contained";
+    case ContainmentVerdict::kIntersecting:
+      return "intersecting";
+    case ContainmentVerdict::kDisjoint:
+      return "disjoint";
+    case ContainmentVerdict::kUndecidable:
+      return "undecidable";
+  }
+  return "undecidable";
+}
+
+ContainmentResult checkContainment(const TriMesh& original, const TriMesh& proxy) {
+  ContainmentResult r;
+  ExactMesh o = prepare(original, "original");
+  ExactMesh p = prepare(proxy, "proxy");
+  r.original_closed = o.closed;
+  r.proxy_closed = p.closed;
+  if (!p.closed) {
+    r.verdict = ContainmentVerdict::kUndecidable;
+    r.detail =
+        "the proxy is not closed (boundary or non-manifold edges): it has no inside, so "
+        "containment is undefined";
+    return r;
+  }
+  IntersectionSummary s = intersectSurfaces(o, p);
+  if (s.pairs > 0) {
+    r.verdict = ContainmentVerdict::kIntersecting;
+    r.intersecting_face_pairs = s.pairs;
+    const Triangle3 t = triangleOf(o, s.first_original);
+    r.detail = fmt::format(
+        "{} intersecting (or touching) face pairs; e.g. original face near {} meets proxy face "
+        "near {}",
+        s.pairs, str(CGAL::centroid(t)), str(CGAL::centroid(triangleOf(p, s.first_proxy))));
+    return r;
+  }
+  const InsideCount o_in_p = countInside(o, p);
+  const bool all_inside = o_in_p.inside == o_in_p.total;
+  if (!o.closed) {
+    if (all_inside) {
+      r.verdict = ContainmentVerdict::kContains;
+      r.detail = "no surface intersection; every vertex of the open original is inside the proxy";
+    } else if (o_in_p.inside == 0) {
+      r.verdict = ContainmentVerdict::kDisjoint;
+      r.detail = fmt::format(
+          "no surface intersection and no original vertex inside the proxy "
+          "(e.g. {}): mismatched pair?",
+          str(*o_in_p.example_outside));
+    } else {
+      r.verdict = ContainmentVerdict::kUndecidable;
+      r.detail = fmt::format(
+          "the original is open and only {} of its {} vertices are inside the proxy (outside: "
+          "e.g. {}); an open original cannot contain the proxy",
+          o_in_p.inside, o_in_p.total, str(*o_in_p.example_outside));
+    }
+    return r;
+  }
+  const InsideCount p_in_o = countInside(p, o);
+  if (all_inside && p_in_o.inside == 0) {
+    r.verdict = ContainmentVerdict::kContains;
+    r.detail = "no surface intersection; the original lies inside the proxy";
+  } else if (p_in_o.inside == p_in_o.total && o_in_p.inside == 0) {
+    r.verdict = ContainmentVerdict::kContained;
+    r.detail = "no surface intersection; the proxy lies inside the original";
+  } else {
+    r.verdict = ContainmentVerdict::kDisjoint;
+    r.detail = fmt::format(
+        "no surface intersection, but neither lies inside the other: {} of {} original vertices "
+        "inside the proxy, {} of {} proxy vertices inside the original{}",
+        o_in_p.inside, o_in_p.total, p_in_o.inside, p_in_o.total,
+        o_in_p.inside == 0 && p_in_o.inside == 0 ? " (mismatched pair?)" : "");
+  }
+  return r;
+}
+
+}  // namespace proxyvis
