@@ -1,22 +1,29 @@
 #pragma once
-// The JSON scene format (documented in README.md, "Scene format"). DRAFT CONTRACT: lib/scene
-// owns this file and may extend it. Paths in the JSON are relative to the scene file; here they
-// are resolved to absolute paths.
+// The JSON scene format (full reference with examples: scenes/FORMAT.md). Paths in the JSON are
+// relative to the scene file; loadSceneDesc resolves them to absolute paths.
 //
 // {
+//   "description": "optional free text",
 //   "camera": {"eye": [x,y,z], "look_at": [x,y,z], "up": [0,1,0], "fov_deg": 40,
 //              "resolution": [w, h]},
 //   "lights": [{"type": "quad", "corner": [..], "edge_u": [..], "edge_v": [..],
 //               "radiance": [r,g,b]},
-//              {"type": "triangle", "vertices": [[..],[..],[..]], "radiance": [r,g,b]}],
+//              {"type": "triangle", "vertices": [[..],[..],[..]], "radiance": [r,g,b]},
+//              {"type": "triangles", "triangles": [[[..],[..],[..]], ...], "radiance": [..]}],
 //   "meshes": [{"name": "dragon", "file": "../data/dragon.drc", "albedo": [r,g,b],
-//               "transform": {"translate": [..], "scale": s} | [16 numbers, row-major 4x4],
+//               "transform": {"translate": [..], "rotate": [ax, ay, az, degrees],
+//                             "scale": s | [sx, sy, sz]}
+//                            | [12 or 16 numbers, row-major 3x4 / 4x4],
 //               "place": true,     // false: only placed through "instances"
-//               "proxies": [{"kind": "outside", "method": "wrap", "file": "dragon-plane/dragon.outside.ply",
+//               "proxies": [{"kind": "outside", "method": "wrap",
+//                            "file": "dragon-plane/dragon.outside.ply",
 //                            "class": "outside"}]}],   // class: verified by proxy-gen/proxy-check
-//   "instances": {"file": "foliage.instances.txt"}  // lines: "NAME tx ty tz" or "NAME m00..m23"
+//   "instances": {"file": "foliage.instances.txt"}
 // }
-// Unknown keys are errors naming the key's JSON path (e.g. "meshes[2].albedoo").
+// Instance list lines: "NAME tx ty tz" or "NAME" followed by 12 or 16 numbers (row-major 3x4 or
+// 4x4, world = M * [x y z 1]); '#' starts a comment. Unknown keys are errors naming the key's
+// JSON path (e.g. "meshes[2].albedoo").
+#include <array>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -29,27 +36,28 @@ namespace proxyvis {
 
 struct CameraDesc {
   Vec3f eye{0, 0, 5}, look_at{0, 0, 0}, up{0, 1, 0};
-  float fov_deg = 40;  // vertical field of view
+  float fov_deg = 40;  // vertical field of view, in (0, 180)
   int width = 256, height = 256;
 };
 
+// Emits radiance on both sides of every triangle (so the winding in the file does not matter).
 struct AreaLightDesc {
   std::vector<std::array<Vec3f, 3>> triangles;  // a quad is two triangles
   Vec3f radiance{1, 1, 1};
 };
 
 struct ProxyRef {
-  std::string kind;                         // "outside", "inside", "general" (what was asked for)
-  std::string method;                       // generator method, e.g. "wrap", "hull", "qem"
-  std::filesystem::path file;               // absolute after loading
-  std::optional<ProxyClass> verified_class; // absent = not verified: treated as general
+  std::string kind;                          // "outside", "inside", "general" (what was asked for)
+  std::string method;                        // generator method, e.g. "wrap", "hull", "qem"
+  std::filesystem::path file;                // absolute after loading
+  std::optional<ProxyClass> verified_class;  // absent = not verified: treated as general
 };
 
 struct SceneMeshDesc {
-  std::string name;
+  std::string name;  // unique, no whitespace (the instance list refers to it)
   std::filesystem::path file;  // absolute after loading
   Vec3f albedo{0.7f, 0.7f, 0.7f};
-  Affine3f transform;          // used when place == true
+  Affine3f transform;  // used when place == true
   bool place = true;
   std::vector<ProxyRef> proxies;
 };
@@ -61,21 +69,37 @@ struct SceneInstanceDesc {
 
 struct SceneDesc {
   std::filesystem::path path;  // the scene file (absolute)
+  std::string description;
   CameraDesc camera;
   std::vector<AreaLightDesc> lights;
   std::vector<SceneMeshDesc> meshes;
-  std::filesystem::path instances_file;  // empty if none
+  std::filesystem::path instances_file;  // absolute; empty if none
   std::vector<SceneInstanceDesc> instances;
+
+  // Index of the mesh called `name`, or -1.
+  int findMesh(const std::string& name) const;
 };
 
-// Parses and validates a scene file; throws Error naming the file and the JSON path of the
-// problem. Does not load the meshes.
+// Parses and validates a scene file and its instance list; throws Error naming the file and the
+// JSON path (or list line) of the problem: unknown keys, wrong types, non-finite numbers, missing
+// referenced files, duplicate mesh names, singular transforms, no lights. Does not load meshes.
 SceneDesc loadSceneDesc(const std::filesystem::path& path);
 
-// Writes a scene (paths made relative to the new file's directory), atomically.
+// Parses an instance list for `meshes` (names looked up there). Throws Error naming
+// "file:line" for an unknown name, a wrong count of numbers, a non-finite or singular transform,
+// or a 4x4 whose last row is not 0 0 0 1.
+std::vector<SceneInstanceDesc> loadInstanceList(const std::filesystem::path& path,
+                                                const std::vector<SceneMeshDesc>& meshes);
+
+// Writes a scene (paths made relative to the new file's directory), atomically. Transforms are
+// written as 16 numbers. Instances: the scene refers to scene.instances_file if set; otherwise,
+// if there are instances, they are written to "<stem>.instances.txt" beside the scene (also
+// atomically) and referenced from it.
 void saveSceneDesc(const SceneDesc& scene, const std::filesystem::path& path);
 
-// Content hash (hex) of the scene file and every file it references: the reference cache key.
+// Content hash (16 hex digits, FNV-1a 64) of the scene's canonical JSON and the bytes of every
+// file it references (meshes, proxies, instance list): the reference cache key. Throws Error if a
+// referenced file cannot be read.
 std::string sceneHash(const SceneDesc& scene);
 
 }  // namespace proxyvis

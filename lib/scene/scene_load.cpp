@@ -1,0 +1,222 @@
+// Scene file parsing (format: scenes/FORMAT.md). Every problem is reported with the scene file
+// and the JSON path of the value, e.g. "scenes/x.json: meshes[2].albedoo: unknown key".
+#include <fmt/core.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "scene/internal/json_fields.h"
+#include "scene/scene_desc.h"
+#include "scene/transform.h"
+#include "util/atomic_write.h"
+#include "util/error.h"
+
+namespace proxyvis {
+
+using scene_internal::Field;
+using scene_internal::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path resolveFile(const Field& f, const fs::path& scene_dir) {
+  const std::string s = f.asString();
+  if (s.empty()) f.fail("empty file name");
+  fs::path p = fs::path(s).is_absolute() ? fs::path(s) : scene_dir / s;
+  p = p.lexically_normal();
+  std::error_code ec;
+  if (!fs::is_regular_file(p, ec))
+    f.fail("file not found: " + p.string(), "paths are relative to the scene file");
+  return p;
+}
+
+CameraDesc parseCamera(const Field& f) {
+  f.expectObject({"eye", "look_at", "up", "fov_deg", "resolution"});
+  CameraDesc c;
+  c.eye = f["eye"].asVec3();
+  c.look_at = f["look_at"].asVec3();
+  if (f.has("up")) c.up = f["up"].asVec3();
+  if (f.has("fov_deg")) c.fov_deg = f["fov_deg"].asFloat();
+  if (!(c.fov_deg > 0 && c.fov_deg < 180)) f["fov_deg"].fail("must be in (0, 180) degrees");
+  if (f.has("resolution")) {
+    const Field r = f["resolution"];
+    if (r.arraySize() != 2) r.fail("expected [width, height]");
+    c.width = r[size_t(0)].asInt();
+    c.height = r[1].asInt();
+    if (c.width < 1 || c.height < 1 || c.width > 16384 || c.height > 16384)
+      r.fail("width and height must be in [1, 16384]");
+  }
+  const Vec3f view = c.look_at - c.eye;
+  if (!(length(view) > 0)) f.fail("eye and look_at coincide");
+  if (!(length(cross(view, c.up)) > 1e-6f * length(view) * length(c.up)))
+    f.fail("up is zero or parallel to the view direction");
+  return c;
+}
+
+Vec3f parseRadiance(const Field& f) {
+  const Vec3f r = f.asVec3();
+  if (r.x < 0 || r.y < 0 || r.z < 0) f.fail("radiance must be non-negative");
+  return r;
+}
+
+AreaLightDesc parseLight(const Field& f) {
+  if (!f.value().is_object()) f.fail("expected an object");
+  const std::string type = f["type"].asString();
+  AreaLightDesc light;
+  if (type == "quad") {
+    f.expectObject({"type", "corner", "edge_u", "edge_v", "radiance"});
+    const Vec3f c = f["corner"].asVec3(), u = f["edge_u"].asVec3(), v = f["edge_v"].asVec3();
+    light.triangles.push_back({c, c + u, c + u + v});
+    light.triangles.push_back({c, c + u + v, c + v});
+  } else if (type == "triangle") {
+    f.expectObject({"type", "vertices", "radiance"});
+    const Field vs = f["vertices"];
+    if (vs.arraySize() != 3) vs.fail("expected 3 vertices");
+    light.triangles.push_back({vs[size_t(0)].asVec3(), vs[1].asVec3(), vs[2].asVec3()});
+  } else if (type == "triangles") {
+    f.expectObject({"type", "triangles", "radiance"});
+    const Field ts = f["triangles"];
+    for (size_t i = 0, n = ts.arraySize(); i < n; ++i) {
+      const Field t = ts[i];
+      if (t.arraySize() != 3) t.fail("expected 3 vertices");
+      light.triangles.push_back({t[size_t(0)].asVec3(), t[1].asVec3(), t[2].asVec3()});
+    }
+    if (light.triangles.empty()) ts.fail("no triangles");
+  } else {
+    f["type"].fail("unknown light type '" + type + "'", "known types: quad, triangle, triangles");
+  }
+  for (const auto& t : light.triangles)
+    if (!(length(cross(t[1] - t[0], t[2] - t[0])) > 0))
+      f.fail("degenerate light (zero area)", "area sampling needs a positive area");
+  light.radiance = parseRadiance(f["radiance"]);
+  return light;
+}
+
+Affine3f parseMatrix(const Field& f) {
+  const std::vector<float> v = f.asFloats();
+  if (v.size() != 12 && v.size() != 16) f.fail("expected 12 or 16 numbers (row-major)");
+  if (v.size() == 16 && (v[12] != 0 || v[13] != 0 || v[14] != 0 || v[15] != 1))
+    f.fail("the last row of a 4x4 transform must be 0 0 0 1", "only affine transforms are allowed");
+  Affine3f a;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 4; ++j) a.m[i][j] = v[size_t(i * 4 + j)];
+  return a;
+}
+
+Affine3f parseTransform(const Field& f) {
+  Affine3f a;
+  if (f.value().is_array()) {
+    a = parseMatrix(f);
+  } else {
+    f.expectObject({"translate", "rotate", "scale"});
+    Affine3f s, r, t;
+    if (f.has("scale")) {
+      const Field sf = f["scale"];
+      if (sf.value().is_number()) {
+        const float k = sf.asFloat();
+        s = scaling({k, k, k});
+      } else {
+        s = scaling(sf.asVec3());
+      }
+    }
+    if (f.has("rotate")) {
+      const Field rf = f["rotate"];
+      const std::vector<float> v = rf.asFloats();
+      if (v.size() != 4) rf.fail("expected [axis_x, axis_y, axis_z, degrees]");
+      if (!(length(Vec3f(v[0], v[1], v[2])) > 0)) rf.fail("zero rotation axis");
+      r = rotation({v[0], v[1], v[2]}, v[3]);
+    }
+    if (f.has("translate")) t = Affine3f::translation(f["translate"].asVec3());
+    a = compose(t, compose(r, s));
+  }
+  if (!inverse(a)) f.fail("singular transform", "a transform must be invertible");
+  return a;
+}
+
+ProxyRef parseProxy(const Field& f, const fs::path& dir) {
+  f.expectObject({"kind", "method", "file", "class"});
+  ProxyRef p;
+  p.kind = f["kind"].asString();
+  if (!parseProxyClass(p.kind)) f["kind"].fail("unknown kind '" + p.kind + "'", "known: outside, inside, general");
+  if (f.has("method")) p.method = f["method"].asString();
+  p.file = resolveFile(f["file"], dir);
+  if (f.has("class")) {
+    const std::string c = f["class"].asString();
+    p.verified_class = parseProxyClass(c);
+    if (!p.verified_class) f["class"].fail("unknown class '" + c + "'", "known: outside, inside, general");
+  }
+  return p;
+}
+
+SceneMeshDesc parseMesh(const Field& f, const fs::path& dir) {
+  f.expectObject({"name", "file", "albedo", "transform", "place", "proxies"});
+  SceneMeshDesc m;
+  m.name = f["name"].asString();
+  if (m.name.empty() || m.name.find_first_of(" \t\r\n#") != std::string::npos)
+    f["name"].fail("mesh names must be non-empty, without spaces or '#'",
+                   "the instance list refers to meshes by name");
+  m.file = resolveFile(f["file"], dir);
+  if (f.has("albedo")) {
+    m.albedo = f["albedo"].asVec3();
+    for (int i = 0; i < 3; ++i)
+      if (m.albedo[i] < 0 || m.albedo[i] > 1)
+        f["albedo"].fail("albedo must be in [0, 1]", "a larger albedo reflects more than it receives");
+  }
+  if (f.has("transform")) m.transform = parseTransform(f["transform"]);
+  if (f.has("place")) m.place = f["place"].asBool();
+  if (f.has("proxies")) {
+    const Field ps = f["proxies"];
+    for (size_t i = 0, n = ps.arraySize(); i < n; ++i) m.proxies.push_back(parseProxy(ps[i], dir));
+  }
+  return m;
+}
+
+}  // namespace
+
+int SceneDesc::findMesh(const std::string& name) const {
+  for (size_t i = 0; i < meshes.size(); ++i)
+    if (meshes[i].name == name) return int(i);
+  return -1;
+}
+
+SceneDesc loadSceneDesc(const fs::path& path) {
+  SceneDesc scene;
+  std::error_code ec;
+  scene.path = fs::absolute(path, ec).lexically_normal();
+  const std::string text = readTextFile(scene.path);
+  json root;
+  try {
+    root = json::parse(text, nullptr, true, /*ignore_comments=*/true);
+  } catch (const json::parse_error& e) {
+    throw Error(scene.path.string(), "invalid JSON", e.what(), "fix the syntax");
+  }
+  const fs::path dir = scene.path.parent_path();
+  const Field top(root, "", scene.path);
+  top.expectObject({"description", "camera", "lights", "meshes", "instances"});
+  if (top.has("description")) scene.description = top["description"].asString();
+  scene.camera = parseCamera(top["camera"]);
+
+  const Field lights = top["lights"];
+  for (size_t i = 0, n = lights.arraySize(); i < n; ++i) scene.lights.push_back(parseLight(lights[i]));
+  if (scene.lights.empty()) lights.fail("no lights", "direct illumination needs at least one light");
+
+  const Field meshes = top["meshes"];
+  std::set<std::string> names;
+  for (size_t i = 0, n = meshes.arraySize(); i < n; ++i) {
+    scene.meshes.push_back(parseMesh(meshes[i], dir));
+    if (!names.insert(scene.meshes.back().name).second)
+      meshes[i]["name"].fail("duplicate mesh name '" + scene.meshes.back().name + "'");
+  }
+  if (scene.meshes.empty()) meshes.fail("no meshes");
+
+  if (top.has("instances")) {
+    const Field inst = top["instances"];
+    inst.expectObject({"file"});
+    scene.instances_file = resolveFile(inst["file"], dir);
+    scene.instances = loadInstanceList(scene.instances_file, scene.meshes);
+  }
+  return scene;
+}
+
+}  // namespace proxyvis

@@ -1,0 +1,134 @@
+// Writing scene files (the inverse of scene_load.cpp) and the content hash used as the
+// reference-image cache key.
+#include <fmt/core.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "scene/scene_desc.h"
+#include "util/atomic_write.h"
+#include "util/error.h"
+
+namespace proxyvis {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+json toJson(const Vec3f& v) { return json::array({v.x, v.y, v.z}); }
+
+json toJson(const Affine3f& a) {
+  json m = json::array();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 4; ++j) m.push_back(a.m[i][j]);
+  for (float v : {0.f, 0.f, 0.f, 1.f}) m.push_back(v);
+  return m;
+}
+
+// Relative to `dir` when the file is below or beside it, so scenes stay relocatable.
+std::string relativePath(const fs::path& file, const fs::path& dir) {
+  if (dir.empty()) return file.generic_string();
+  const fs::path rel = file.lexically_relative(dir);
+  return rel.empty() ? file.generic_string() : rel.generic_string();
+}
+
+// Every light is written as a triangle list, which keeps the vertices bit-exact (a quad's
+// corner and edges cannot be recovered exactly from its float triangles).
+json lightToJson(const AreaLightDesc& l) {
+  json tris = json::array();
+  for (const auto& t : l.triangles)
+    tris.push_back(json::array({toJson(t[0]), toJson(t[1]), toJson(t[2])}));
+  return {{"type", "triangles"}, {"triangles", tris}, {"radiance", toJson(l.radiance)}};
+}
+
+std::string instanceLines(const SceneDesc& scene) {
+  std::string out = "# NAME m00 m01 ... m23 (row-major 3x4, world = M * [x y z 1])\n";
+  for (const SceneInstanceDesc& inst : scene.instances) {
+    out += scene.meshes.at(inst.mesh).name;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 4; ++j) out += fmt::format(" {}", inst.transform.m[i][j]);
+    out += '\n';
+  }
+  return out;
+}
+
+json sceneToJson(const SceneDesc& scene, const fs::path& dir, const fs::path& instances_file) {
+  json root;
+  if (!scene.description.empty()) root["description"] = scene.description;
+  const CameraDesc& c = scene.camera;
+  root["camera"] = {{"eye", toJson(c.eye)},         {"look_at", toJson(c.look_at)},
+                    {"up", toJson(c.up)},           {"fov_deg", c.fov_deg},
+                    {"resolution", {c.width, c.height}}};
+  json lights = json::array();
+  for (const AreaLightDesc& l : scene.lights) lights.push_back(lightToJson(l));
+  root["lights"] = lights;
+  json meshes = json::array();
+  for (const SceneMeshDesc& m : scene.meshes) {
+    json jm = {{"name", m.name},
+               {"file", relativePath(m.file, dir)},
+               {"albedo", toJson(m.albedo)},
+               {"transform", toJson(m.transform)},
+               {"place", m.place}};
+    json proxies = json::array();
+    for (const ProxyRef& p : m.proxies) {
+      json jp = {{"kind", p.kind}, {"file", relativePath(p.file, dir)}};
+      if (!p.method.empty()) jp["method"] = p.method;
+      if (p.verified_class) jp["class"] = proxyClassName(*p.verified_class);
+      proxies.push_back(jp);
+    }
+    jm["proxies"] = proxies;
+    meshes.push_back(jm);
+  }
+  root["meshes"] = meshes;
+  if (!instances_file.empty()) root["instances"] = {{"file", relativePath(instances_file, dir)}};
+  return root;
+}
+
+// FNV-1a 64 (Fowler, Noll, Vo): tiny, dependency-free, and good enough for a cache key.
+struct Fnv1a {
+  uint64_t h = 0xcbf29ce484222325ULL;
+  void add(std::string_view bytes) {
+    for (unsigned char c : bytes) {
+      h ^= c;
+      h *= 0x100000001b3ULL;
+    }
+  }
+};
+
+}  // namespace
+
+void saveSceneDesc(const SceneDesc& scene, const fs::path& path) {
+  std::error_code ec;
+  const fs::path target = fs::absolute(path, ec).lexically_normal();
+  const fs::path dir = target.parent_path();
+  fs::path instances_file = scene.instances_file;
+  if (instances_file.empty() && !scene.instances.empty()) {
+    instances_file = dir / (target.stem().string() + ".instances.txt");
+    writeTextAtomically(instances_file, instanceLines(scene));
+  }
+  writeTextAtomically(target, sceneToJson(scene, dir, instances_file).dump(2) + "\n");
+}
+
+std::string sceneHash(const SceneDesc& scene) {
+  Fnv1a fnv;
+  // Paths relative to the scene's directory, so moving a whole scene folder keeps its hash.
+  fnv.add(sceneToJson(scene, scene.path.parent_path(), scene.instances_file).dump());
+  std::vector<fs::path> files;
+  for (const SceneMeshDesc& m : scene.meshes) {
+    files.push_back(m.file);
+    for (const ProxyRef& p : m.proxies) files.push_back(p.file);
+  }
+  if (!scene.instances_file.empty()) {
+    files.push_back(scene.instances_file);
+  } else {
+    fnv.add(instanceLines(scene));
+  }
+  for (const fs::path& f : files) {
+    fnv.add(f.filename().string());
+    fnv.add(readTextFile(f));
+  }
+  return fmt::format("{:016x}", fnv.h);
+}
+
+}  // namespace proxyvis
