@@ -65,9 +65,10 @@ std::vector<SceneInstanceDesc> loadInstanceList(const std::filesystem::path& pat
                "every instance must name a mesh of the scene's \"meshes\" list");
     const size_t n = tokens.size() - 1;
     if (n != 3 && n != 12 && n != 16)
-      failLine(path, line_no,
-               "expected 3 (translation), 12 or 16 (row-major matrix) numbers after the name, found " +
-                   std::to_string(n));
+      failLine(
+          path, line_no,
+          "expected 3 (translation), 12 or 16 (row-major matrix) numbers after the name, found " +
+              std::to_string(n));
     std::vector<float> v(n);
     for (size_t i = 0; i < n; ++i)
       if (!parseFloat(tokens[i + 1], v[i]))

@@ -8,7 +8,9 @@ namespace proxyvis::scene_internal {
 
 namespace {
 
-const char* typeName(const json& v) { return v.type_name(); }
+const char* typeName(const json& v) {
+  return v.type_name();
+}
 
 }  // namespace
 
@@ -28,20 +30,20 @@ void Field::expectObject(std::initializer_list<const char*> allowed) const {
       for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
       const std::string sub = path_.empty() ? key : path_ + "." + key;
       throw Error(file_.string(), sub + ": unknown key",
-                  "a misspelt key would otherwise be ignored silently",
-                  "known keys here: " + list);
+                  "a misspelt key would otherwise be ignored silently", "known keys here: " + list);
     }
   }
 }
 
-bool Field::has(const char* key) const { return value_.is_object() && value_.contains(key); }
+bool Field::has(const char* key) const {
+  return value_.is_object() && value_.contains(key);
+}
 
 Field Field::operator[](const char* key) const {
   if (!value_.is_object()) fail(std::string("expected an object, found ") + typeName(value_));
   auto it = value_.find(key);
   const std::string sub = path_.empty() ? key : path_ + "." + key;
-  if (it == value_.end())
-    throw Error(file_.string(), sub + ": missing", "this key is required");
+  if (it == value_.end()) throw Error(file_.string(), sub + ": missing", "this key is required");
   return Field(*it, sub, file_);
 }
 

@@ -54,7 +54,7 @@ struct ProxyRef {
 };
 
 struct SceneMeshDesc {
-  std::string name;  // unique, no whitespace (the instance list refers to it)
+  std::string name;            // unique, no whitespace (the instance list refers to it)
   std::filesystem::path file;  // absolute after loading
   Vec3f albedo{0.7f, 0.7f, 0.7f};
   Affine3f transform;  // used when place == true

@@ -138,13 +138,15 @@ ProxyRef parseProxy(const Field& f, const fs::path& dir) {
   f.expectObject({"kind", "method", "file", "class"});
   ProxyRef p;
   p.kind = f["kind"].asString();
-  if (!parseProxyClass(p.kind)) f["kind"].fail("unknown kind '" + p.kind + "'", "known: outside, inside, general");
+  if (!parseProxyClass(p.kind))
+    f["kind"].fail("unknown kind '" + p.kind + "'", "known: outside, inside, general");
   if (f.has("method")) p.method = f["method"].asString();
   p.file = resolveFile(f["file"], dir);
   if (f.has("class")) {
     const std::string c = f["class"].asString();
     p.verified_class = parseProxyClass(c);
-    if (!p.verified_class) f["class"].fail("unknown class '" + c + "'", "known: outside, inside, general");
+    if (!p.verified_class)
+      f["class"].fail("unknown class '" + c + "'", "known: outside, inside, general");
   }
   return p;
 }
@@ -161,7 +163,8 @@ SceneMeshDesc parseMesh(const Field& f, const fs::path& dir) {
     m.albedo = f["albedo"].asVec3();
     for (int i = 0; i < 3; ++i)
       if (m.albedo[i] < 0 || m.albedo[i] > 1)
-        f["albedo"].fail("albedo must be in [0, 1]", "a larger albedo reflects more than it receives");
+        f["albedo"].fail("albedo must be in [0, 1]",
+                         "a larger albedo reflects more than it receives");
   }
   if (f.has("transform")) m.transform = parseTransform(f["transform"]);
   if (f.has("place")) m.place = f["place"].asBool();
@@ -188,7 +191,7 @@ SceneDesc loadSceneDesc(const fs::path& path) {
   json root;
   try {
     root = json::parse(text, nullptr, true, /*ignore_comments=*/true);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, or out_of_range for 1e999
     throw Error(scene.path.string(), "invalid JSON", e.what(), "fix the syntax");
   }
   const fs::path dir = scene.path.parent_path();
@@ -198,8 +201,10 @@ SceneDesc loadSceneDesc(const fs::path& path) {
   scene.camera = parseCamera(top["camera"]);
 
   const Field lights = top["lights"];
-  for (size_t i = 0, n = lights.arraySize(); i < n; ++i) scene.lights.push_back(parseLight(lights[i]));
-  if (scene.lights.empty()) lights.fail("no lights", "direct illumination needs at least one light");
+  for (size_t i = 0, n = lights.arraySize(); i < n; ++i)
+    scene.lights.push_back(parseLight(lights[i]));
+  if (scene.lights.empty())
+    lights.fail("no lights", "direct illumination needs at least one light");
 
   const Field meshes = top["meshes"];
   std::set<std::string> names;

@@ -16,7 +16,9 @@ using nlohmann::json;
 
 namespace {
 
-json toJson(const Vec3f& v) { return json::array({v.x, v.y, v.z}); }
+json toJson(const Vec3f& v) {
+  return json::array({v.x, v.y, v.z});
+}
 
 json toJson(const Affine3f& a) {
   json m = json::array();
@@ -57,8 +59,10 @@ json sceneToJson(const SceneDesc& scene, const fs::path& dir, const fs::path& in
   json root;
   if (!scene.description.empty()) root["description"] = scene.description;
   const CameraDesc& c = scene.camera;
-  root["camera"] = {{"eye", toJson(c.eye)},         {"look_at", toJson(c.look_at)},
-                    {"up", toJson(c.up)},           {"fov_deg", c.fov_deg},
+  root["camera"] = {{"eye", toJson(c.eye)},
+                    {"look_at", toJson(c.look_at)},
+                    {"up", toJson(c.up)},
+                    {"fov_deg", c.fov_deg},
                     {"resolution", {c.width, c.height}}};
   json lights = json::array();
   for (const AreaLightDesc& l : scene.lights) lights.push_back(lightToJson(l));

@@ -34,9 +34,9 @@ class Field {
 
   std::string asString() const;
   bool asBool() const;
-  float asFloat() const;  // finite
-  int asInt() const;      // integral
-  Vec3f asVec3() const;   // 3 finite numbers
+  float asFloat() const;                // finite
+  int asInt() const;                    // integral
+  Vec3f asVec3() const;                 // 3 finite numbers
   std::vector<float> asFloats() const;  // array of finite numbers
 
  private:
