@@ -1,3 +1,5 @@
-# proxy-check: exact containment and the ray-sampled classification.
+# proxy-check: exact containment, class statistics and the ray-sampled classification.
 proxyvis_add_test(containment_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/containment_test.cpp
+  LIBS pv_proxy_check)
+proxyvis_add_test(check_stats_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/check_stats_test.cpp
   LIBS pv_proxy_check)

@@ -1,0 +1,104 @@
+#include "proxies/check/ray_classify.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <numbers>
+
+#include "util/progress.h"
+#include "util/rng.h"
+
+namespace proxyvis {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+Vec3f uniformOnSphere(Rng& rng) {
+  const float z = 1.0f - 2.0f * rng.uniformFloat();
+  const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+  const float phi = 2.0f * std::numbers::pi_v<float> * rng.uniformFloat();
+  return {r * std::cos(phi), r * std::sin(phi), z};
+}
+
+}  // namespace
+
+Segment sphereSegment(const Vec3f& center, float radius, uint64_t seed, uint64_t index) {
+  Rng rng(seed, index);
+  const Vec3f a = center + radius * uniformOnSphere(rng);
+  const Vec3f b = center + radius * uniformOnSphere(rng);
+  Segment s;
+  s.org = a;
+  s.dir = b - a;
+  s.tnear = 0;
+  s.tfar = 1;
+  return s;
+}
+
+Sphere enclosingSphere(const Bounds3f& a, const Bounds3f& b) {
+  Bounds3f u = a;
+  u.extend(b);
+  return {u.center(), 0.5f * u.diagonal() * 1.05f};
+}
+
+SegmentGenerator sphereSegments(const Sphere& sphere, uint64_t seed) {
+  return [sphere, seed](uint64_t index, Segment& out) {
+    out = sphereSegment(sphere.center, sphere.radius, seed, index);
+    return true;
+  };
+}
+
+Classification classifySegments(const TraceScene& original, const TraceScene& proxy,
+                                const SegmentGenerator& generator, const ClassifyOptions& options) {
+  const auto start = Clock::now();
+  Classification result;
+  Progress progress("Classifying segments", options.segments, options.quiet);
+  const size_t batch = std::max<size_t>(1, options.batch);
+  std::vector<Segment> segs(batch);
+  std::vector<uint8_t> valid(batch), hit_o(batch), hit_p(batch);
+  for (uint64_t first = 0; first < options.segments; first += batch) {
+    const size_t n = size_t(std::min<uint64_t>(batch, options.segments - first));
+    tbb::parallel_for(size_t(0), n, [&](size_t i) {
+      valid[i] = generator(first + i, segs[i]) ? 1 : 0;
+      if (!valid[i]) segs[i] = Segment{{}, 0, {1, 0, 0}, -1};  // empty range: never occluded
+    });
+    const std::span<const Segment> in(segs.data(), n);
+    auto t0 = Clock::now();
+    proxy.occluded(in, std::span<uint8_t>(hit_p.data(), n));
+    result.seconds_proxy += secondsSince(t0);
+    t0 = Clock::now();
+    original.occluded(in, std::span<uint8_t>(hit_o.data(), n));
+    result.seconds_original += secondsSince(t0);
+    ClassCounts c;
+    for (size_t i = 0; i < n; ++i) {
+      if (!valid[i]) {
+        ++result.skipped;
+        continue;
+      }
+      const bool o = hit_o[i], p = hit_p[i];
+      if (o && p)
+        ++c.hh;
+      else if (o)
+        ++c.hm;
+      else if (p)
+        ++c.mh;
+      else
+        ++c.mm;
+      if (o != p && result.errors.size() < options.max_error_segments)
+        result.errors.push_back({segs[i].org + segs[i].tnear * segs[i].dir,
+                                 segs[i].org + segs[i].tfar * segs[i].dir, o});
+    }
+    result.counts += c;
+    progress.update(n);
+  }
+  progress.done();
+  result.seconds = secondsSince(start);
+  return result;
+}
+
+}  // namespace proxyvis
