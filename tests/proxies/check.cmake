@@ -3,3 +3,5 @@ proxyvis_add_test(containment_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/containment
   LIBS pv_proxy_check)
 proxyvis_add_test(check_stats_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/check_stats_test.cpp
   LIBS pv_proxy_check)
+proxyvis_add_test(check_distance_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/check_distance_test.cpp
+  LIBS pv_proxy_check)

@@ -1,0 +1,15 @@
+#pragma once
+// Sampled one-sided surface distance between two triangle meshes (a Hausdorff estimate).
+#include <cstdint>
+
+#include "mesh/tri_mesh.h"
+
+namespace proxyvis {
+
+// max over `samples` points of `from` (uniform by area, Rng(seed, i), plus every vertex) of the
+// distance to the surface of `to`. A lower bound of the one-sided Hausdorff distance h(from, to)
+// that converges to it as samples grows. Both meshes must be non-empty.
+double sampledOneSidedDistance(const TriMesh& from, const TriMesh& to, uint64_t samples = 20000,
+                               uint64_t seed = 0);
+
+}  // namespace proxyvis
