@@ -1,0 +1,158 @@
+// proxy-check: classifies a proxy against its original by sampled segments and by an exact
+// containment test, and reports both (DESIGN.md §1-2).
+//
+//   proxy-check ORIGINAL PROXY [--rays N] [--seed S] [--expect outside|inside|general]
+//               [--json OUT] [--dump-errors FILE.ply]
+//   proxy-check SCENE.json     (every proxy of every mesh; instanced meshes: their prototype)
+#include <fmt/core.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "mesh/mesh_io.h"
+#include "proxies/check/check_report.h"
+#include "proxies/check/pair_check.h"
+#include "scene/scene_desc.h"
+#include "util/app_main.h"
+#include "util/atomic_write.h"
+#include "util/error.h"
+
+namespace fs = std::filesystem;
+using namespace proxyvis;
+
+namespace {
+
+struct Options {
+  CommonOptions common;
+  std::vector<std::string> inputs;
+  uint64_t rays = 1'000'000;
+  std::string distribution = "sphere";
+  std::string expect;
+  std::string dump_errors;
+};
+
+// The human report goes to stdout unless the JSON does; then to stderr (unless --quiet).
+void printHuman(const Options& o, const std::string& text) {
+  if (o.common.json_path != "-") {
+    std::fputs(text.c_str(), stdout);
+  } else if (!o.common.quiet) {
+    std::fputs(text.c_str(), stderr);
+  }
+}
+
+void printMismatch(const PairCheckReport& r) {
+  if (r.mismatch)
+    std::fprintf(stderr, "proxy-check: MISMATCH between sampled and exact verdicts%s%s: %s\n",
+                 r.label.empty() ? "" : " for ", r.label.c_str(), r.mismatch->c_str());
+}
+
+PairCheckOptions pairOptions(const Options& o) {
+  PairCheckOptions p;
+  p.rays = o.rays;
+  p.seed = o.common.seed;
+  p.quiet = o.common.quiet;
+  if (!o.expect.empty()) p.expect = parseProxyClass(o.expect);
+  if (!o.dump_errors.empty()) p.max_error_segments = 1'000'000;
+  return p;
+}
+
+int runPair(const Options& o) {
+  if (o.distribution != "sphere")
+    throw Error("", "--distribution scene needs a scene", "a mesh pair has no camera or lights",
+                "run proxy-check SCENE.json --distribution scene");
+  const TriMesh original = loadMesh(o.inputs[0]);
+  const TriMesh proxy = loadMesh(o.inputs[1]);
+  PairCheckReport r = checkPair(original, proxy, pairOptions(o));
+  printHuman(o, formatHumanReport(r));
+  printMismatch(r);
+  if (!o.dump_errors.empty()) writeErrorSegmentsPly(r.sampled.errors, o.dump_errors);
+  if (!o.common.json_path.empty())
+    writeTextAtomically(o.common.json_path, toJson(r).dump(2) + "\n");
+  return r.failed() ? kExitCheckFailed : kExitOk;
+}
+
+int runScene(const Options& o) {
+  if (o.distribution != "sphere")
+    throw Error(o.inputs[0], "--distribution scene is not implemented yet",
+                "only the sphere distribution is available", "use --distribution sphere");
+  const SceneDesc scene = loadSceneDesc(o.inputs[0]);
+  nlohmann::json checks = nlohmann::json::array();
+  std::vector<ErrorSegment> all_errors;
+  bool failed = false;
+  size_t pairs = 0;
+  for (const SceneMeshDesc& mesh : scene.meshes) {
+    if (mesh.proxies.empty()) continue;
+    // Instanced or placed, the proxy is checked against the prototype in its own space: the
+    // containment relation does not change under the (affine, invertible) placement.
+    const TriMesh original = loadMesh(mesh.file);
+    for (const ProxyRef& ref : mesh.proxies) {
+      PairCheckOptions po = pairOptions(o);
+      // Without --expect, the class the scene claims is what must hold (DESIGN.md §2 pitfall 4).
+      if (!po.expect && ref.verified_class) po.expect = ref.verified_class;
+      const TriMesh proxy = loadMesh(ref.file);
+      PairCheckReport r = checkPair(original, proxy, po);
+      r.label = fmt::format("{} / {} ({})", mesh.name, ref.kind, ref.method);
+      printHuman(o, formatHumanReport(r) + "\n");
+      printMismatch(r);
+      failed = failed || r.failed();
+      checks.push_back(toJson(r));
+      all_errors.insert(all_errors.end(), r.sampled.errors.begin(), r.sampled.errors.end());
+      ++pairs;
+    }
+  }
+  if (pairs == 0)
+    throw Error(o.inputs[0], "the scene lists no proxies", "there is nothing to check",
+                "generate them with proxy-gen SCENE.json");
+  if (!o.dump_errors.empty()) writeErrorSegmentsPly(all_errors, o.dump_errors);
+  if (!o.common.json_path.empty()) {
+    nlohmann::json j = {{"scene", scene.path.string()},
+                        {"seed", o.common.seed},
+                        {"rays", o.rays},
+                        {"checks", checks},
+                        {"ok", !failed}};
+    writeTextAtomically(o.common.json_path, j.dump(2) + "\n");
+  }
+  return failed ? kExitCheckFailed : kExitOk;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  CLI::App app{
+      "proxy-check: classifies a proxy (outside / inside / general) against its original by "
+      "sampled segments (counts HH', HM', MH', MM' with 95 % intervals) and by an exact "
+      "containment test (CGAL), and reports both. Exit 1 if they disagree or --expect is "
+      "contradicted.",
+      "proxy-check"};
+  addCommonOptions(app, o.common);
+  app.add_option("inputs", o.inputs, "ORIGINAL PROXY (meshes: .obj .ply .off .drc) or SCENE.json")
+      ->required()
+      ->expected(1, 2);
+  app.add_option("--rays", o.rays, "Number of segments to sample")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--distribution", o.distribution,
+                 "sphere: random lines through a sphere around both meshes; scene: camera hits "
+                 "to light samples")
+      ->check(CLI::IsMember({"sphere", "scene"}))
+      ->capture_default_str();
+  app.add_option("--expect", o.expect,
+                 "Exit 1 if the evidence contradicts this class (outside: no HM' and exact "
+                 "'contains'; inside: no MH' and exact 'contained'; general: never)")
+      ->check(CLI::IsMember({"outside", "inside", "general"}));
+  app.add_option("--dump-errors", o.dump_errors,
+                 "Write the error segments as a PLY of edges (red HM', blue MH')");
+  return runApp(app, argc, argv, o.common, [&] {
+    if (o.inputs.size() == 1) {
+      if (fs::path(o.inputs[0]).extension() != ".json")
+        throw Error(o.inputs[0], "one input must be a scene (.json)",
+                    "a mesh needs its proxy beside it", "proxy-check ORIGINAL PROXY");
+      return runScene(o);
+    }
+    return runPair(o);
+  });
+}

@@ -1,0 +1,208 @@
+#include "proxies/check/check_report.h"
+
+#include <fmt/core.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "util/atomic_write.h"
+#include "util/error.h"
+
+namespace proxyvis {
+
+namespace {
+
+std::string rateLine(const char* name, const RateEstimate& e, const char* meaning) {
+  if (e.n == 0)
+    return fmt::format("  {:<16} {:>12}  {:<26} {}\n", name, "n/a", "(no segments)", meaning);
+  return fmt::format("  {:<16} {:>12.6f}  [{:.6f}, {:.6f}]   {}\n", name, e.value, e.ci.lo, e.ci.hi,
+                     meaning);
+}
+
+std::string meshLine(const char* role, const MeshSummary& m) {
+  return fmt::format("  {:<9} {:>9} faces {:>9} vertices  {:<6}  volume {:.6g}   {}\n", role,
+                     m.faces, m.vertices, m.closed ? "closed" : "open", m.volume, m.source);
+}
+
+nlohmann::json rateJson(const RateEstimate& e) {
+  nlohmann::json j = {{"k", e.k}, {"n", e.n}};
+  if (e.n == 0) {
+    j["value"] = nullptr;
+    j["lo"] = 0.0;
+    j["hi"] = 1.0;
+  } else {
+    j["value"] = e.value;
+    j["lo"] = e.ci.lo;
+    j["hi"] = e.ci.hi;
+  }
+  return j;
+}
+
+nlohmann::json valueOrNull(const RateEstimate& e) {
+  return e.n == 0 ? nlohmann::json(nullptr) : nlohmann::json(e.value);
+}
+
+nlohmann::json meshJson(const MeshSummary& m) {
+  nlohmann::json j = {
+      {"file", m.source}, {"faces", m.faces}, {"vertices", m.vertices}, {"closed", m.closed}};
+  j["volume"] = m.closed ? nlohmann::json(m.volume) : nlohmann::json(nullptr);
+  return j;
+}
+
+// The class the rays never showed and the upper 95 % bound on its rate over all segments.
+struct MissedBound {
+  const char* name = nullptr;
+  double upper = 0;
+};
+std::optional<MissedBound> missedClassBound(const PairCheckReport& r) {
+  switch (r.sampled_class) {
+    case SampledClass::kOutside:
+      return MissedBound{"HM'", r.stats.hm.ci.hi};
+    case SampledClass::kInside:
+      return MissedBound{"MH'", r.stats.mh.ci.hi};
+    case SampledClass::kEquivalent:
+      return MissedBound{"HM'+MH'", r.stats.error.ci.hi};
+    case SampledClass::kGeneral:
+      return std::nullopt;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::string formatHumanReport(const PairCheckReport& r) {
+  const ClassCounts& c = r.sampled.counts;
+  const ClassStats& s = r.stats;
+  std::string out;
+  if (!r.label.empty()) out += fmt::format("== {} ==\n", r.label);
+  out += "Meshes\n";
+  out += meshLine("original", r.original);
+  out += meshLine("proxy", r.proxy);
+  if (r.original.closed && r.proxy.closed && r.original.volume > 0)
+    out +=
+        fmt::format("  volume ratio proxy/original {:.4f}\n", r.proxy.volume / r.original.volume);
+  out +=
+      fmt::format("  distance (sampled Hausdorff) original->proxy {:.6g}, proxy->original {:.6g}\n",
+                  r.distance_original_to_proxy, r.distance_proxy_to_original);
+  out +=
+      fmt::format("\nSegments: {} ({} distribution, seed {}{})\n", c.total(), r.distribution,
+                  r.seed, r.sampled.skipped ? fmt::format(", {} skipped", r.sampled.skipped) : "");
+  out += fmt::format("  {}\n", r.distribution_note);
+  out += fmt::format("  {:<6} {:>12} {:>10}  {:<24}  {}\n", "class", "count", "fraction",
+                     "95 % interval", "meaning");
+  auto row = [&](const char* name, uint64_t k, const RateEstimate& e, const char* meaning) {
+    out += fmt::format("  {:<6} {:>12} {:>10.6f}  [{:.6f}, {:.6f}]  {}\n", name, k, e.value,
+                       e.ci.lo, e.ci.hi, meaning);
+  };
+  row("HH'", c.hh, s.hh, "both block");
+  row("HM'", c.hm, s.hm, "original blocks, proxy misses (error)");
+  row("MH'", c.mh, s.mh, "original misses, proxy blocks (error)");
+  row("MM'", c.mm, s.mm, "both miss");
+  out += "\nDerived (value, 95 % Wilson interval)\n";
+  out += rateLine("V_avg", s.v_avg, "P(V = 1)");
+  out += rateLine("f_hit", s.f_hit, "HH' / (HH' + HM')");
+  out += rateLine("f_miss", s.f_miss, "MM' / (MH' + MM')");
+  out += rateLine("P(err|V'=0)", s.error_given_v0, "MH' / (HH' + MH')");
+  out += rateLine("P(err|V'=1)", s.error_given_v1, "HM' / (HM' + MM')");
+  out += fmt::format(
+      "  cost ratio c_p/c_o {:.3f}  (proxy {:.1f} ns, original {:.1f} ns per segment; "
+      "{:.2f} M classified segments/s)\n",
+      r.sampled.costRatio(),
+      1e9 * r.sampled.seconds_proxy / double(std::max<uint64_t>(1, c.total())),
+      1e9 * r.sampled.seconds_original / double(std::max<uint64_t>(1, c.total())),
+      double(c.total()) / std::max(1e-9, r.sampled.seconds) / 1e6);
+  out += "\nVerdicts\n";
+  out += fmt::format("  sampled class  {}", sampledClassName(r.sampled_class));
+  if (r.sampled_class == SampledClass::kEquivalent) out += " on these rays";
+  if (auto b = missedClassBound(r))
+    out += fmt::format("  (no {} seen; its rate is below {:.3g} at 95 %)", b->name, b->upper);
+  out += "\n";
+  out += fmt::format("  exact          {}  ({:.2f} s): {}\n", containmentName(r.exact.verdict),
+                     r.exact_seconds, r.exact.detail);
+  if (r.mismatch) out += fmt::format("  !!! MISMATCH: {} !!!\n", *r.mismatch);
+  if (r.expected)
+    out += fmt::format("  expected       {}: {}\n", proxyClassName(*r.expected),
+                       r.contradiction ? "CONTRADICTED (" + *r.contradiction + ")" : "consistent");
+  return out;
+}
+
+nlohmann::json toJson(const PairCheckReport& r) {
+  const ClassCounts& c = r.sampled.counts;
+  const ClassStats& s = r.stats;
+  nlohmann::json j;
+  if (!r.label.empty()) j["label"] = r.label;
+  j["counts"] = {{"HH", c.hh}, {"HM", c.hm}, {"MH", c.mh}, {"MM", c.mm}};
+  j["V_avg"] = valueOrNull(s.v_avg);
+  j["f_hit"] = valueOrNull(s.f_hit);
+  j["f_miss"] = valueOrNull(s.f_miss);
+  j["P_error_given_V0"] = valueOrNull(s.error_given_v0);
+  j["P_error_given_V1"] = valueOrNull(s.error_given_v1);
+  j["intervals"] = {{"level", 0.95},
+                    {"method", "wilson"},
+                    {"HH", rateJson(s.hh)},
+                    {"HM", rateJson(s.hm)},
+                    {"MH", rateJson(s.mh)},
+                    {"MM", rateJson(s.mm)},
+                    {"V_avg", rateJson(s.v_avg)},
+                    {"f_hit", rateJson(s.f_hit)},
+                    {"f_miss", rateJson(s.f_miss)},
+                    {"P_error_given_V0", rateJson(s.error_given_v0)},
+                    {"P_error_given_V1", rateJson(s.error_given_v1)},
+                    {"error", rateJson(s.error)}};
+  j["sampled_class"] = sampledClassName(r.sampled_class);
+  if (auto b = missedClassBound(r))
+    j["missed_class_upper_bound"] = {{"class", b->name}, {"rate", b->upper}};
+  j["exact"] = containmentName(r.exact.verdict);
+  j["exact_detail"] = r.exact.detail;
+  j["exact_seconds"] = r.exact_seconds;
+  j["intersecting_face_pairs"] = r.exact.intersecting_face_pairs;
+  j["mismatch"] = r.mismatch ? nlohmann::json(*r.mismatch) : nlohmann::json(nullptr);
+  if (r.expected) {
+    j["expect"] = proxyClassName(*r.expected);
+    j["contradiction"] =
+        r.contradiction ? nlohmann::json(*r.contradiction) : nlohmann::json(nullptr);
+  }
+  j["ok"] = !r.failed();
+  j["cost_ratio"] = r.sampled.costRatio();
+  j["seconds_proxy"] = r.sampled.seconds_proxy;
+  j["seconds_original"] = r.sampled.seconds_original;
+  j["seed"] = r.seed;
+  j["rays"] = c.total();
+  j["rays_requested"] = r.rays_requested;
+  j["distribution"] = r.distribution;
+  j["seconds"] = r.seconds;
+  j["original"] = meshJson(r.original);
+  j["proxy"] = meshJson(r.proxy);
+  j["volume_ratio"] = r.original.closed && r.proxy.closed && r.original.volume > 0
+                          ? nlohmann::json(r.proxy.volume / r.original.volume)
+                          : nlohmann::json(nullptr);
+  j["hausdorff"] = {{"original_to_proxy", r.distance_original_to_proxy},
+                    {"proxy_to_original", r.distance_proxy_to_original},
+                    {"method", "sampled one-sided maximum (lower bound)"}};
+  return j;
+}
+
+void writeErrorSegmentsPly(const std::vector<ErrorSegment>& segments,
+                           const std::filesystem::path& path) {
+  writeAtomically(path, [&](const std::filesystem::path& tmp) {
+    std::ofstream f(tmp);
+    if (!f) throw WriteError(path.string(), "cannot open for writing");
+    f << "ply\nformat ascii 1.0\ncomment proxy-check error segments: red = HM' (original blocks, "
+         "proxy misses), blue = MH' (original misses, proxy blocks)\n";
+    f << "element vertex " << 2 * segments.size()
+      << "\nproperty float x\nproperty float y\nproperty float z\n"
+         "property uchar red\nproperty uchar green\nproperty uchar blue\n";
+    f << "element edge " << segments.size()
+      << "\nproperty int vertex1\nproperty int vertex2\n"
+         "property uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n";
+    auto color = [](const ErrorSegment& s) { return s.hm ? "255 0 0" : "0 0 255"; };
+    for (const ErrorSegment& s : segments)
+      for (const Vec3f& p : {s.a, s.b}) f << fmt::format("{} {} {} {}\n", p.x, p.y, p.z, color(s));
+    for (size_t i = 0; i < segments.size(); ++i)
+      f << fmt::format("{} {} {}\n", 2 * i, 2 * i + 1, color(segments[i]));
+    f.flush();
+    if (!f) throw WriteError(path.string(), "write failed", "disk full or not writable");
+  });
+}
+
+}  // namespace proxyvis

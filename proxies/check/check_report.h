@@ -1,0 +1,26 @@
+#pragma once
+// How proxy-check shows a PairCheckReport: a human table, JSON, and a PLY of the error segments.
+#include <filesystem>
+#include <nlohmann/json_fwd.hpp>
+#include <string>
+#include <vector>
+
+#include "proxies/check/pair_check.h"
+
+namespace proxyvis {
+
+// Multi-line report: mesh statistics, the four classes (count, fraction, 95 % interval), derived
+// quantities, the sampled class with the bound on the missed class, the exact verdict, and any
+// mismatch or contradiction in capitals.
+std::string formatHumanReport(const PairCheckReport& report);
+
+// Keys: counts {HH, HM, MH, MM}, V_avg, f_hit, f_miss, intervals, sampled_class, exact,
+// cost_ratio, seed, rays, seconds, plus details (meshes, distances, error rates, verdicts).
+nlohmann::json toJson(const PairCheckReport& report);
+
+// ASCII PLY: two vertices and one edge per segment, colored red for HM' and blue for MH';
+// written atomically.
+void writeErrorSegmentsPly(const std::vector<ErrorSegment>& segments,
+                           const std::filesystem::path& path);
+
+}  // namespace proxyvis

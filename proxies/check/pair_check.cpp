@@ -1,0 +1,79 @@
+#include "proxies/check/pair_check.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "proxies/check/mesh_distance.h"
+#include "trace/trace_scene.h"
+#include "util/rng.h"
+
+namespace proxyvis {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+std::unique_ptr<TraceScene> buildScene(TraceDevice& device, const TriMesh& mesh) {
+  TraceSceneBuilder builder(device);
+  builder.addMesh(mesh);
+  return builder.build();
+}
+
+}  // namespace
+
+MeshSummary summarizeMesh(const TriMesh& mesh, bool closed) {
+  MeshSummary s;
+  s.source = mesh.source;
+  s.faces = mesh.numTriangles();
+  s.vertices = mesh.numVertices();
+  s.closed = closed;
+  s.volume = std::abs(mesh.signedVolume());
+  return s;
+}
+
+void finishVerdicts(PairCheckReport& r) {
+  r.stats = deriveStats(r.sampled.counts);
+  r.sampled_class = sampledClass(r.sampled.counts);
+  r.mismatch = sampledExactMismatch(r.sampled.counts, r.exact.verdict);
+  r.contradiction.reset();
+  if (r.expected)
+    r.contradiction = contradictsExpectation(*r.expected, r.sampled.counts, r.exact.verdict);
+}
+
+PairCheckReport checkPair(const TriMesh& original, const TriMesh& proxy,
+                          const PairCheckOptions& options) {
+  const auto start = Clock::now();
+  PairCheckReport r;
+  r.seed = options.seed;
+  r.rays_requested = options.rays;
+  r.expected = options.expect;
+  r.exact = checkContainment(original, proxy);
+  r.exact_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  r.original = summarizeMesh(original, r.exact.original_closed);
+  r.proxy = summarizeMesh(proxy, r.exact.proxy_closed);
+  // Distances use their own streams so they never shift the segment streams.
+  r.distance_original_to_proxy =
+      sampledOneSidedDistance(original, proxy, options.distance_samples, hashKeys(options.seed, 1));
+  r.distance_proxy_to_original =
+      sampledOneSidedDistance(proxy, original, options.distance_samples, hashKeys(options.seed, 2));
+
+  TraceDevice device;
+  std::unique_ptr<TraceScene> original_scene = buildScene(device, original);
+  std::unique_ptr<TraceScene> proxy_scene = buildScene(device, proxy);
+  const Sphere sphere = enclosingSphere(original.bounds(), proxy.bounds());
+  r.distribution = "sphere";
+  r.distribution_note =
+      "segments between independent uniform points on a sphere around both meshes: both ends "
+      "lie outside both, so an outside proxy can show no HM' and an inside proxy no MH'";
+  ClassifyOptions co;
+  co.segments = options.rays;
+  co.max_error_segments = options.max_error_segments;
+  co.quiet = options.quiet;
+  r.sampled =
+      classifySegments(*original_scene, *proxy_scene, sphereSegments(sphere, options.seed), co);
+  finishVerdicts(r);
+  r.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return r;
+}
+
+}  // namespace proxyvis

@@ -1,0 +1,62 @@
+#pragma once
+// One original/proxy pair checked both ways: exactly (containment) and by sampled segments, with
+// the derived statistics, mesh statistics and verdicts that proxy-check reports.
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "proxies/check/class_stats.h"
+#include "proxies/check/containment.h"
+#include "proxies/check/ray_classify.h"
+#include "util/proxy_class.h"
+
+namespace proxyvis {
+
+struct MeshSummary {
+  std::string source;
+  uint64_t faces = 0, vertices = 0;
+  bool closed = false;
+  double volume = 0;  // |signed volume|; meaningful only when closed
+};
+
+struct PairCheckOptions {
+  uint64_t rays = 1'000'000;
+  uint64_t seed = 0;
+  std::optional<ProxyClass> expect;
+  uint64_t max_error_segments = 0;  // kept for --dump-errors
+  uint64_t distance_samples = 20000;
+  bool quiet = false;
+};
+
+struct PairCheckReport {
+  std::string label;  // e.g. "dragon / outside (wrap)" in a scene; empty for a plain pair
+  MeshSummary original, proxy;
+  double distance_original_to_proxy = 0, distance_proxy_to_original = 0;  // sampled one-sided
+  ContainmentResult exact;
+  double exact_seconds = 0;
+  std::string distribution;  // "sphere" or "scene"
+  std::string distribution_note;
+  uint64_t seed = 0, rays_requested = 0;
+  Classification sampled;
+  ClassStats stats;
+  SampledClass sampled_class = SampledClass::kEquivalent;
+  std::optional<std::string> mismatch;  // sampled vs exact disagree: a bug, reported loudly
+  std::optional<ProxyClass> expected;
+  std::optional<std::string> contradiction;  // the evidence contradicts `expected`
+  double seconds = 0;                        // everything, loading excluded
+
+  bool failed() const { return mismatch.has_value() || contradiction.has_value(); }
+};
+
+MeshSummary summarizeMesh(const TriMesh& mesh, bool closed);
+
+// Fills the verdict fields (stats, sampled class, mismatch, contradiction) from `sampled`,
+// `exact` and `expected`.
+void finishVerdicts(PairCheckReport& report);
+
+// The exact check, the sphere-distribution classification (both ends outside both meshes, as
+// the guarantees require) and the mesh statistics. Throws Error for empty meshes.
+PairCheckReport checkPair(const TriMesh& original, const TriMesh& proxy,
+                          const PairCheckOptions& options);
+
+}  // namespace proxyvis
