@@ -5,3 +5,7 @@ proxyvis_add_test(check_stats_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/check_stats
   LIBS pv_proxy_check)
 proxyvis_add_test(check_distance_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/check_distance_test.cpp
   LIBS pv_proxy_check)
+if(TARGET pv_trace)
+  proxyvis_add_test(check_rays_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/check_rays_test.cpp
+    LIBS pv_proxy_check pv_trace)
+endif()
