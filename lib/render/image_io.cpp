@@ -1,0 +1,79 @@
+#include "render/image_io.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "util/atomic_write.h"
+#include "util/error.h"
+
+namespace proxyvis {
+
+namespace {
+
+std::string lowerExtension(const std::filesystem::path& p) {
+  std::string e = p.extension().string();
+  std::transform(e.begin(), e.end(), e.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  return e;
+}
+
+}  // namespace
+
+float linearToSrgb(float v) {
+  v = std::clamp(v, 0.0f, 1.0f);
+  return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+}
+
+void writeImage(const Image& image, const std::filesystem::path& path,
+                const ImageWriteOptions& options) {
+  PV_CHECK(image.pixels.size() == size_t(image.width) * image.height * image.channels);
+  const std::string ext = lowerExtension(path);
+  const bool ldr = ext == ".png" || ext == ".jpg" || ext == ".jpeg";
+  writeAtomically(path, [&](const std::filesystem::path& tmp) {
+    // OIIO picks the format from the file name, so the temporary keeps the real extension.
+    const std::filesystem::path named = tmp.string() + ext;
+    auto out = OIIO::ImageOutput::create(named.string());
+    if (!out) throw WriteError(path.string(), "unsupported image format", OIIO::geterror());
+    OIIO::ImageSpec spec(
+        image.width, image.height, image.channels,
+        ldr ? OIIO::TypeDesc::UINT8
+            : (options.full_float || ext != ".exr" ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF));
+    bool ok = out->open(named.string(), spec);
+    if (ok && ldr) {
+      std::vector<uint8_t> bytes(image.pixels.size());
+      for (size_t i = 0; i < bytes.size(); ++i)
+        bytes[i] = uint8_t(std::lround(255.0f * linearToSrgb(image.pixels[i] * options.exposure)));
+      ok = out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
+    } else if (ok) {
+      ok = out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data());
+    }
+    const std::string error = ok ? std::string() : out->geterror();
+    ok = out->close() && ok;
+    std::error_code ec;
+    if (!ok) {
+      std::filesystem::remove(named, ec);
+      throw WriteError(path.string(), "cannot write image", error);
+    }
+    std::filesystem::rename(named, tmp, ec);
+    if (ec) throw WriteError(path.string(), "cannot write image", ec.message());
+  });
+}
+
+Image readImage(const std::filesystem::path& path) {
+  auto in = OIIO::ImageInput::open(path.string());
+  if (!in) throw Error(path.string(), "cannot read image", OIIO::geterror());
+  const OIIO::ImageSpec& spec = in->spec();
+  Image image;
+  image.width = spec.width;
+  image.height = spec.height;
+  image.channels = spec.nchannels;
+  image.pixels.resize(size_t(spec.width) * spec.height * spec.nchannels);
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data()))
+    throw Error(path.string(), "cannot read image", in->geterror());
+  in->close();
+  return image;
+}
+
+}  // namespace proxyvis

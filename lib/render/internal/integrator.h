@@ -1,0 +1,55 @@
+#pragma once
+// The steps of render() shared with passSegments(): shading points from primary rays, and the
+// light samples of one pass.
+#include <vector>
+
+#include "render/render_scene.h"
+#include "render/renderer.h"
+
+namespace proxyvis::render_internal {
+
+struct ShadingPoint {
+  Vec3f p;  // hit point, offset along the normal by RenderScene::epsilon()
+  Vec3f n;  // unit geometric normal facing the camera
+  Vec3f albedo;
+  uint32_t object = 0;
+  bool valid = false;  // false: the primary ray missed (black pixel)
+};
+
+struct Tiling {
+  int width = 0, height = 0, tile = 16, tiles_x = 0, tiles_y = 0;
+  Tiling(int w, int h, int t) : width(w), height(h), tile(t) {
+    tiles_x = (w + t - 1) / t;
+    tiles_y = (h + t - 1) / t;
+  }
+  int count() const { return tiles_x * tiles_y; }
+  template <typename F>  // f(x, y, pixel)
+  void forEachPixel(int tile_index, F&& f) const {
+    const int x0 = (tile_index % tiles_x) * tile, y0 = (tile_index / tiles_x) * tile;
+    for (int y = y0; y < std::min(y0 + tile, height); ++y)
+      for (int x = x0; x < std::min(x0 + tile, width); ++x) f(x, y, uint32_t(y * width + x));
+  }
+};
+
+// One primary ray per pixel, jittered from a stream keyed on the pixel alone. Parallel over tiles.
+std::vector<ShadingPoint> shadingPoints(const RenderScene& scene, const Tiling& tiling);
+
+// A light sample prepared for visibility estimation; weight == 0 means it needs no visibility
+// (back-facing, or the pixel has no shading point).
+struct PreparedSample {
+  Segment segment;
+  Vec3f weight;  // albedo/pi * L_e * cos_x * cos_y / dist^2 / pdf_area
+  uint32_t light = 0;
+};
+
+// Light samples [first, first + count) of `pass` for one shading point, from the stream keyed
+// on (seed, pixel, pass).
+void prepareSamples(const RenderScene& scene, const ShadingPoint& sp, uint64_t seed, uint32_t pixel,
+                    int pass, int count, PreparedSample* out);
+
+// A segment from the shading point to a point on a light, or false when the geometry term is
+// zero (the light is behind the surface).
+bool makeSegment(const RenderScene& scene, const ShadingPoint& sp, const Vec3f& light_point,
+                 Segment& out);
+
+}  // namespace proxyvis::render_internal

@@ -1,0 +1,190 @@
+// Building the renderer's Embree scenes from a scene description (see render_scene.h).
+#include "render/render_scene.h"
+
+#include <fmt/core.h>
+
+#include <cstdio>
+
+#include "mesh/mesh_io.h"
+#include "scene/transform.h"
+#include "util/error.h"
+
+namespace proxyvis {
+
+namespace {
+
+TriMesh transformed(const TriMesh& mesh, const Affine3f& a) {
+  TriMesh out = mesh;
+  for (Vec3f& v : out.vertices) v = a.apply(v);
+  return out;
+}
+
+Bounds3f transformedBounds(const Bounds3f& b, const Affine3f& a) {
+  Bounds3f out;
+  for (int i = 0; i < 8; ++i)
+    out.extend(
+        a.apply({(i & 1) ? b.hi.x : b.lo.x, (i & 2) ? b.hi.y : b.lo.y, (i & 4) ? b.hi.z : b.lo.z}));
+  return out;
+}
+
+bool overlaps(const Bounds3f& a, const Bounds3f& b) {
+  return a.lo.x <= b.hi.x && b.lo.x <= a.hi.x && a.lo.y <= b.hi.y && b.lo.y <= a.hi.y &&
+         a.lo.z <= b.hi.z && b.lo.z <= a.hi.z;
+}
+
+int chooseProxy(const SceneMeshDesc& mesh, const RenderSceneOptions& options) {
+  if (!options.use_proxies) return -1;
+  for (size_t i = 0; i < mesh.proxies.size(); ++i)
+    if (options.proxy_kind.empty() || mesh.proxies[i].kind == options.proxy_kind) return int(i);
+  return -1;
+}
+
+// Adds every object to `builder`, taking each object's geometry from meshes[mesh] (originals) or
+// from the chosen proxy. Prototypes are built lazily, once per mesh.
+void addObjects(TraceSceneBuilder& builder, const std::vector<RenderObject>& objects,
+                const std::vector<const TriMesh*>& geometry) {
+  std::vector<int64_t> prototype(geometry.size(), -1);
+  for (uint32_t id = 0; id < objects.size(); ++id) {
+    const RenderObject& o = objects[id];
+    const TriMesh& mesh = *geometry[o.mesh];
+    if (o.instance < 0) {
+      builder.addMesh(transformed(mesh, o.to_world), id);
+    } else {
+      if (prototype[o.mesh] < 0) prototype[o.mesh] = builder.addPrototype(mesh);
+      builder.addInstance(uint32_t(prototype[o.mesh]), o.to_world, id);
+    }
+  }
+}
+
+}  // namespace
+
+RenderScene::RenderScene(SceneDesc desc)
+    : desc_(std::move(desc)), camera_(desc_.camera), lights_(desc_.lights) {}
+
+RenderScene::~RenderScene() = default;
+
+uint64_t RenderScene::originalTriangles() const {
+  return originals_->triangleCount();
+}
+uint64_t RenderScene::proxyTriangles() const {
+  return proxies_->triangleCount();
+}
+
+std::unique_ptr<RenderScene> loadRenderScene(const std::filesystem::path& scene_file,
+                                             const RenderSceneOptions& options) {
+  return loadRenderScene(loadSceneDesc(scene_file), options);
+}
+
+std::unique_ptr<RenderScene> loadRenderScene(const SceneDesc& desc,
+                                             const RenderSceneOptions& options) {
+  std::unique_ptr<RenderScene> scene(new RenderScene(desc));
+  const size_t num_meshes = desc.meshes.size();
+
+  // Objects: placed meshes first, then instances, in file order.
+  std::vector<RenderObject>& objects = scene->objects_;
+  std::vector<int> chosen(num_meshes);
+  std::vector<bool> used(num_meshes, false);
+  for (size_t m = 0; m < num_meshes; ++m) chosen[m] = chooseProxy(desc.meshes[m], options);
+  auto addObject = [&](uint32_t mesh, int32_t instance, const Affine3f& t) {
+    RenderObject o;
+    o.mesh = mesh;
+    o.instance = instance;
+    o.to_world = t;
+    const auto inv = inverse(t);
+    if (!inv)
+      throw Error(desc.path.string(),
+                  "singular transform for mesh '" + desc.meshes[mesh].name + "'");
+    o.to_object = *inv;
+    o.proxy = chosen[mesh];
+    objects.push_back(o);
+    used[mesh] = true;
+  };
+  for (uint32_t m = 0; m < num_meshes; ++m)
+    if (desc.meshes[m].place) addObject(m, -1, desc.meshes[m].transform);
+  for (size_t i = 0; i < desc.instances.size(); ++i)
+    addObject(desc.instances[i].mesh, int32_t(i), desc.instances[i].transform);
+  if (objects.empty())
+    throw Error(desc.path.string(), "nothing to render",
+                "no mesh is placed and there are no instances");
+
+  // Meshes and proxies, loaded once each.
+  std::vector<TriMesh> originals(num_meshes), proxies(num_meshes);
+  std::vector<const TriMesh*> original_ptrs(num_meshes), proxy_ptrs(num_meshes);
+  for (size_t m = 0; m < num_meshes; ++m) {
+    if (!used[m]) continue;
+    originals[m] = loadMesh(desc.meshes[m].file);
+    original_ptrs[m] = &originals[m];
+    proxy_ptrs[m] = &originals[m];
+    if (chosen[m] >= 0) {
+      proxies[m] = loadMesh(desc.meshes[m].proxies[size_t(chosen[m])].file);
+      proxy_ptrs[m] = &proxies[m];
+    }
+  }
+
+  scene->device_ = std::make_unique<TraceDevice>();
+  TraceSceneBuilder builder(*scene->device_, options.trace);
+  addObjects(builder, objects, original_ptrs);
+  scene->originals_ = builder.build();
+  addObjects(builder, objects, proxy_ptrs);
+  scene->proxies_ = builder.build();
+  scene->self_.resize(num_meshes);
+  for (size_t m = 0; m < num_meshes; ++m) {
+    if (!used[m] || chosen[m] < 0) continue;
+    builder.addMesh(originals[m], 0);
+    scene->self_[m] = builder.build();
+  }
+  scene->epsilon_ = std::max(1e-6f, 2e-5f * scene->originals_->bounds().diagonal());
+
+  // The class the estimators may rely on, after the light checks of DESIGN.md pitfall 2.
+  std::vector<Bounds3f> light_bounds;
+  for (const AreaLightDesc& l : desc.lights) {
+    Bounds3f b;
+    for (const auto& t : l.triangles)
+      for (const Vec3f& v : t) b.extend(v);
+    light_bounds.push_back(b);
+  }
+  std::optional<ProxyClass> common;
+  bool mixed = false;
+  std::vector<bool> warned(num_meshes, false);
+  for (const RenderObject& o : objects) {
+    if (o.proxy < 0) continue;
+    scene->uses_proxies_ = true;
+    const SceneMeshDesc& mesh = desc.meshes[o.mesh];
+    const ProxyRef& ref = mesh.proxies[size_t(o.proxy)];
+    ProxyClass c = ref.verified_class.value_or(ProxyClass::kGeneral);
+    if (!ref.verified_class && !warned[o.mesh]) {
+      scene->warnings_.push_back(
+          fmt::format("mesh '{}': proxy {} has no verified class; treated as general", mesh.name,
+                      ref.file.filename().string()));
+    }
+    if (c != ProxyClass::kGeneral) {
+      // Outside: the light must be outside the proxy. Inside: outside the original.
+      const TriMesh& guard = c == ProxyClass::kOutside ? proxies[o.mesh] : originals[o.mesh];
+      const Bounds3f world = transformedBounds(guard.bounds(), o.to_world);
+      for (size_t l = 0; l < light_bounds.size(); ++l) {
+        if (!overlaps(world, light_bounds[l])) continue;
+        if (!warned[o.mesh])
+          scene->warnings_.push_back(fmt::format(
+              "mesh '{}': light {} may reach inside the bounds of its {} {}; the {} guarantee "
+              "needs the light outside (DESIGN.md pitfall 2): treated as general",
+              mesh.name, l, c == ProxyClass::kOutside ? "proxy" : "original",
+              ref.file.filename().string(), proxyClassName(c)));
+        c = ProxyClass::kGeneral;
+        break;
+      }
+    }
+    warned[o.mesh] = true;
+    if (common && *common != c) mixed = true;
+    common = c;
+  }
+  if (common && !mixed) scene->proxy_class_ = *common;
+  if (mixed)
+    scene->warnings_.push_back(
+        "meshes use proxies of different classes: the estimators treat them as general");
+  if (!options.quiet)
+    for (const std::string& w : scene->warnings_)
+      std::fprintf(stderr, "%s: warning: %s\n", desc.path.filename().string().c_str(), w.c_str());
+  return scene;
+}
+
+}  // namespace proxyvis

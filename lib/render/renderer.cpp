@@ -1,0 +1,226 @@
+// The direct-illumination integrator (contract in renderer.h). Each pass runs in two parallel
+// phases over screen tiles, timed separately: (A) light sampling, producing one segment and
+// weight per light sample; (B) visibility estimation, where the estimator decides which rays to
+// trace, and accumulation. Separating them lets render-compare and bench_render report shading
+// cost and shadow-ray cost apart (DESIGN.md §2b, point 4).
+#include "render/renderer.h"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <climits>
+
+#include "render/internal/integrator.h"
+#include "render/render_scene.h"
+#include "render/scene_tracer.h"
+#include "util/error.h"
+#include "util/progress.h"
+#include "util/rng.h"
+
+namespace proxyvis {
+
+using namespace render_internal;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+void validate(const RenderSettings& s) {
+  if (s.tile_size < 1 || s.tile_size > 4096)
+    throw Error("", "tile size must be in [1, 4096]", "got " + std::to_string(s.tile_size));
+  if (s.spp <= 0 && !(s.time_budget > 0))
+    throw Error("", "nothing to render", "spp must be positive unless a time budget is given");
+  if (s.time_budget < 0 || !std::isfinite(s.time_budget))
+    throw Error("", "time budget must be a finite number of seconds >= 0");
+  if (s.samples_per_pass < 0) throw Error("", "samples per pass must be >= 0");
+}
+
+int samplesPerPass(const RenderSettings& s, int probes) {
+  if (s.samples_per_pass > 0) return s.samples_per_pass;
+  if (probes <= 0) return 1;
+  return s.time_budget > 0 ? 16 : std::max(1, s.spp);
+}
+
+struct Accumulators {
+  std::vector<Vec3d> radiance;
+  std::vector<double> vis_sum;
+  std::vector<uint32_t> vis_n;
+  std::vector<RayCounts> rays;
+  explicit Accumulators(size_t n) : radiance(n), vis_sum(n, 0.0), vis_n(n, 0), rays(n) {}
+};
+
+// Per-thread scratch for phase B.
+struct Scratch {
+  std::vector<uint32_t> order;
+  std::vector<Segment> segments, probes;
+  std::vector<double> estimates;
+};
+
+// Phase B for one pixel: groups its samples by light (one query per learning region), asks the
+// estimator, accumulates.
+void estimatePixel(const RenderScene& scene, VisibilityEstimator& estimator, const ShadingPoint& sp,
+                   const PreparedSample* samples, int count, uint32_t pixel, int pass,
+                   uint64_t seed, uint32_t tile, int probes, Scratch& scratch, Accumulators& acc) {
+  if (!sp.valid) return;
+  const uint32_t num_lights = uint32_t(scene.lights().numLights());
+  scratch.order.clear();
+  for (int j = 0; j < count; ++j)
+    if (samples[j].weight.x > 0 || samples[j].weight.y > 0 || samples[j].weight.z > 0)
+      scratch.order.push_back(uint32_t(j));
+  if (scratch.order.empty()) return;
+  std::stable_sort(scratch.order.begin(), scratch.order.end(),
+                   [&](uint32_t a, uint32_t b) { return samples[a].light < samples[b].light; });
+
+  const SceneTracer tracer(scene, sp.object);
+  Rng rng(seed, hashKeys(pixel, uint64_t(pass), 1));
+  RayCounts counts;
+  for (size_t begin = 0; begin < scratch.order.size();) {
+    const uint32_t light = samples[scratch.order[begin]].light;
+    size_t end = begin;
+    scratch.segments.clear();
+    while (end < scratch.order.size() && samples[scratch.order[end]].light == light)
+      scratch.segments.push_back(samples[scratch.order[end++]].segment);
+    scratch.probes.clear();
+    if (probes > 0) {
+      // Probes come from the region's own light, from a stream of their own.
+      Rng prng(seed, hashKeys(pixel, uint64_t(pass), 2 + uint64_t(light)));
+      for (int k = 0; k < probes; ++k) {
+        const float u0 = prng.uniformFloat(), u1 = prng.uniformFloat(), u2 = prng.uniformFloat();
+        Segment s;
+        if (makeSegment(scene, sp, scene.lights().sampleLight(light, u0, u1, u2).point, s))
+          scratch.probes.push_back(s);
+      }
+    }
+    scratch.estimates.assign(scratch.segments.size(), 0.0);
+    ShadingPointQuery query;
+    query.segments = scratch.segments;
+    query.tracer = &tracer;
+    query.region = tile * num_lights + light;
+    query.probes = scratch.probes;
+    estimator.estimate(query, rng, scratch.estimates, counts);
+    for (size_t i = begin; i < end; ++i) {
+      const double v = scratch.estimates[i - begin];
+      const Vec3f& w = samples[scratch.order[i]].weight;
+      acc.radiance[pixel] += Vec3d(w) * v;
+      acc.vis_sum[pixel] += v;
+      acc.vis_n[pixel] += 1;
+    }
+    begin = end;
+  }
+  acc.rays[pixel] += counts;
+}
+
+}  // namespace
+
+EstimatorSetup estimatorSetupFor(const RenderScene& scene, const RenderSettings& settings) {
+  EstimatorSetup setup = settings.estimator;
+  const render_internal::Tiling tiling(scene.camera().width(), scene.camera().height(),
+                                       std::max(1, settings.tile_size));
+  setup.num_regions = uint32_t(tiling.count()) * uint32_t(scene.lights().numLights());
+  setup.proxy_class = settings.force_general_proxies ? ProxyClass::kGeneral : scene.proxyClass();
+  return setup;
+}
+
+RenderResult render(const RenderScene& scene, const RenderSettings& settings,
+                    VisibilityEstimator& estimator) {
+  validate(settings);
+  const auto start = Clock::now();
+  const int w = scene.camera().width(), h = scene.camera().height();
+  const size_t num_pixels = size_t(w) * h;
+  const Tiling tiling(w, h, settings.tile_size);
+  const int probes = estimator.probesPerPoint();
+  const int batch = samplesPerPass(settings, probes);
+  const int spp_cap = settings.spp > 0 ? settings.spp : INT_MAX;
+
+  RenderResult result;
+  result.proxy_class = estimatorSetupFor(scene, settings).proxy_class;
+  const std::vector<ShadingPoint> points = shadingPoints(scene, tiling);
+  result.primary_seconds = secondsSince(start);
+  result.primary_rays = num_pixels;
+
+  Accumulators acc(num_pixels);
+  std::vector<PreparedSample> samples(num_pixels * size_t(batch));
+  tbb::enumerable_thread_specific<Scratch> scratch;
+  const uint64_t total_passes =
+      settings.time_budget > 0 ? 0 : uint64_t((spp_cap + batch - 1) / batch);
+  Progress progress("render", total_passes * uint64_t(tiling.count()),
+                    settings.quiet || total_passes == 0);
+  double sampling_seconds = 0;
+  int taken = 0, pass = 0;
+  while (taken < spp_cap &&
+         (pass == 0 || !(settings.time_budget > 0) || secondsSince(start) < settings.time_budget)) {
+    const int count = std::min(batch, spp_cap - taken);
+    const auto a = Clock::now();
+    tbb::parallel_for(0, tiling.count(), [&](int t) {
+      tiling.forEachPixel(t, [&](int, int, uint32_t pixel) {
+        prepareSamples(scene, points[pixel], settings.seed, pixel, pass, count,
+                       &samples[size_t(pixel) * batch]);
+      });
+    });
+    sampling_seconds += secondsSince(a);
+
+    const auto b = Clock::now();
+    estimator.beginPass(pass);
+    tbb::parallel_for(0, tiling.count(), [&](int t) {
+      Scratch& s = scratch.local();
+      tiling.forEachPixel(t, [&](int, int, uint32_t pixel) {
+        estimatePixel(scene, estimator, points[pixel], &samples[size_t(pixel) * batch], count,
+                      pixel, pass, settings.seed, uint32_t(t), probes, s, acc);
+      });
+      progress.update();
+    });
+    estimator.endPass();
+    result.visibility_seconds += secondsSince(b);
+    taken += count;
+    ++pass;
+  }
+  progress.done();
+
+  result.spp = taken;
+  result.passes = pass;
+  result.radiance = Image{w, h, 3, std::vector<float>(num_pixels * 3)};
+  result.visibility = Image{w, h, 1, std::vector<float>(num_pixels)};
+  result.cost = Image{w, h, 3, std::vector<float>(num_pixels * 3)};
+  for (size_t i = 0; i < num_pixels; ++i) {
+    for (int c = 0; c < 3; ++c)
+      result.radiance.pixels[i * 3 + c] = float(acc.radiance[i][c] / taken);
+    result.visibility.pixels[i] = acc.vis_n[i] ? float(acc.vis_sum[i] / acc.vis_n[i]) : 0.0f;
+    result.cost.pixels[i * 3 + 0] = float(acc.rays[i].proxy);
+    result.cost.pixels[i * 3 + 1] = float(acc.rays[i].original);
+    result.cost.pixels[i * 3 + 2] = float(acc.rays[i].probe);
+    result.rays += acc.rays[i];
+    result.shadow_segments += acc.vis_n[i];
+  }
+  result.shading_seconds = result.primary_seconds + sampling_seconds;
+  result.seconds = secondsSince(start);
+  return result;
+}
+
+PassSegments passSegments(const RenderScene& scene, const RenderSettings& settings, int pass) {
+  validate(settings);
+  const int w = scene.camera().width(), h = scene.camera().height();
+  const Tiling tiling(w, h, settings.tile_size);
+  const int batch = settings.samples_per_pass > 0 ? settings.samples_per_pass : 1;
+  const std::vector<ShadingPoint> points = shadingPoints(scene, tiling);
+  std::vector<PreparedSample> samples(points.size() * size_t(batch));
+  tbb::parallel_for(size_t(0), points.size(), [&](size_t pixel) {
+    prepareSamples(scene, points[pixel], settings.seed, uint32_t(pixel), pass, batch,
+                   &samples[pixel * batch]);
+  });
+  PassSegments out;
+  for (size_t i = 0; i < samples.size(); ++i) {
+    const Vec3f& wt = samples[i].weight;
+    if (!(wt.x > 0 || wt.y > 0 || wt.z > 0)) continue;
+    out.segments.push_back(samples[i].segment);
+    out.pixels.push_back(uint32_t(i / size_t(batch)));
+    out.objects.push_back(points[i / size_t(batch)].object);
+  }
+  return out;
+}
+
+}  // namespace proxyvis
