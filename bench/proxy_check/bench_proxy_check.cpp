@@ -1,0 +1,126 @@
+// Throughput of the ray-sampled classification: segments traced against an original and a proxy
+// (occlusion, batches of 64 k), at 1 and 2 threads. Prints a table; never fails on speed.
+//
+//   bench_proxy_check [ORIGINAL [PROXY ...]] [--rays N]
+// Without arguments: the dragon against its bounding box and a 2 k-face enclosing sphere
+// (synthetic outside proxies), plus every PROXY given.
+#include <fmt/core.h>
+#include <tbb/global_control.h>
+
+#include <cmath>
+#include <cstring>
+#include <memory>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "mesh/mesh_io.h"
+#include "proxies/check/ray_classify.h"
+#include "util/error.h"
+
+using namespace proxyvis;
+
+namespace {
+
+TriMesh boundingBox(const Bounds3f& b) {
+  const Vec3f e = b.extent() * 0.01f, lo = b.lo - e, hi = b.hi + e;
+  TriMesh m;
+  m.source = "bounding box (12 faces)";
+  for (int i = 0; i < 8; ++i)
+    m.vertices.push_back({i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z});
+  const int q[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                       {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& f : q) {
+    m.triangles.push_back({uint32_t(f[0]), uint32_t(f[1]), uint32_t(f[2])});
+    m.triangles.push_back({uint32_t(f[0]), uint32_t(f[2]), uint32_t(f[3])});
+  }
+  return m;
+}
+
+// UV sphere circumscribing the box (its faces stay outside a sphere of radius r cos(pi/n)).
+TriMesh enclosingSphereMesh(const Bounds3f& b, int slices = 45, int stacks = 23) {
+  const float pi = std::numbers::pi_v<float>;
+  const float r =
+      0.5f * b.diagonal() / (std::cos(pi / float(slices)) * std::cos(pi / float(stacks)));
+  TriMesh m;
+  m.source = "enclosing sphere";
+  const Vec3f c = b.center();
+  m.vertices.push_back(c + Vec3f(0, 0, r));
+  for (int i = 1; i < stacks; ++i)
+    for (int j = 0; j < slices; ++j) {
+      const float th = pi * float(i) / float(stacks), ph = 2 * pi * float(j) / float(slices);
+      m.vertices.push_back(
+          c + r * Vec3f(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th)));
+    }
+  const uint32_t south = uint32_t(m.vertices.size());
+  m.vertices.push_back(c - Vec3f(0, 0, r));
+  auto v = [&](int i, int j) { return uint32_t(1 + (i - 1) * slices + (j % slices)); };
+  for (int j = 0; j < slices; ++j) m.triangles.push_back({0, v(1, j), v(1, j + 1)});
+  for (int i = 1; i + 1 < stacks; ++i)
+    for (int j = 0; j < slices; ++j) {
+      m.triangles.push_back({v(i, j), v(i + 1, j), v(i + 1, j + 1)});
+      m.triangles.push_back({v(i, j), v(i + 1, j + 1), v(i, j + 1)});
+    }
+  for (int j = 0; j < slices; ++j)
+    m.triangles.push_back({south, v(stacks - 1, j + 1), v(stacks - 1, j)});
+  m.source = fmt::format("enclosing sphere ({} faces)", m.triangles.size());
+  return m;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    uint64_t rays = 2'000'000;
+    std::vector<std::string> paths;
+    for (int i = 1; i < argc; ++i) {
+      if (std::strcmp(argv[i], "--rays") == 0 && i + 1 < argc)
+        rays = std::stoull(argv[++i]);
+      else
+        paths.push_back(argv[i]);
+    }
+    const std::string original_path =
+        paths.empty() ? std::string(PROXYVIS_SHARED_DATA_DIR) + "/meshes/dragon.ply" : paths[0];
+    const TriMesh original = loadMesh(original_path);
+    std::vector<TriMesh> proxies;
+    proxies.push_back(boundingBox(original.bounds()));
+    proxies.push_back(enclosingSphereMesh(original.bounds()));
+    for (size_t i = 1; i < paths.size(); ++i) proxies.push_back(loadMesh(paths[i]));
+
+    TraceDevice device;
+    auto build = [&](const TriMesh& m) {
+      TraceSceneBuilder b(device);
+      b.addMesh(m);
+      return b.build();
+    };
+    auto original_scene = build(original);
+    fmt::print("original: {} ({} faces), {} segments per run, sphere distribution\n\n",
+               original_path, original.numTriangles(), rays);
+    fmt::print(
+        "| proxy | faces | threads | M segments/s | ns/seg proxy | ns/seg original | c_p/c_o | HM' "
+        "| MH' |\n");
+    fmt::print("|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    for (const TriMesh& proxy : proxies) {
+      auto proxy_scene = build(proxy);
+      const Sphere sphere = enclosingSphere(original.bounds(), proxy.bounds());
+      for (int threads : {1, 2}) {
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+        ClassifyOptions o;
+        o.segments = rays;
+        o.quiet = true;
+        classifySegments(*original_scene, *proxy_scene, sphereSegments(sphere, 99),
+                         ClassifyOptions{.segments = 65536, .quiet = true});  // warm-up
+        const Classification c =
+            classifySegments(*original_scene, *proxy_scene, sphereSegments(sphere, 0), o);
+        const double n = double(c.counts.total());
+        fmt::print("| {} | {} | {} | {:.2f} | {:.1f} | {:.1f} | {:.3f} | {} | {} |\n", proxy.source,
+                   proxy.numTriangles(), threads, n / c.seconds / 1e6, 1e9 * c.seconds_proxy / n,
+                   1e9 * c.seconds_original / n, c.costRatio(), c.counts.hm, c.counts.mh);
+      }
+    }
+    return 0;
+  } catch (const Error& e) {
+    fmt::print(stderr, "bench_proxy_check: error: {}\n", e.what());
+    return 2;
+  }
+}
