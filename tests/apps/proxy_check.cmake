@@ -1,0 +1,117 @@
+# proxy-check end to end: exit codes, messages and JSON keys on tiny boxes written here (an
+# original cube and proxies around it, inside it, far from it, open, empty).
+#
+# This file has two roles. Included from tests/apps/CMakeLists.txt it writes the meshes and
+# registers the tests; run with `cmake -P` it is the driver of one test: it runs the program,
+# checks the exit code, that stdout+stderr match OUTPUT_REGEX, and that JSON_FILE has
+# JSON_EXACT as its "exact" value.
+if(CMAKE_SCRIPT_MODE_FILE)
+  separate_arguments(args NATIVE_COMMAND "${ARGS}")
+  file(REMOVE "${JSON_FILE}" "${EXPECT_FILE}")
+  execute_process(COMMAND "${EXE}" ${args} RESULT_VARIABLE code OUTPUT_VARIABLE out
+    ERROR_VARIABLE err)
+  if(NOT code EQUAL EXPECT_CODE)
+    message(FATAL_ERROR "exit code ${code}, expected ${EXPECT_CODE}\nstdout:\n${out}\nstderr:\n${err}")
+  endif()
+  if(OUTPUT_REGEX AND NOT "${out}${err}" MATCHES "${OUTPUT_REGEX}")
+    message(FATAL_ERROR "output does not match '${OUTPUT_REGEX}'\nstdout:\n${out}\nstderr:\n${err}")
+  endif()
+  if(JSON_FILE)
+    file(READ "${JSON_FILE}" json)
+    foreach(key counts V_avg f_hit f_miss intervals sampled_class exact cost_ratio seed rays seconds)
+      string(JSON value ERROR_VARIABLE missing GET "${json}" ${key})
+      if(missing)
+        message(FATAL_ERROR "JSON key '${key}' missing: ${missing}")
+      endif()
+    endforeach()
+    string(JSON exact GET "${json}" exact)
+    if(JSON_EXACT AND NOT exact STREQUAL JSON_EXACT)
+      message(FATAL_ERROR "exact = ${exact}, expected ${JSON_EXACT}")
+    endif()
+  endif()
+  if(EXPECT_FILE AND NOT EXISTS "${EXPECT_FILE}")
+    message(FATAL_ERROR "${EXPECT_FILE} was not written")
+  endif()
+  return()
+endif()
+
+if(NOT TARGET proxy-check)
+  return()
+endif()
+
+set(pc_dir ${CMAKE_CURRENT_BINARY_DIR}/proxy_check)
+file(MAKE_DIRECTORY ${pc_dir})
+# OFF box [lo, hi]^3 as 12 outward triangles; `faces` limits how many are written (11 = open).
+function(pc_write_box name lo hi faces)
+  set(text "OFF\n8 ${faces} 0\n")
+  foreach(i RANGE 7)
+    math(EXPR bx "${i} & 1")
+    math(EXPR by "${i} & 2")
+    math(EXPR bz "${i} & 4")
+    set(p "")
+    foreach(b ${bx} ${by} ${bz})
+      if(b)
+        string(APPEND p "${hi} ")
+      else()
+        string(APPEND p "${lo} ")
+      endif()
+    endforeach()
+    string(APPEND text "${p}\n")
+  endforeach()
+  set(tris "0 2 3" "0 3 1" "4 5 7" "4 7 6" "0 1 5" "0 5 4" "2 6 7" "2 7 3" "0 4 6" "0 6 2"
+           "1 3 7" "1 7 5")
+  list(SUBLIST tris 0 ${faces} tris)
+  foreach(t ${tris})
+    string(APPEND text "3 ${t}\n")
+  endforeach()
+  file(WRITE ${pc_dir}/${name}.off "${text}")
+endfunction()
+pc_write_box(cube 0 1 12)
+pc_write_box(around -0.5 1.5 12)
+pc_write_box(inner 0.25 0.75 12)
+pc_write_box(far 10 11 12)
+pc_write_box(open_around -0.5 1.5 11)
+file(WRITE ${pc_dir}/empty.off "OFF\n0 0 0\n")
+
+set(pc_driver ${CMAKE_CURRENT_LIST_FILE})
+# pc_test(NAME CODE "ARGS" [JSON exact] [REGEX text] [FILE path])
+function(pc_test name code args)
+  cmake_parse_arguments(T "" "JSON;REGEX;FILE" "" ${ARGN})
+  set(defs -DEXE=$<TARGET_FILE:proxy-check> -DEXPECT_CODE=${code})
+  if(T_JSON)
+    set(json ${pc_dir}/${name}.json)
+    set(args "${args} --json ${json}")
+    list(APPEND defs -DJSON_FILE=${json} -DJSON_EXACT=${T_JSON})
+  endif()
+  list(APPEND defs "-DARGS=${args}")
+  if(T_REGEX)
+    list(APPEND defs "-DOUTPUT_REGEX=${T_REGEX}")
+  endif()
+  if(T_FILE)
+    list(APPEND defs -DEXPECT_FILE=${T_FILE})
+  endif()
+  add_test(NAME app.proxy_check.${name} COMMAND ${CMAKE_COMMAND} ${defs} -P ${pc_driver})
+  set_tests_properties(app.proxy_check.${name} PROPERTIES TIMEOUT 60)
+endfunction()
+
+set(q "--quiet --rays 20000 --seed 3")
+pc_test(outside 0 "${pc_dir}/cube.off ${pc_dir}/around.off ${q} --expect outside"
+  JSON contains REGEX "sampled class +outside")
+pc_test(inside 0 "${pc_dir}/cube.off ${pc_dir}/inner.off ${q} --expect inside"
+  JSON contained REGEX "sampled class +inside")
+pc_test(inside_is_not_outside 1 "${pc_dir}/cube.off ${pc_dir}/inner.off ${q} --expect outside"
+  REGEX "CONTRADICTED")
+pc_test(far_away_is_disjoint 1 "${pc_dir}/cube.off ${pc_dir}/far.off ${q} --expect outside"
+  JSON disjoint REGEX "mismatched pair")
+pc_test(open_proxy_undecidable 0 "${pc_dir}/cube.off ${pc_dir}/open_around.off ${q}"
+  JSON undecidable REGEX "not closed")
+pc_test(empty_proxy 2 "${pc_dir}/cube.off ${pc_dir}/empty.off ${q}" REGEX "empty.off")
+pc_test(missing_file 2 "${pc_dir}/cube.off ${pc_dir}/no_such_mesh.off ${q}" REGEX "no_such_mesh")
+pc_test(bad_expect 2 "${pc_dir}/cube.off ${pc_dir}/around.off --expect sideways")
+pc_test(no_arguments 2 "")
+pc_test(one_mesh_is_not_a_scene 2 "${pc_dir}/cube.off" REGEX "scene")
+pc_test(unwritable_json 3
+  "${pc_dir}/cube.off ${pc_dir}/inner.off ${q} --json ${pc_dir}/no/such/dir/out.json")
+pc_test(dump_errors 0
+  "${pc_dir}/cube.off ${pc_dir}/inner.off ${q} --dump-errors ${pc_dir}/errors.ply"
+  FILE ${pc_dir}/errors.ply)
