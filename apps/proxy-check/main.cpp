@@ -15,6 +15,7 @@
 #include "mesh/mesh_io.h"
 #include "proxies/check/check_report.h"
 #include "proxies/check/pair_check.h"
+#include "proxies/check/scene_segments.h"
 #include "scene/scene_desc.h"
 #include "util/app_main.h"
 #include "util/atomic_write.h"
@@ -75,10 +76,11 @@ int runPair(const Options& o) {
 }
 
 int runScene(const Options& o) {
-  if (o.distribution != "sphere")
-    throw Error(o.inputs[0], "--distribution scene is not implemented yet",
-                "only the sphere distribution is available", "use --distribution sphere");
   const SceneDesc scene = loadSceneDesc(o.inputs[0]);
+  // The scene distribution traces primary rays against every object of the scene.
+  TraceDevice device;
+  std::unique_ptr<TraceScene> full;
+  if (o.distribution == "scene") full = buildFullScene(device, scene);
   nlohmann::json checks = nlohmann::json::array();
   std::vector<ErrorSegment> all_errors;
   bool failed = false;
@@ -87,12 +89,27 @@ int runScene(const Options& o) {
     if (mesh.proxies.empty()) continue;
     // Instanced or placed, the proxy is checked against the prototype in its own space: the
     // containment relation does not change under the (affine, invertible) placement.
-    const TriMesh original = loadMesh(mesh.file);
+    const uint32_t mesh_index = uint32_t(&mesh - scene.meshes.data());
+    const bool scene_rays = full && mesh.place;
+    const TriMesh original =
+        scene_rays ? transformedMesh(loadMesh(mesh.file), mesh.transform) : loadMesh(mesh.file);
     for (const ProxyRef& ref : mesh.proxies) {
       PairCheckOptions po = pairOptions(o);
+      if (scene_rays) {
+        po.generator = sceneSegments(*full, scene, mesh_index, o.common.seed);
+        po.distribution_name = "scene";
+        po.distribution_note =
+            "camera primary hits on the other objects (an object's own shadow rays use its "
+            "original) to uniform light samples; a light sample inside the proxy would void the "
+            "outside guarantee (DESIGN.md 2, pitfall 2)";
+      } else if (full) {
+        po.distribution_note =
+            "instanced only: its prototype is checked with the sphere distribution";
+      }
       // Without --expect, the class the scene claims is what must hold (DESIGN.md §2 pitfall 4).
       if (!po.expect && ref.verified_class) po.expect = ref.verified_class;
-      const TriMesh proxy = loadMesh(ref.file);
+      const TriMesh proxy =
+          scene_rays ? transformedMesh(loadMesh(ref.file), mesh.transform) : loadMesh(ref.file);
       PairCheckReport r = checkPair(original, proxy, po);
       r.label = fmt::format("{} / {} ({})", mesh.name, ref.kind, ref.method);
       printHuman(o, formatHumanReport(r) + "\n");

@@ -60,17 +60,23 @@ PairCheckReport checkPair(const TriMesh& original, const TriMesh& proxy,
   TraceDevice device;
   std::unique_ptr<TraceScene> original_scene = buildScene(device, original);
   std::unique_ptr<TraceScene> proxy_scene = buildScene(device, proxy);
-  const Sphere sphere = enclosingSphere(original.bounds(), proxy.bounds());
-  r.distribution = "sphere";
-  r.distribution_note =
-      "segments between independent uniform points on a sphere around both meshes: both ends "
-      "lie outside both, so an outside proxy can show no HM' and an inside proxy no MH'";
+  SegmentGenerator generator = options.generator;
+  if (generator) {
+    r.distribution = options.distribution_name;
+    r.distribution_note = options.distribution_note;
+  } else {
+    generator = sphereSegments(enclosingSphere(original.bounds(), proxy.bounds()), options.seed);
+    r.distribution = "sphere";
+    r.distribution_note = options.distribution_note.empty() ? "" : options.distribution_note + "; ";
+    r.distribution_note +=
+        "segments between independent uniform points on a sphere around both meshes: both ends "
+        "lie outside both, so an outside proxy can show no HM' and an inside proxy no MH'";
+  }
   ClassifyOptions co;
   co.segments = options.rays;
   co.max_error_segments = options.max_error_segments;
   co.quiet = options.quiet;
-  r.sampled =
-      classifySegments(*original_scene, *proxy_scene, sphereSegments(sphere, options.seed), co);
+  r.sampled = classifySegments(*original_scene, *proxy_scene, generator, co);
   finishVerdicts(r);
   r.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return r;

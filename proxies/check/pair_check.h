@@ -26,6 +26,9 @@ struct PairCheckOptions {
   uint64_t max_error_segments = 0;  // kept for --dump-errors
   uint64_t distance_samples = 20000;
   bool quiet = false;
+  // Another segment distribution (e.g. the scene's); empty = the sphere around both meshes.
+  SegmentGenerator generator;
+  std::string distribution_name, distribution_note;
 };
 
 struct PairCheckReport {
@@ -54,8 +57,9 @@ MeshSummary summarizeMesh(const TriMesh& mesh, bool closed);
 // `exact` and `expected`.
 void finishVerdicts(PairCheckReport& report);
 
-// The exact check, the sphere-distribution classification (both ends outside both meshes, as
-// the guarantees require) and the mesh statistics. Throws Error for empty meshes.
+// The exact check, the classification (sphere distribution unless options.generator is set: (both
+// ends outside both meshes, as the guarantees require) and the mesh statistics. Throws Error for
+// empty meshes.
 PairCheckReport checkPair(const TriMesh& original, const TriMesh& proxy,
                           const PairCheckOptions& options);
 

@@ -1,0 +1,28 @@
+#pragma once
+// The `scene` segment distribution: what the renderer traces. Segment i starts at a shading point
+// (the camera's primary hit through a uniformly jittered film position, Rng(seed, i)) and ends at
+// a uniform area sample on the scene's lights. Uses lib/render's Camera and LightSampler so the
+// distribution is the renderer's.
+#include <cstdint>
+#include <string>
+
+#include "proxies/check/ray_classify.h"
+#include "scene/scene_desc.h"
+
+namespace proxyvis {
+
+// `full` holds every object of the scene (user id = mesh index). Primary hits on geometry whose
+// user id is `exclude_user_id` are skipped (the generator returns false): the renderer traces an
+// object's own shadow rays against its original, never its proxy (DESIGN.md §2 pitfall 1).
+// Throws Error if the scene has no lights. `full` and `scene` must outlive the generator.
+SegmentGenerator sceneSegments(const TraceScene& full, const SceneDesc& scene,
+                               uint32_t exclude_user_id, uint64_t seed);
+
+// Every placed mesh (addMesh, transformed) and every instance (addPrototype/addInstance) of the
+// scene, user id = mesh index; meshes are loaded with loadMesh.
+std::unique_ptr<TraceScene> buildFullScene(TraceDevice& device, const SceneDesc& scene);
+
+// `mesh` with `transform` applied to its vertices.
+TriMesh transformedMesh(const TriMesh& mesh, const Affine3f& transform);
+
+}  // namespace proxyvis
