@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "estimate/visibility_estimator.h"
+#include "render/render_scene.h"
 #include "util/vec3.h"
 
 namespace proxyvis::test {
@@ -52,6 +53,15 @@ inline std::string groundObj(float h) {
   const std::string a = std::to_string(h), b = std::to_string(-h);
   return "v " + b + " 0 " + b + "\nv " + a + " 0 " + b + "\nv " + a + " 0 " + a + "\nv " + b +
          " 0 " + a + "\nf 1 3 2\nf 1 4 3\n";
+}
+
+// Scene options without warnings on stderr.
+inline RenderSceneOptions quiet(const std::string& proxy_kind = {}, bool use_proxies = true) {
+  RenderSceneOptions o;
+  o.proxy_kind = proxy_kind;
+  o.use_proxies = use_proxies;
+  o.quiet = true;
+  return o;
 }
 
 // Exact visibility from the original geometry.
@@ -96,5 +106,48 @@ inline double polygonIrradiance(const Vec3d& x, const Vec3d& n, const std::vecto
   }
   return 0.5 * L * std::abs(sum);
 }
+
+}  // namespace proxyvis::test
+
+namespace proxyvis::test {
+
+// A box A = [-1,1] x [0,2] x [-1,1] standing on a ground quad (half-size 10, y = 0) under a 4 x 4
+// light at height 8, seen from the front and above. `proxy_json` is the box's "proxies" array
+// (files relative to the scratch dir). Resolution res x res.
+struct BoxScene {
+  std::string proxies_json = "[]";
+  std::string extra_meshes;    // appended to "meshes" (with a leading comma)
+  std::string instances_file;  // "instances" file name, empty for none
+  std::string light = R"({"type": "quad", "corner": [-2, 8, -2], "edge_u": [4, 0, 0],
+      "edge_v": [0, 0, 4], "radiance": [6, 6, 6]})";
+  int res = 24;
+  bool place_box = true;
+
+  std::filesystem::path write(const ScratchDir& dir) const {
+    dir.write("ground.obj", groundObj(10));
+    dir.write("box.obj", boxObj({-1, 0, -1}, {1, 2, 1}));
+    dir.write("box_out.obj", boxObj({-1.3f, -0.3f, -1.3f}, {1.3f, 2.3f, 1.3f}));  // contains A
+    dir.write("box_in.obj", boxObj({-0.7f, 0.3f, -0.7f}, {0.7f, 1.7f, 0.7f}));    // inside A
+    dir.write("box_gen.obj", boxObj({-1.2f, 0.3f, -0.6f}, {1.2f, 1.7f, 0.6f}));   // neither
+    std::string s = R"({"camera": {"eye": [2.5, 4.5, 6.5], "look_at": [0, 0.8, 0], "fov_deg": 45,
+      "resolution": [)" +
+                    std::to_string(res) + ", " + std::to_string(res) + R"(]},
+      "lights": [)" +
+                    light + R"(],
+      "meshes": [{"name": "ground", "file": "ground.obj", "albedo": [0.8, 0.8, 0.8]},
+                 {"name": "box", "file": "box.obj", "albedo": [0.6, 0.3, 0.2], "place": )" +
+                    std::string(place_box ? "true" : "false") + R"(, "proxies": )" + proxies_json +
+                    "}" + extra_meshes + "]";
+    if (!instances_file.empty()) s += R"(, "instances": {"file": ")" + instances_file + "\"}";
+    return dir.write("scene.json", s + "}");
+  }
+};
+
+inline const char* kOutsideProxy =
+    R"([{"kind": "outside", "file": "box_out.obj", "class": "outside"}])";
+inline const char* kInsideProxy =
+    R"([{"kind": "inside", "file": "box_in.obj", "class": "inside"}])";
+inline const char* kGeneralProxy =
+    R"([{"kind": "general", "file": "box_gen.obj", "class": "general"}])";
 
 }  // namespace proxyvis::test

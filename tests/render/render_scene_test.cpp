@@ -1,0 +1,151 @@
+// RenderScene: the self-shadowing rule (DESIGN.md pitfall 1), the light checks (pitfall 2), the
+// proxy class the estimators are told, proxy selection, instances.
+#include <gtest/gtest.h>
+
+#include "render/render_scene.h"
+#include "render/renderer.h"
+#include "render/scene_tracer.h"
+#include "render_test_util.h"
+
+namespace proxyvis {
+namespace {
+
+using test::BoxScene;
+using test::ScratchDir;
+
+struct SegmentClasses {
+  uint64_t total = 0, hm = 0, mh = 0, culling_wrong = 0, naive_proxy_hit_but_visible = 0;
+};
+
+// Classifies every shadow segment of pass 0 leaving object `object` (all objects if -1).
+SegmentClasses classify(const RenderScene& scene, int object, int pass = 0) {
+  RenderSettings settings;
+  const PassSegments ps = passSegments(scene, settings, pass);
+  SegmentClasses c;
+  for (size_t i = 0; i < ps.segments.size(); ++i) {
+    if (object >= 0 && ps.objects[i] != uint32_t(object)) continue;
+    const SceneTracer tracer(scene, ps.objects[i]);
+    const Segment& s = ps.segments[i];
+    const bool v = tracer.originalVisible(s), vp = tracer.proxyVisible(s);
+    ++c.total;
+    c.hm += (!v && vp);
+    c.mh += (v && !vp);
+    const bool culling = vp ? true : v;
+    c.culling_wrong += (culling != v);
+    c.naive_proxy_hit_but_visible += (scene.proxies().occluded(s) && v);
+  }
+  return c;
+}
+
+TEST(RenderScene, SelfShadowingTracesOwnOriginal) {
+  ScratchDir dir;
+  BoxScene b;
+  b.proxies_json = test::kOutsideProxy;
+  const auto scene = loadRenderScene(b.write(dir), test::quiet());
+  ASSERT_EQ(scene->objects().size(), 2u);
+  EXPECT_EQ(scene->proxyClass(), ProxyClass::kOutside);
+  EXPECT_TRUE(scene->usesProxies());
+  EXPECT_TRUE(scene->warnings().empty());
+
+  const SegmentClasses on_box = classify(*scene, 1);
+  ASSERT_GT(on_box.total, 30u);  // the camera sees the box
+  EXPECT_EQ(on_box.hm, 0u);      // outside proxy: no HM', including the box's own segments
+  EXPECT_EQ(on_box.culling_wrong, 0u);
+  // Teeth: without the rule, the box's points lie inside its own proxy, so the proxy scene
+  // blocks most of their segments although the box's top and sides see the light.
+  EXPECT_GT(on_box.naive_proxy_hit_but_visible, on_box.total / 2);
+
+  const SegmentClasses all = classify(*scene, -1);
+  EXPECT_EQ(all.hm, 0u);
+  EXPECT_EQ(all.culling_wrong, 0u);
+  EXPECT_GT(all.mh, 0u);  // ground points in the proxy's shadow but not the box's
+}
+
+TEST(RenderScene, SelfShadowingWithRotatedScaledInstances) {
+  ScratchDir dir;
+  dir.write("inst.txt",
+            "box 4 0 0\n"
+            "box 0 -1.2 0 -4  1.2 0 0 0  0 0 1.2 -3   # rotated 90 degrees about z, scaled\n"
+            "box 0.8660254 0 0.5 0  0 1 0 0  -0.5 0 0.8660254 3\n");
+  BoxScene b;
+  b.proxies_json = test::kOutsideProxy;
+  b.instances_file = "inst.txt";
+  b.res = 32;
+  const auto scene = loadRenderScene(b.write(dir), test::quiet());
+  ASSERT_EQ(scene->objects().size(), 5u);  // ground, box, 3 instances
+  EXPECT_EQ(scene->proxyClass(), ProxyClass::kOutside);
+  uint64_t instance_segments = 0;
+  for (int o = 2; o < 5; ++o) {
+    const SegmentClasses c = classify(*scene, o);
+    instance_segments += c.total;
+    EXPECT_EQ(c.hm, 0u) << "instance " << o;
+    EXPECT_EQ(c.culling_wrong, 0u) << "instance " << o;
+  }
+  EXPECT_GT(instance_segments, 30u);
+  EXPECT_EQ(classify(*scene, -1).hm, 0u);
+}
+
+TEST(RenderScene, LightInsideAnOutsideProxyDowngradesToGeneral) {
+  ScratchDir dir;
+  BoxScene b;
+  b.proxies_json = test::kOutsideProxy;
+  // A small light just above the box top, inside the proxy's box (y up to 2.3).
+  b.light = R"({"type": "quad", "corner": [-0.2, 2.1, -0.2], "edge_u": [0.4, 0, 0],
+      "edge_v": [0, 0, 0.4], "radiance": [6, 6, 6]})";
+  const auto scene = loadRenderScene(b.write(dir), test::quiet());
+  EXPECT_EQ(scene->proxyClass(), ProxyClass::kGeneral);
+  ASSERT_EQ(scene->warnings().size(), 1u);
+  EXPECT_NE(scene->warnings()[0].find("pitfall 2"), std::string::npos);
+  // The downgrade is needed: this light produces HM' segments against the outside proxy.
+  EXPECT_GT(classify(*scene, -1).hm, 0u);
+}
+
+TEST(RenderScene, ClassesUnverifiedMixedAndSelection) {
+  ScratchDir dir;
+  BoxScene b;
+  b.proxies_json = R"([{"kind": "outside", "file": "box_out.obj"},
+                       {"kind": "inside", "file": "box_in.obj", "class": "inside"}])";
+  const auto path = b.write(dir);
+  {
+    const auto scene = loadRenderScene(path, test::quiet());  // first listed: unverified
+    EXPECT_EQ(scene->proxyClass(), ProxyClass::kGeneral);
+    EXPECT_EQ(scene->objects()[1].proxy, 0);
+    EXPECT_EQ(scene->warnings().size(), 1u);
+  }
+  {
+    const auto scene = loadRenderScene(path, test::quiet("inside"));
+    EXPECT_EQ(scene->proxyClass(), ProxyClass::kInside);
+    EXPECT_EQ(scene->objects()[1].proxy, 1);
+    EXPECT_EQ(classify(*scene, -1).mh, 0u);  // inside proxy: no MH'
+  }
+  {
+    const auto scene = loadRenderScene(path, test::quiet("", false));
+    EXPECT_FALSE(scene->usesProxies());
+    EXPECT_EQ(scene->proxyClass(), ProxyClass::kGeneral);
+    const SegmentClasses c = classify(*scene, -1);
+    EXPECT_EQ(c.hm + c.mh, 0u);  // no proxies: V' = V
+  }
+  {
+    BoxScene m;  // two meshes with different verified classes
+    m.proxies_json = test::kOutsideProxy;
+    m.extra_meshes = R"(, {"name": "box2", "file": "box.obj",
+        "transform": {"translate": [4, 0, 0]}, "proxies": )" +
+                     std::string(test::kInsideProxy) + "}";
+    const auto scene = loadRenderScene(m.write(dir), test::quiet());
+    EXPECT_EQ(scene->proxyClass(), ProxyClass::kGeneral);
+  }
+}
+
+TEST(RenderScene, GeneralProxyHasBothErrorKinds) {
+  ScratchDir dir;
+  BoxScene b;
+  b.proxies_json = test::kGeneralProxy;
+  const auto scene = loadRenderScene(b.write(dir), test::quiet());
+  EXPECT_EQ(scene->proxyClass(), ProxyClass::kGeneral);
+  const SegmentClasses c = classify(*scene, -1);
+  EXPECT_GT(c.hm, 0u);
+  EXPECT_GT(c.mh, 0u);
+}
+
+}  // namespace
+}  // namespace proxyvis
