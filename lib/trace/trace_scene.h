@@ -2,9 +2,23 @@
 // Embree 3 tracing: a device, and scenes built from meshes and instances of meshes (so the 12 M
 // triangle Nature scene costs the memory of its prototypes). Occlusion queries for segments,
 // closest-hit queries, per-scene ray counters. Thread-safe; results independent of thread count.
+//
+// Self-shadowing: a ray leaving object A must not hit A's own proxy. Every query takes an
+// optional `ignore_user_id`: geometry (flattened mesh or instance) added with that user id is
+// invisible to that query. It is implemented with an Embree *context filter function*
+// (RTCIntersectContext::filter, scenes built with RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION), which
+// the Debian build of Embree 3.13.5 supports (RTC_DEVICE_PROPERTY_FILTER_FUNCTION_SUPPORTED = 1).
+// The filter runs only for candidate hits of queries that ask to ignore something; plain queries
+// pass no filter and pay nothing measurable (bench/trace prints both). Ray masks (also supported)
+// were not used: 32 mask bits cannot single out one of thousands of objects exactly.
+//
+// Invalid segments: a NaN or infinite origin or direction, a NaN tnear/tfar or an infinite
+// tnear throw proxyvis::Error (Embree's answer for such rays is undefined). tfar = +inf is a
+// ray; tnear > tfar is an empty segment and is never occluded.
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "mesh/tri_mesh.h"
@@ -24,7 +38,9 @@ struct Affine3f {
   }
   static Affine3f translation(const Vec3f& t) {
     Affine3f a;
-    a.m[0][3] = t.x; a.m[1][3] = t.y; a.m[2][3] = t.z;
+    a.m[0][3] = t.x;
+    a.m[1][3] = t.y;
+    a.m[2][3] = t.z;
     return a;
   }
 };
@@ -37,18 +53,26 @@ struct Segment {
   float tfar = 1;
 };
 
+// Passed as ignore_user_id when nothing is to be ignored; a geometry whose user id is kIgnoreNone
+// can therefore never be ignored. kInvalidId marks "no instance" in Hit.
+inline constexpr uint32_t kIgnoreNone = ~0u;
+inline constexpr uint32_t kInvalidId = ~0u;
+
 struct Hit {
   bool hit = false;
   float t = 0;
-  Vec3f ng;            // geometric normal (world space, not normalized)
-  float u = 0, v = 0;  // barycentrics
+  Vec3f ng;            // geometric normal (world space, not normalized; winding as in the mesh)
+  float u = 0, v = 0;  // barycentrics: p = (1-u-v)*v0 + u*v1 + v*v2
   uint32_t prim_id = 0;
-  uint32_t geom_id = 0;      // geometry in the scene that was hit
-  uint32_t instance_id = 0;  // instance index, or ~0u when a flattened mesh was hit
-  uint32_t user_id = 0;      // the id given to addMesh/addInstance
+  // The mesh hit: the geometry id addMesh returned for a flattened mesh, or the prototype id
+  // addPrototype returned when an instance was hit.
+  uint32_t geom_id = 0;
+  uint32_t instance_id = kInvalidId;  // id addInstance returned, or kInvalidId for a mesh
+  uint32_t user_id = 0;               // the id given to addMesh/addInstance
 };
 
-// Owns one RTCDevice and registers an error callback that turns Embree errors into messages.
+// Owns one RTCDevice and registers one error callback that turns Embree errors into messages;
+// the builder turns pending messages into proxyvis::Error.
 class TraceDevice {
  public:
   TraceDevice();
@@ -57,28 +81,53 @@ class TraceDevice {
   TraceDevice& operator=(const TraceDevice&) = delete;
   RTCDeviceTy* handle() const { return device_; }
 
+  // Messages reported by Embree since the last call ("RTC_ERROR_...: text", one per line);
+  // empty if none. Thread-safe.
+  std::string takeErrors();
+  // Throws proxyvis::Error naming `what` if Embree reported anything since the last call.
+  void throwIfError(const std::string& what);
+
+  struct ErrorLog;
+
  private:
   RTCDeviceTy* device_ = nullptr;
+  std::unique_ptr<ErrorLog> log_;
+};
+
+struct TraceSceneOptions {
+  // RTC_SCENE_FLAG_ROBUST: watertight-safe traversal, avoids rays slipping through shared edges
+  // at some cost (bench/trace measures it with --robust).
+  bool robust = false;
+  // RTC_BUILD_QUALITY_HIGH (spatial splits) for meshes; MEDIUM otherwise. Building a 100 k
+  // triangle mesh costs tens of milliseconds either way.
+  bool high_quality = true;
 };
 
 class TraceScene;
 
 // Collects meshes and instances, then builds one committed Embree scene.
-// Vertex and index data are copied into Embree-owned buffers, so a TriMesh may be destroyed
-// after addMesh/addPrototype returns.
+// Vertex and index data are copied into Embree-owned buffers (rtcSetNewGeometryBuffer, which pads
+// vertex buffers for 16-byte loads itself), so a TriMesh may be destroyed after
+// addMesh/addPrototype returns. Ids are dense and start at 0: geometry ids (addMesh) and instance
+// ids (addInstance) share one numbering (top-level geometries); prototype ids their own.
+// Not thread-safe: one thread builds.
 class TraceSceneBuilder {
  public:
-  explicit TraceSceneBuilder(TraceDevice& device);
+  explicit TraceSceneBuilder(TraceDevice& device, const TraceSceneOptions& options = {});
   ~TraceSceneBuilder();
+  TraceSceneBuilder(const TraceSceneBuilder&) = delete;
+  TraceSceneBuilder& operator=(const TraceSceneBuilder&) = delete;
 
   // A mesh placed directly in the top-level BVH (flattened). Returns its geometry id.
+  // Throws Error (naming mesh.source) for an index out of range or a non-finite vertex.
   uint32_t addMesh(const TriMesh& mesh, uint32_t user_id = 0);
-  // A mesh to be instanced; returns a prototype id for addInstance.
+  // A mesh to be instanced; builds its BVH now. Returns a prototype id for addInstance.
   uint32_t addPrototype(const TriMesh& mesh);
-  // An instance of a prototype with an affine transform. Returns the instance index.
+  // An instance of a prototype with an affine transform. Returns the instance id (a top-level
+  // geometry id, Hit::instance_id). Throws Error for an unknown prototype or a non-finite matrix.
   uint32_t addInstance(uint32_t prototype, const Affine3f& transform, uint32_t user_id = 0);
 
-  // Builds the BVHs. The builder is empty afterwards.
+  // Builds the top-level BVH. The builder is empty afterwards and may be reused.
   std::unique_ptr<TraceScene> build();
 
  private:
@@ -86,30 +135,42 @@ class TraceSceneBuilder {
   std::unique_ptr<Impl> impl_;
 };
 
+// All queries are const and thread-safe. Results depend only on the segment, never on the thread
+// or the batch it is traced in.
 class TraceScene {
  public:
   ~TraceScene();
 
-  // True if anything blocks the segment (t in [tnear, tfar]).
-  bool occluded(const Segment& s) const;
-  // Batch form: out[i] = 1 if segs[i] is occluded. Parallel over the batch with TBB.
-  void occluded(std::span<const Segment> segs, std::span<uint8_t> out) const;
+  // True if anything blocks the segment (t in [tnear, tfar]), ignoring geometry whose user id is
+  // ignore_user_id.
+  bool occluded(const Segment& s, uint32_t ignore_user_id = kIgnoreNone) const;
+  // Batch form: out[i] = 1 if segs[i] is occluded, else 0; out.size() must equal segs.size().
+  // Parallel over chunks of the batch with TBB (rtcOccluded1 per segment). If any segment is
+  // invalid, throws Error naming the first invalid index (out is then unspecified).
+  void occluded(std::span<const Segment> segs, std::span<uint8_t> out,
+                uint32_t ignore_user_id = kIgnoreNone) const;
   // Closest hit along org + t*dir, t in [tnear, tfar].
-  Hit intersect(const Segment& ray) const;
+  Hit intersect(const Segment& ray, uint32_t ignore_user_id = kIgnoreNone) const;
 
+  // Box containing all geometry; for instances, the transformed corners of the prototype box.
+  // Empty (Bounds3f::empty()) for an empty scene.
   Bounds3f bounds() const;
   uint64_t triangleCount() const;  // counting every instance's triangles
+  uint32_t geometryCount() const;  // top-level geometries: meshes + instances
 
-  // Rays traced since construction or resetCounters() (occlusion and closest-hit).
+  // Rays traced since construction or resetCounters() (occlusion and closest-hit, single and
+  // batch). Counted in per-thread slots, so counting costs no shared cache line per ray.
+  // raysTraced() may be called while other threads trace; resetCounters() must not be.
   uint64_t raysTraced() const;
   void resetCounters();
 
   RTCSceneTy* handle() const;
 
+  struct Impl;
+
  private:
   friend class TraceSceneBuilder;
-  TraceScene();
-  struct Impl;
+  explicit TraceScene(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> impl_;
 };
 

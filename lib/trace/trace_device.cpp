@@ -1,0 +1,75 @@
+// One Embree device with one error callback (embree tutorials/minimal/minimal.cpp): Embree reports
+// errors through the callback, possibly from its build threads, so they are collected under a
+// mutex and turned into proxyvis::Error by the caller that knows what was being done.
+#include <embree3/rtcore.h>
+
+#include <mutex>
+
+#include "trace/trace_scene.h"
+#include "util/error.h"
+
+namespace proxyvis {
+
+struct TraceDevice::ErrorLog {
+  std::mutex mutex;
+  std::string messages;
+};
+
+namespace {
+
+const char* errorName(RTCError code) {
+  switch (code) {
+    case RTC_ERROR_NONE:
+      return "RTC_ERROR_NONE";
+    case RTC_ERROR_UNKNOWN:
+      return "RTC_ERROR_UNKNOWN";
+    case RTC_ERROR_INVALID_ARGUMENT:
+      return "RTC_ERROR_INVALID_ARGUMENT";
+    case RTC_ERROR_INVALID_OPERATION:
+      return "RTC_ERROR_INVALID_OPERATION";
+    case RTC_ERROR_OUT_OF_MEMORY:
+      return "RTC_ERROR_OUT_OF_MEMORY";
+    case RTC_ERROR_UNSUPPORTED_CPU:
+      return "RTC_ERROR_UNSUPPORTED_CPU";
+    case RTC_ERROR_CANCELLED:
+      return "RTC_ERROR_CANCELLED";
+  }
+  return "RTC_ERROR_?";
+}
+
+void onEmbreeError(void* user_ptr, RTCError code, const char* str) {
+  auto* log = static_cast<TraceDevice::ErrorLog*>(user_ptr);
+  std::lock_guard lock(log->mutex);
+  if (!log->messages.empty()) log->messages += '\n';
+  log->messages += errorName(code);
+  log->messages += ": ";
+  log->messages += str ? str : "(no message)";
+}
+
+}  // namespace
+
+TraceDevice::TraceDevice() : log_(std::make_unique<ErrorLog>()) {
+  device_ = rtcNewDevice(nullptr);
+  if (!device_)
+    throw Error("", "cannot create an Embree device", errorName(rtcGetDeviceError(nullptr)),
+                "check that the CPU supports SSE2 and that libembree3 is installed");
+  rtcSetDeviceErrorFunction(device_, onEmbreeError, log_.get());
+}
+
+TraceDevice::~TraceDevice() {
+  rtcReleaseDevice(device_);
+}
+
+std::string TraceDevice::takeErrors() {
+  std::lock_guard lock(log_->mutex);
+  std::string out;
+  out.swap(log_->messages);
+  return out;
+}
+
+void TraceDevice::throwIfError(const std::string& what) {
+  std::string messages = takeErrors();
+  if (!messages.empty()) throw Error("", "Embree failed while " + what, messages);
+}
+
+}  // namespace proxyvis
