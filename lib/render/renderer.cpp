@@ -46,12 +46,16 @@ int samplesPerPass(const RenderSettings& s, int probes) {
   return s.time_budget > 0 ? 16 : std::max(1, s.spp);
 }
 
+// Per-pixel sums, one cache line per pixel: phase B touches one line per pixel, not four.
+struct alignas(64) PixelSums {
+  Vec3d radiance;
+  double vis_sum = 0;
+  RayCounts rays;
+  uint32_t vis_n = 0;
+};
 struct Accumulators {
-  std::vector<Vec3d> radiance;
-  std::vector<double> vis_sum;
-  std::vector<uint32_t> vis_n;
-  std::vector<RayCounts> rays;
-  explicit Accumulators(size_t n) : radiance(n), vis_sum(n, 0.0), vis_n(n, 0), rays(n) {}
+  std::vector<PixelSums> px;
+  explicit Accumulators(size_t n) : px(n) {}
 };
 
 // Per-thread scratch for phase B.
@@ -68,13 +72,36 @@ void estimatePixel(const RenderScene& scene, VisibilityEstimator& estimator, con
                    uint64_t seed, uint32_t tile, int probes, Scratch& scratch, Accumulators& acc) {
   if (!sp.valid) return;
   const uint32_t num_lights = uint32_t(scene.lights().numLights());
+  if (count == 1 && probes == 0) {
+    // The common case (one sample per pass, no probes): no grouping, no copies.
+    const PreparedSample& ps = samples[0];
+    if (!(ps.weight.x > 0 || ps.weight.y > 0 || ps.weight.z > 0)) return;
+    const SceneTracer tracer(scene, sp.object);
+    Rng rng(seed, hashKeys(pixel, uint64_t(pass), 1));
+    ShadingPointQuery query;
+    query.segments = std::span<const Segment>(&ps.segment, 1);
+    query.tracer = &tracer;
+    query.region = tile * num_lights + ps.light;
+    double v = 0;
+    RayCounts counts;
+    estimator.estimate(query, rng, std::span<double>(&v, 1), counts);
+    PixelSums& sums = acc.px[pixel];
+    sums.radiance += Vec3d(ps.weight) * v;
+    sums.vis_sum += v;
+    sums.vis_n += 1;
+    sums.rays += counts;
+    return;
+  }
   scratch.order.clear();
   for (int j = 0; j < count; ++j)
     if (samples[j].weight.x > 0 || samples[j].weight.y > 0 || samples[j].weight.z > 0)
       scratch.order.push_back(uint32_t(j));
   if (scratch.order.empty()) return;
-  std::stable_sort(scratch.order.begin(), scratch.order.end(),
-                   [&](uint32_t a, uint32_t b) { return samples[a].light < samples[b].light; });
+  // In-place sort by (light, index): std::stable_sort would allocate a buffer per pixel.
+  if (scratch.order.size() > 1)
+    std::sort(scratch.order.begin(), scratch.order.end(), [&](uint32_t a, uint32_t b) {
+      return samples[a].light != samples[b].light ? samples[a].light < samples[b].light : a < b;
+    });
 
   const SceneTracer tracer(scene, sp.object);
   Rng rng(seed, hashKeys(pixel, uint64_t(pass), 1));
@@ -106,13 +133,13 @@ void estimatePixel(const RenderScene& scene, VisibilityEstimator& estimator, con
     for (size_t i = begin; i < end; ++i) {
       const double v = scratch.estimates[i - begin];
       const Vec3f& w = samples[scratch.order[i]].weight;
-      acc.radiance[pixel] += Vec3d(w) * v;
-      acc.vis_sum[pixel] += v;
-      acc.vis_n[pixel] += 1;
+      acc.px[pixel].radiance += Vec3d(w) * v;
+      acc.px[pixel].vis_sum += v;
+      acc.px[pixel].vis_n += 1;
     }
     begin = end;
   }
-  acc.rays[pixel] += counts;
+  acc.px[pixel].rays += counts;
 }
 
 }  // namespace
@@ -187,14 +214,14 @@ RenderResult render(const RenderScene& scene, const RenderSettings& settings,
   result.visibility = Image{w, h, 1, std::vector<float>(num_pixels)};
   result.cost = Image{w, h, 3, std::vector<float>(num_pixels * 3)};
   for (size_t i = 0; i < num_pixels; ++i) {
-    for (int c = 0; c < 3; ++c)
-      result.radiance.pixels[i * 3 + c] = float(acc.radiance[i][c] / taken);
-    result.visibility.pixels[i] = acc.vis_n[i] ? float(acc.vis_sum[i] / acc.vis_n[i]) : 0.0f;
-    result.cost.pixels[i * 3 + 0] = float(acc.rays[i].proxy);
-    result.cost.pixels[i * 3 + 1] = float(acc.rays[i].original);
-    result.cost.pixels[i * 3 + 2] = float(acc.rays[i].probe);
-    result.rays += acc.rays[i];
-    result.shadow_segments += acc.vis_n[i];
+    const PixelSums& sums = acc.px[i];
+    for (int c = 0; c < 3; ++c) result.radiance.pixels[i * 3 + c] = float(sums.radiance[c] / taken);
+    result.visibility.pixels[i] = sums.vis_n ? float(sums.vis_sum / sums.vis_n) : 0.0f;
+    result.cost.pixels[i * 3 + 0] = float(sums.rays.proxy);
+    result.cost.pixels[i * 3 + 1] = float(sums.rays.original);
+    result.cost.pixels[i * 3 + 2] = float(sums.rays.probe);
+    result.rays += sums.rays;
+    result.shadow_segments += sums.vis_n;
   }
   result.shading_seconds = result.primary_seconds + sampling_seconds;
   result.seconds = secondsSince(start);
