@@ -1,0 +1,51 @@
+#pragma once
+// Log-log line plots as inline SVG (no JavaScript, no external files): one <polyline> per
+// series, a marker per point, decade grid lines and a legend.
+#include <string>
+#include <vector>
+
+namespace proxyvis {
+
+// Maps [lo, hi] (both > 0) logarithmically onto the pixel interval [px_lo, px_hi] (px_hi may be
+// smaller than px_lo, as for an SVG y axis that grows downwards).
+class LogAxis {
+ public:
+  LogAxis(double lo, double hi, double px_lo, double px_hi);
+  // Widens [min_value, max_value] to whole decades (a single value gets one decade each side).
+  static LogAxis covering(double min_value, double max_value, double px_lo, double px_hi);
+  double map(double value) const;
+  double lo() const { return lo_; }
+  double hi() const { return hi_; }
+  // The powers of ten within [lo, hi].
+  std::vector<double> decades() const;
+
+ private:
+  double lo_, hi_, px_lo_, px_hi_;
+};
+
+struct PlotPoint {
+  double x = 0, y = 0;
+  std::string label;  // tooltip (e.g. "16 spp"); may be empty
+};
+
+struct PlotSeries {
+  std::string name;
+  std::vector<PlotPoint> points;  // drawn in x order; points with x <= 0 or y <= 0 are skipped
+};
+
+struct LogLogPlot {
+  std::string title, x_label, y_label;
+  std::vector<PlotSeries> series;
+  int width = 720, height = 440;
+};
+
+// The colour of series i (a palette readable on white, cycling after 8).
+std::string seriesColor(size_t i);
+
+// An <svg> element; a plot without any positive point shows a "no data" note.
+std::string logLogPlotSvg(const LogLogPlot& plot);
+
+// Escapes &, <, >, " and ' for HTML/SVG text and attributes.
+std::string escapeHtml(const std::string& text);
+
+}  // namespace proxyvis

@@ -1,0 +1,123 @@
+#include "metrics/report.h"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "metrics/html_report.h"
+
+namespace proxyvis {
+namespace {
+
+ReportRow row(std::string table, std::string est, double spp, double seconds, double mse) {
+  ReportRow r;
+  r.table = std::move(table);
+  r.estimator = std::move(est);
+  r.spp = spp;
+  r.seconds = seconds;
+  r.mse = mse;
+  r.mse_stderr = mse / 10;
+  r.relmse = mse * 3;
+  r.rays = {100, 50, 0};
+  r.pixels = 10;
+  r.seeds = 3;
+  return r;
+}
+
+Report sampleReport() {
+  Report rep;
+  rep.title = "render-compare: <test> & co";
+  rep.meta["scene"] = "scenes/tiny.json";
+  rep.notes.push_back("reference variance 1e-9 ≪ smallest MSE");
+  rep.rows = {
+      row("equal-spp", "exact", 4, 1.0, 4e-3),   row("equal-spp", "roulette", 4, 0.5, 4e-3),
+      row("equal-spp", "exact", 16, 4.0, 1e-3),  row("equal-spp", "roulette", 16, 2.0, 2e-3),
+      row("equal-time", "exact", 20, 2.0, 1e-3), row("equal-time", "culling", 30, 2.0, 5e-4)};
+  fillRelativeEfficiency(rep.rows, kEqualSppTable);
+  fillRelativeEfficiency(rep.rows, kEqualTimeTable);
+  return rep;
+}
+
+TEST(Report, EfficiencyIsRelativeToExactOfTheSameTableAndSpp) {
+  Report rep = sampleReport();
+  EXPECT_DOUBLE_EQ(rep.rows[0].efficiency, 1.0);
+  EXPECT_DOUBLE_EQ(rep.rows[1].efficiency, 2.0);  // same MSE in half the time
+  EXPECT_DOUBLE_EQ(rep.rows[3].efficiency, 1.0);  // 2× MSE in half the time, vs exact at 16 spp
+  EXPECT_DOUBLE_EQ(rep.rows[5].efficiency, 2.0);  // equal time, half the MSE
+}
+
+TEST(Report, JsonHasTheContractKeys) {
+  Report rep = sampleReport();
+  nlohmann::json j = nlohmann::json::parse(reportToJson(rep).dump());
+  EXPECT_DOUBLE_EQ(j.at("relmse_epsilon").get<double>(), 1e-2);
+  ASSERT_EQ(j.at("rows").size(), rep.rows.size());
+  for (const auto& r : j.at("rows"))
+    for (const char* key : {"estimator", "spp", "seconds", "mse", "relmse", "efficiency", "rays"})
+      EXPECT_TRUE(r.contains(key)) << key;
+  EXPECT_EQ(j["rows"][1]["estimator"], "roulette");
+  EXPECT_DOUBLE_EQ(j["rows"][1]["efficiency"].get<double>(), 2.0);
+  EXPECT_DOUBLE_EQ(j["rows"][1]["rays"]["proxy"].get<double>(), 100.0);
+  EXPECT_DOUBLE_EQ(j["rows"][1]["rays_per_pixel"]["original"].get<double>(), 5.0);
+}
+
+TEST(Report, CsvHasHeaderAndOneLinePerRow) {
+  Report rep = sampleReport();
+  std::istringstream in(reportToCsv(rep.rows));
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line.rfind("table,estimator,spp,seconds,mse,", 0), 0u) << line;
+  size_t columns = std::count(line.begin(), line.end(), ',');
+  int lines = 0;
+  while (std::getline(in, line)) {
+    ++lines;
+    EXPECT_EQ(size_t(std::count(line.begin(), line.end(), ',')), columns) << line;
+  }
+  EXPECT_EQ(lines, int(rep.rows.size()));
+}
+
+TEST(Report, MarkdownTableFiltersByTable) {
+  Report rep = sampleReport();
+  std::string t = markdownTable(rep.rows, kEqualTimeTable);
+  EXPECT_NE(t.find("| culling |"), std::string::npos);
+  EXPECT_EQ(t.find("| roulette |"), std::string::npos);
+  EXPECT_NE(t.find("2.00×"), std::string::npos);
+  std::string md = reportToMarkdown(rep);
+  EXPECT_NE(md.find("ε = 0.01"), std::string::npos);
+  EXPECT_NE(md.find("## Equal time"), std::string::npos);
+  EXPECT_NE(md.find("## Equal samples"), std::string::npos);
+}
+
+size_t countOccurrences(const std::string& text, const std::string& what) {
+  size_t n = 0;
+  for (size_t p = text.find(what); p != std::string::npos; p = text.find(what, p + 1)) ++n;
+  return n;
+}
+
+TEST(Report, HtmlHasOnePolylinePerEstimatorAndEscapesText) {
+  Report rep = sampleReport();
+  HtmlReportLayout layout;
+  LogLogPlot plot;
+  plot.title = "MSE vs time";
+  for (const char* est : {"exact", "culling", "roulette"}) {
+    PlotSeries s{est, {}};
+    for (const ReportRow& r : rep.rows)
+      if (r.estimator == est) s.points.push_back({r.seconds, r.mse, ""});
+    plot.series.push_back(s);
+  }
+  layout.plots.push_back(plot);
+  layout.galleries.push_back({"Images", "", {{"exact_16.png", "exact", "MSE 1e-3"}}});
+  std::string html = reportToHtml(rep, layout);
+  EXPECT_EQ(countOccurrences(html, "<svg"), 1u);
+  EXPECT_EQ(countOccurrences(html, "<polyline"), 3u);
+  for (const char* est : {"exact", "culling", "roulette"})
+    EXPECT_NE(html.find(std::string("data-series=\"") + est + "\""), std::string::npos);
+  EXPECT_NE(html.find("&lt;test&gt; &amp; co"), std::string::npos);
+  EXPECT_EQ(html.find("<test>"), std::string::npos);
+  EXPECT_NE(html.find("<img src=\"exact_16.png\""), std::string::npos);
+  EXPECT_NE(html.find("</html>"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace proxyvis
