@@ -82,6 +82,7 @@ void estimatePixel(const RenderScene& scene, VisibilityEstimator& estimator, con
     query.segments = std::span<const Segment>(&ps.segment, 1);
     query.tracer = &tracer;
     query.region = tile * num_lights + ps.light;
+    query.point = pixel * num_lights + ps.light;
     double v = 0;
     RayCounts counts;
     estimator.estimate(query, rng, std::span<double>(&v, 1), counts);
@@ -128,6 +129,7 @@ void estimatePixel(const RenderScene& scene, VisibilityEstimator& estimator, con
     query.segments = scratch.segments;
     query.tracer = &tracer;
     query.region = tile * num_lights + light;
+    query.point = pixel * num_lights + light;
     query.probes = scratch.probes;
     estimator.estimate(query, rng, scratch.estimates, counts);
     for (size_t i = begin; i < end; ++i) {
@@ -149,6 +151,8 @@ EstimatorSetup estimatorSetupFor(const RenderScene& scene, const RenderSettings&
   const render_internal::Tiling tiling(scene.camera().width(), scene.camera().height(),
                                        std::max(1, settings.tile_size));
   setup.num_regions = uint32_t(tiling.count()) * uint32_t(scene.lights().numLights());
+  setup.num_points = uint32_t(scene.camera().width()) * uint32_t(scene.camera().height()) *
+                     uint32_t(scene.lights().numLights());
   setup.proxy_class = settings.force_general_proxies ? ProxyClass::kGeneral : scene.proxyClass();
   return setup;
 }
@@ -208,6 +212,7 @@ RenderResult render(const RenderScene& scene, const RenderSettings& settings,
   }
   progress.done();
 
+  result.learned = estimator.learnedSummary();
   result.spp = taken;
   result.passes = pass;
   result.radiance = Image{w, h, 3, std::vector<float>(num_pixels * 3)};

@@ -12,7 +12,8 @@
 // (roulette) use passes < k for pass k. TBB over tiles; light samples are keyed on
 // (seed, pixel, pass) and estimator randomness on (seed, pixel, pass, 1): bit-identical output
 // for a seed at any thread count (as long as the estimator's own learning is deterministic).
-// Learning regions are screen tile x light: region = tile_index * num_lights + light.
+// Learning regions are screen tile x light: region = tile_index * num_lights + light; each
+// query also names its (pixel, light) point = pixel * num_lights + light (< num_points).
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -31,8 +32,9 @@ struct Image {
 };
 
 struct RenderSettings {
-  // kind, probes_per_point and q_min are used; num_regions and proxy_class are set by the
-  // renderer (tiles x lights, and RenderScene::proxyClass()).
+  // kind, probes_per_point, q_min and fixed_costs are used; num_regions, num_points and
+  // proxy_class are set by the renderer (tiles x lights, pixels x lights, and
+  // RenderScene::proxyClass()).
   EstimatorSetup estimator;
   int spp = 16;  // light samples per pixel (upper bound when time_budget > 0; <= 0 = none)
   double time_budget = 0;  // seconds; > 0: render passes until the budget is spent
@@ -61,6 +63,7 @@ struct RenderResult {
   uint64_t primary_rays = 0;
   uint64_t shadow_segments = 0;                   // light samples that needed a visibility estimate
   ProxyClass proxy_class = ProxyClass::kGeneral;  // what the estimator was told
+  LearnedSummary learned;                         // estimator.learnedSummary() after the last pass
 };
 
 // The EstimatorSetup render() uses: settings.estimator with num_regions and proxy_class filled
