@@ -6,10 +6,12 @@
 // keep the renderer's calls (estimate(), beginPass(), endPass(), makeEstimator()) working.
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "estimate/roulette.h"
 #include "trace/trace_scene.h"
 #include "util/proxy_class.h"
 #include "util/rng.h"
@@ -30,7 +32,9 @@ struct RayCounts {
   uint64_t original = 0;  // segments traced against the original geometry
   uint64_t probe = 0;     // probe segments (each traced against both; counted here only)
   RayCounts& operator+=(const RayCounts& o) {
-    proxy += o.proxy; original += o.original; probe += o.probe;
+    proxy += o.proxy;
+    original += o.original;
+    probe += o.probe;
     return *this;
   }
 };
@@ -48,10 +52,18 @@ class SegmentTracer {
 struct ShadingPointQuery {
   std::span<const Segment> segments;  // one per light sample; estimate one visibility per segment
   const SegmentTracer* tracer = nullptr;
-  uint32_t region = 0;      // learning region (screen tile x light), < EstimatorSetup::num_regions
+  uint32_t region = 0;  // learning region (screen tile x light), < EstimatorSetup::num_regions
   // Extra light-sample segments for the probe-based estimators (paper-optimal, paper-cost);
   // drawn independently of `segments` from the same distribution.
   std::span<const Segment> probes;
+  // Optional: index of this (shading point, light) pair, < EstimatorSetup::num_points, e.g.
+  // pixel * num_lights + light; each point at most once per pass. Roulette keeps a running mean
+  // per point across passes to learn the variance exact visibility leaves per pixel,
+  // mean_p V_p(1 - V_p), which its exact-vs-proxy decision needs. Without it, roulette uses pairs
+  // of segments of one query (needs >= 2 segments per query), else the pooled V(1 - V) of the
+  // region (an overestimate that favours the proxy).
+  uint32_t point = kNoPoint;
+  static constexpr uint32_t kNoPoint = ~0u;
 };
 
 struct EstimatorSetup {
@@ -60,8 +72,25 @@ struct EstimatorSetup {
   // correction branch (DESIGN.md pitfall 4).
   ProxyClass proxy_class = ProxyClass::kGeneral;
   uint32_t num_regions = 1;
-  int probes_per_point = 16;   // paper-optimal / paper-cost
-  double q_min = 0.05;         // roulette floor where an error class is possible
+  int probes_per_point = 16;  // paper-optimal / paper-cost
+  double q_min = 0.05;        // roulette floor where an error class is possible
+  uint32_t num_points = 0;    // roulette: size of the ShadingPointQuery::point range (0 = none)
+  // Roulette cost model. Unset: ray costs per class of V' are measured per region with the CPU
+  // tick counter on 1 ray in 8, which makes roulette's choices (never its expectation) depend
+  // on timing, so output is unbiased but not bit-reproducible. Set (any unit, e.g. ns from a
+  // bench): deterministic output at any thread count.
+  std::optional<ClassCosts> fixed_costs;
+};
+
+// What a learning estimator found, for reports (all zero for the others). Costs in the unit of
+// EstimatorSetup::fixed_costs, or CPU ticks when measured.
+struct LearnedSummary {
+  uint32_t regions = 0;           // regions with statistics
+  uint32_t regions_roulette = 0;  // of those, regions that used proxy + roulette in the last pass
+  double p_proxy_blocked = 0;     // P(V' = 0) over all learned samples
+  double error_given_blocked = 0, error_given_visible = 0;  // P(V != V' | V' = i)
+  double var_exact = 0;  // mean over samples of V_p(1 - V_p), as learned
+  ClassCosts costs;      // mean over regions' samples
 };
 
 class VisibilityEstimator {
@@ -77,6 +106,8 @@ class VisibilityEstimator {
   virtual void endPass() {}
   // How many probe segments estimate() wants per shading point (0 for most).
   virtual int probesPerPoint() const { return 0; }
+  // Statistics learned so far (roulette); call between passes.
+  virtual LearnedSummary learnedSummary() const { return {}; }
 };
 
 std::unique_ptr<VisibilityEstimator> makeEstimator(const EstimatorSetup& setup);

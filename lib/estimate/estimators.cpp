@@ -1,0 +1,200 @@
+// The six runtime estimators of issue #6 over the per-sample templates of sample_estimators.h.
+// Each draws one uniform number per segment from the caller's Rng (exact and culling draw none)
+// and counts every traced ray.
+#include <string>
+
+#include "estimate/cpu_ticks.h"
+#include "estimate/region_learner.h"
+#include "estimate/sample_estimators.h"
+#include "estimate/visibility_estimator.h"
+#include "util/error.h"
+
+namespace proxyvis {
+
+namespace {
+
+constexpr EstimatorKind kAllKinds[] = {EstimatorKind::kExact,      EstimatorKind::kCulling,
+                                       EstimatorKind::kPaperEqual, EstimatorKind::kPaperOptimal,
+                                       EstimatorKind::kPaperCost,  EstimatorKind::kRoulette};
+
+// Dirichlet pseudo-count per possible class for the probe-based estimates: keeps every p > 0
+// where its class can occur (unbiasedness does not depend on the probes being representative).
+constexpr double kProbePrior = 0.5;
+
+class ExactEstimator final : public VisibilityEstimator {
+ public:
+  void estimate(const ShadingPointQuery& q, Rng&, std::span<double> out,
+                RayCounts& counts) override {
+    for (size_t j = 0; j < q.segments.size(); ++j)
+      out[j] = exactSample(*q.tracer, q.segments[j], counts);
+  }
+};
+
+class CullingEstimator final : public VisibilityEstimator {
+ public:
+  explicit CullingEstimator(ProxyClass cls) : cls_(cls) {}
+  void estimate(const ShadingPointQuery& q, Rng&, std::span<double> out,
+                RayCounts& counts) override {
+    for (size_t j = 0; j < q.segments.size(); ++j)
+      out[j] = cullingSample(*q.tracer, q.segments[j], cls_, counts);
+  }
+
+ private:
+  ProxyClass cls_;
+};
+
+// paper-equal (fixed p), paper-optimal and paper-cost (p from this point's probe rays).
+class SelectionEstimator final : public VisibilityEstimator {
+ public:
+  SelectionEstimator(EstimatorKind kind, ProxyClass cls, int probes)
+      : kind_(kind), cls_(cls), probes_(kind == EstimatorKind::kPaperEqual ? 0 : probes) {}
+
+  int probesPerPoint() const override { return probes_; }
+
+  void estimate(const ShadingPointQuery& q, Rng& rng, std::span<double> out,
+                RayCounts& counts) override {
+    const SelectionProbabilities p = probabilities(q, counts);
+    for (size_t j = 0; j < q.segments.size(); ++j)
+      out[j] = selectionSample(*q.tracer, q.segments[j], p, rng.uniformDouble(), counts);
+  }
+
+ private:
+  SelectionProbabilities probabilities(const ShadingPointQuery& q, RayCounts& counts) const {
+    if (kind_ == EstimatorKind::kPaperEqual) return equalProbabilities(cls_);
+    ClassCounts cc;
+    for (const Segment& s : q.probes) {
+      ++counts.probe;
+      cc.add(q.tracer->originalVisible(s), q.tracer->proxyVisible(s));
+    }
+    const ClassProbabilities c = estimateClassProbabilities(cc, cls_, kProbePrior);
+    const SelectionProbabilities opt = optimalProbabilities(c, cls_);
+    if (kind_ == EstimatorKind::kPaperOptimal) return opt;
+    return costHeuristicProbabilities(opt, c.error());  // smoothed: > 0 if errors are possible
+  }
+
+  EstimatorKind kind_;
+  ProxyClass cls_;
+  int probes_;
+};
+
+class RouletteEstimator final : public VisibilityEstimator {
+ public:
+  explicit RouletteEstimator(const EstimatorSetup& setup)
+      : learner_(setup.num_regions, setup.num_points,
+                 RegionLearner::Options{setup.proxy_class, setup.q_min, 0.05, setup.fixed_costs}),
+        num_regions_(setup.num_regions) {}
+
+  void beginPass(int) override { learner_.beginPass(); }
+  void endPass() override { learner_.endPass(); }
+  LearnedSummary learnedSummary() const override { return learner_.summary(); }
+
+  void estimate(const ShadingPointQuery& q, Rng& rng, std::span<double> out,
+                RayCounts& counts) override {
+    PV_CHECK_MSG(q.region < regions(), "query region out of range of EstimatorSetup::num_regions");
+    const RegionLearner::Plan& plan = learner_.plan(q.region);
+    RegionTally t;
+    // Which rays get timed: every 8th per thread. Never depends on the random numbers, so it
+    // cannot influence an estimate.
+    thread_local uint32_t timing_counter = 0;
+    for (size_t j = 0; j < q.segments.size(); ++j) {
+      const double u = rng.uniformDouble();
+      TimedTracer<SegmentTracer> tt{*q.tracer,
+                                    learner_.measuresCosts() && (timing_counter++ & 7) == 0};
+      bool classed = true, vp = false, traced = false, v = false;
+      if (plan.roulette) {
+        const RouletteOutcome o = rouletteSample(tt, q.segments[j], plan.q, u, counts);
+        out[j] = o.estimate;
+        vp = o.proxy_visible;
+        traced = o.traced_original;
+        v = o.original_visible;
+      } else if (u < plan.explore) {
+        ++counts.proxy;
+        vp = tt.proxyVisible(q.segments[j]);
+        out[j] = exactSample(tt, q.segments[j], counts);
+        traced = true;
+        v = out[j] > 0;
+      } else {
+        out[j] = exactSample(*q.tracer, q.segments[j], counts);
+        classed = false;
+      }
+      if (!classed) continue;
+      ++t.n[vp];
+      if (traced) {
+        ++t.traced[vp];
+        if (v != vp) ++t.err[vp];
+      }
+      if (tt.timed) {
+        ++t.cost_n_p[vp];
+        t.ticks_p[vp] += tt.proxy_ticks;
+        if (traced) {
+          ++t.cost_n_o[vp];
+          t.ticks_o[vp] += tt.original_ticks;
+        }
+      }
+    }
+    learner_.addEstimates(q.point, out.first(q.segments.size()), t);
+    learner_.flush(q.region, t);
+  }
+
+ private:
+  uint32_t regions() const { return num_regions_; }
+  RegionLearner learner_;
+  uint32_t num_regions_ = 0;
+};
+
+}  // namespace
+
+const char* estimatorName(EstimatorKind kind) {
+  switch (kind) {
+    case EstimatorKind::kExact:
+      return "exact";
+    case EstimatorKind::kCulling:
+      return "culling";
+    case EstimatorKind::kPaperEqual:
+      return "paper-equal";
+    case EstimatorKind::kPaperOptimal:
+      return "paper-optimal";
+    case EstimatorKind::kPaperCost:
+      return "paper-cost";
+    case EstimatorKind::kRoulette:
+      return "roulette";
+  }
+  return "?";
+}
+
+EstimatorKind parseEstimatorName(const std::string& name) {
+  std::string valid;
+  for (EstimatorKind k : kAllKinds) {
+    if (name == estimatorName(k)) return k;
+    valid += (valid.empty() ? "" : ", ") + std::string(estimatorName(k));
+  }
+  throw Error("", "unknown estimator '" + name + "'", "valid estimators: " + valid);
+}
+
+std::vector<EstimatorKind> allEstimators() {
+  return std::vector<EstimatorKind>(std::begin(kAllKinds), std::end(kAllKinds));
+}
+
+std::unique_ptr<VisibilityEstimator> makeEstimator(const EstimatorSetup& setup) {
+  if (setup.num_regions == 0) throw Error("", "estimator needs at least one learning region");
+  if (!(setup.q_min > 0 && setup.q_min <= 1))
+    throw Error("", "q_min must be in (0, 1]", "got " + std::to_string(setup.q_min),
+                "a floor of 0 would make roulette biased where an error class is possible");
+  if (setup.probes_per_point < 0) throw Error("", "probes per point must be >= 0");
+  switch (setup.kind) {
+    case EstimatorKind::kExact:
+      return std::make_unique<ExactEstimator>();
+    case EstimatorKind::kCulling:
+      return std::make_unique<CullingEstimator>(setup.proxy_class);
+    case EstimatorKind::kPaperEqual:
+    case EstimatorKind::kPaperOptimal:
+    case EstimatorKind::kPaperCost:
+      return std::make_unique<SelectionEstimator>(setup.kind, setup.proxy_class,
+                                                  setup.probes_per_point);
+    case EstimatorKind::kRoulette:
+      return std::make_unique<RouletteEstimator>(setup);
+  }
+  throw Error("", "unknown estimator kind");
+}
+
+}  // namespace proxyvis

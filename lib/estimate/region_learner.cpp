@@ -1,0 +1,217 @@
+#include "estimate/region_learner.h"
+
+#include <cmath>
+
+#include "util/error.h"
+
+namespace proxyvis {
+
+namespace {
+
+// Pseudo-counts for the error-rate estimate: (errors + 1/2) / (samples + 1).
+constexpr double kErrorPriorErrors = 0.5, kErrorPriorSamples = 1.0;
+// Timed rays a region needs before its own cost outweighs the global mean of the class.
+constexpr double kCostShrinkage = 8.0;
+// Variance pairs a region needs before its own V(1-V) estimate replaces the pooled one.
+constexpr double kMinVariancePairs = 16.0;
+
+int64_t toFixed(double x) {
+  return std::llround(x * double(RegionLearner::kFixedOne));
+}
+
+template <class T>
+uint64_t take(std::atomic<T>& a) {
+  return uint64_t(a.exchange(0, std::memory_order_relaxed));
+}
+
+}  // namespace
+
+RegionDecision decideRegion(const RouletteModel& m, ProxyClass cls, double q_min, double margin) {
+  RegionDecision d;
+  d.q = optimalRouletteQ(m, cls, q_min);
+  d.predicted_efficiency = rouletteEfficiencyVsExact(m, d.q);
+  d.roulette = d.predicted_efficiency >= 1 + margin;
+  return d;
+}
+
+RegionLearner::RegionLearner(uint32_t num_regions, uint32_t num_points, const Options& options)
+    : options_(options),
+      plans_(num_regions),
+      pending_(new Pending[num_regions]()),
+      learned_(num_regions),
+      points_(num_points) {
+  PV_CHECK(num_regions > 0);
+  PV_CHECK(options.q_min > 0 && options.q_min <= 1);
+  if (options_.fixed_costs) global_costs_ = *options_.fixed_costs;
+}
+
+void RegionLearner::flush(uint32_t region, const RegionTally& t) {
+  PV_CHECK(region < plans_.size());
+  Pending& p = pending_[region];
+  constexpr auto relaxed = std::memory_order_relaxed;
+  for (int i = 0; i < 2; ++i) {
+    if (t.n[i]) p.n[i].fetch_add(t.n[i], relaxed);
+    if (t.traced[i]) p.traced[i].fetch_add(t.traced[i], relaxed);
+    if (t.err[i]) p.err[i].fetch_add(t.err[i], relaxed);
+    if (t.cost_n_p[i]) {
+      p.cost_n_p[i].fetch_add(t.cost_n_p[i], relaxed);
+      p.ticks_p[i].fetch_add(t.ticks_p[i], relaxed);
+    }
+    if (t.cost_n_o[i]) {
+      p.cost_n_o[i].fetch_add(t.cost_n_o[i], relaxed);
+      p.ticks_o[i].fetch_add(t.ticks_o[i], relaxed);
+    }
+  }
+  if (t.v_n) {
+    p.v_n.fetch_add(t.v_n, relaxed);
+    p.v_sum.fetch_add(t.v_sum, relaxed);
+    p.v_cross.fetch_add(t.v_cross, relaxed);
+  }
+}
+
+void RegionLearner::addEstimates(uint32_t point, std::span<const double> estimates,
+                                 RegionTally& t) {
+  if (estimates.empty()) return;
+  if (point != ShadingPointQuery::kNoPoint && point < points_.size()) {
+    PointHistory& h = points_[point];
+    if (h.count > 0) {
+      const double prev = double(h.sum) / (double(h.count) * double(kFixedOne));
+      for (double x : estimates) {
+        t.v_sum += toFixed(x);
+        t.v_cross += toFixed(prev * x);
+        ++t.v_n;
+      }
+    }
+    for (double x : estimates) h.sum += toFixed(x);
+    h.count += uint32_t(estimates.size());
+    return;
+  }
+  if (estimates.size() < 2) return;
+  double s = 0, q = 0;
+  for (double x : estimates) {
+    s += x;
+    q += x * x;
+  }
+  const double n = double(estimates.size());
+  t.v_sum += toFixed(s / n);
+  t.v_cross += toFixed((s * s - q) / (n * (n - 1)));  // mean of x_j x_l over pairs j != l
+  ++t.v_n;
+}
+
+uint64_t RegionLearner::observations(uint32_t region) const {
+  const Learned& l = learned_[region];
+  return uint64_t(l.n[0] + l.n[1]);
+}
+
+RouletteModel RegionLearner::model(uint32_t region) const {
+  const Learned& l = learned_[region];
+  RouletteModel m;
+  const double total = l.n[0] + l.n[1];
+  m.p_blocked = total > 0 ? l.n[0] / total : 0.5;
+  const bool possible[2] = {options_.proxy_class != ProxyClass::kInside,
+                            options_.proxy_class != ProxyClass::kOutside};
+  double err[2];
+  for (int i = 0; i < 2; ++i)
+    err[i] =
+        possible[i] ? (l.err_weighted[i] + kErrorPriorErrors) / (l.n[i] + kErrorPriorSamples) : 0.0;
+  err[0] = std::min(err[0], 1.0);
+  err[1] = std::min(err[1], 1.0);
+  m.p_mh = m.p_blocked * err[0];
+  m.p_hm = (1 - m.p_blocked) * err[1];
+  if (l.v_n >= kMinVariancePairs) {
+    m.var_exact = std::max(0.0, (l.v_sum - l.v_cross) / l.v_n);
+  } else {
+    const double v = m.p_blocked * err[0] + (1 - m.p_blocked) * (1 - err[1]);
+    m.var_exact = v * (1 - v);
+  }
+  if (options_.fixed_costs) {
+    m.costs = *options_.fixed_costs;
+  } else {
+    for (int i = 0; i < 2; ++i) {
+      m.costs.proxy[i] = (l.ticks_p[i] + kCostShrinkage * global_costs_.proxy[i]) /
+                         (l.cost_n_p[i] + kCostShrinkage);
+      m.costs.original[i] = (l.ticks_o[i] + kCostShrinkage * global_costs_.original[i]) /
+                            (l.cost_n_o[i] + kCostShrinkage);
+    }
+  }
+  return m;
+}
+
+void RegionLearner::beginPass() {
+  for (uint32_t r = 0; r < plans_.size(); ++r) {
+    Plan& p = plans_[r];
+    if (observations(r) < uint64_t(kMinSamples)) {
+      p = Plan{false, RouletteQ{1, 1}, 1.0};
+      continue;
+    }
+    const RegionDecision d =
+        decideRegion(model(r), options_.proxy_class, options_.q_min, options_.margin);
+    p = Plan{d.roulette, d.q, kExploreRate};
+  }
+}
+
+void RegionLearner::endPass() {
+  double sum_p[2] = {0, 0}, n_p[2] = {0, 0}, sum_o[2] = {0, 0}, n_o[2] = {0, 0};
+  for (uint32_t r = 0; r < plans_.size(); ++r) {
+    Pending& p = pending_[r];
+    Learned& l = learned_[r];
+    const Plan& plan = plans_[r];
+    const double q[2] = {plan.roulette ? plan.q.q0 : 1.0, plan.roulette ? plan.q.q1 : 1.0};
+    for (int i = 0; i < 2; ++i) {
+      l.n[i] += double(take(p.n[i]));
+      take(p.traced[i]);
+      const uint64_t err = take(p.err[i]);
+      if (err) l.err_weighted[i] += double(err) / q[i];  // traced => q[i] > 0
+      l.cost_n_p[i] += double(take(p.cost_n_p[i]));
+      l.ticks_p[i] += double(take(p.ticks_p[i]));
+      l.cost_n_o[i] += double(take(p.cost_n_o[i]));
+      l.ticks_o[i] += double(take(p.ticks_o[i]));
+      sum_p[i] += l.ticks_p[i];
+      n_p[i] += l.cost_n_p[i];
+      sum_o[i] += l.ticks_o[i];
+      n_o[i] += l.cost_n_o[i];
+    }
+    l.v_n += double(take(p.v_n));
+    l.v_sum += double(int64_t(take(p.v_sum))) / double(kFixedOne);
+    l.v_cross += double(int64_t(take(p.v_cross))) / double(kFixedOne);
+  }
+  if (options_.fixed_costs) return;
+  // Global mean per class; a class never timed borrows the other class's mean.
+  auto mean = [](double s, double n) { return n > 0 ? s / n : 0.0; };
+  double cp[2] = {mean(sum_p[0], n_p[0]), mean(sum_p[1], n_p[1])};
+  double co[2] = {mean(sum_o[0], n_o[0]), mean(sum_o[1], n_o[1])};
+  for (int i = 0; i < 2; ++i) {
+    if (cp[i] <= 0) cp[i] = cp[1 - i] > 0 ? cp[1 - i] : 1.0;
+    if (co[i] <= 0) co[i] = co[1 - i] > 0 ? co[1 - i] : cp[i];
+  }
+  for (int i = 0; i < 2; ++i) {
+    global_costs_.proxy[i] = cp[i];
+    global_costs_.original[i] = co[i];
+  }
+}
+
+LearnedSummary RegionLearner::summary() const {
+  LearnedSummary s;
+  double n[2] = {0, 0}, err[2] = {0, 0}, v_n = 0, v_diff = 0;
+  for (uint32_t r = 0; r < plans_.size(); ++r) {
+    const Learned& l = learned_[r];
+    if (l.n[0] + l.n[1] <= 0) continue;
+    ++s.regions;
+    if (plans_[r].roulette) ++s.regions_roulette;
+    for (int i = 0; i < 2; ++i) {
+      n[i] += l.n[i];
+      err[i] += l.err_weighted[i];
+    }
+    v_n += l.v_n;
+    v_diff += l.v_sum - l.v_cross;
+  }
+  const double total = n[0] + n[1];
+  s.p_proxy_blocked = total > 0 ? n[0] / total : 0;
+  s.error_given_blocked = n[0] > 0 ? err[0] / n[0] : 0;
+  s.error_given_visible = n[1] > 0 ? err[1] / n[1] : 0;
+  s.var_exact = v_n > 0 ? v_diff / v_n : 0;
+  s.costs = global_costs_;
+  return s;
+}
+
+}  // namespace proxyvis

@@ -1,0 +1,122 @@
+#pragma once
+// Per-region learning for the roulette estimator (DESIGN.md §2 "Statistics without probe rays",
+// §2b "decide per region"). A region is a screen tile x light. Each pass, every region runs in
+// one of two modes, frozen in beginPass() from the statistics of earlier passes only (so the
+// choice is independent of the pass's own random numbers and every estimate stays unbiased):
+//
+//  exact     trace the original for every segment (no added variance). To keep learning, also
+//            trace the proxy first for a fraction `explore` of the segments (all of them until the
+//            region has kMinSamples observations, then kExploreRate): each such segment reveals
+//            its class (V, V') and the cost of both rays. Costs explore * c_p, nothing else.
+//  roulette  always trace the proxy, correct with q_i (roulette.h). P(V'=i) comes from every proxy
+//            ray; P(error | V'=i) from the corrections actually traced, each weighted by 1/q_i of
+//            its pass (Horvitz-Thompson), so the rate estimate is unbiased whatever q was used.
+//
+// The decision (decideRegion) compares the predicted efficiency 1/(Var x Cost) of the optimal
+// roulette with exact and uses roulette only when it wins by `margin`; so a region never loses
+// to exact by more than its exploration cost plus estimation error. Error rates are smoothed with
+// half a pseudo-error (Jeffreys-like), so a region that never showed an error is not assumed
+// perfect.
+//
+// The variance exact visibility leaves per pixel, mean_p V_p(1-V_p), is learned as
+// E[V~] - E[V~_prev * V~], where V~_prev is the mean of the same point's estimates in earlier
+// passes (independent of the current one, so the product has expectation V_p^2), or from pairs of
+// segments of one query. Every counter a pass adds is an integer (estimates in fixed point), so
+// the statistics, and with fixed costs the output, do not depend on the thread count.
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "estimate/roulette.h"
+#include "estimate/visibility_estimator.h"
+
+namespace proxyvis {
+
+struct RegionDecision {
+  bool roulette = false;
+  RouletteQ q;                      // used when roulette
+  double predicted_efficiency = 0;  // optimal roulette vs exact (rouletteEfficiencyVsExact)
+};
+
+// The choice for one region given its model: roulette with optimalRouletteQ if it is predicted
+// to be at least (1 + margin) times as efficient as exact, else exact.
+RegionDecision decideRegion(const RouletteModel& m, ProxyClass cls, double q_min, double margin);
+
+// What one estimate() call observed, accumulated locally, then flushed with a few atomic adds.
+struct RegionTally {
+  uint64_t n[2] = {0, 0};                               // proxy rays with V' = i
+  uint64_t traced[2] = {0, 0};                          // originals traced after V' = i
+  uint64_t err[2] = {0, 0};                             // of those, V != V'
+  uint64_t cost_n_p[2] = {0, 0}, cost_n_o[2] = {0, 0};  // timed rays by class of V'
+  uint64_t ticks_p[2] = {0, 0}, ticks_o[2] = {0, 0};
+  int64_t v_sum = 0, v_cross = 0;  // fixed point (kFixedOne)
+  uint64_t v_n = 0;
+};
+
+class RegionLearner {
+ public:
+  static constexpr int kMinSamples = 64;            // observations before leaving exact
+  static constexpr double kExploreRate = 1.0 / 16;  // proxy rays traced in exact mode afterwards
+  static constexpr int64_t kFixedOne = int64_t(1) << 20;
+
+  struct Options {
+    ProxyClass proxy_class = ProxyClass::kGeneral;
+    double q_min = 0.05;
+    double margin = 0.05;
+    std::optional<ClassCosts> fixed_costs;
+  };
+  RegionLearner(uint32_t num_regions, uint32_t num_points, const Options& options);
+
+  struct Plan {
+    bool roulette = false;
+    RouletteQ q;           // roulette mode
+    double explore = 1.0;  // exact mode: fraction of segments also traced against the proxy
+  };
+  const Plan& plan(uint32_t region) const { return plans_[region]; }
+  bool measuresCosts() const { return !options_.fixed_costs; }
+
+  // Thread-safe: adds a query's tally to its region.
+  void flush(uint32_t region, const RegionTally& t);
+  // Variance learning for one query's estimates. `point` may be kNoPoint. Each point must be
+  // passed at most once per pass (its history must come from earlier passes).
+  void addEstimates(uint32_t point, std::span<const double> estimates, RegionTally& t);
+
+  // Single-threaded. beginPass freezes the plans from everything folded in so far; endPass folds
+  // the pass's counters into the statistics.
+  void beginPass();
+  void endPass();
+
+  // The model a region's decision uses (costs shrunk towards the global mean per class).
+  RouletteModel model(uint32_t region) const;
+  uint64_t observations(uint32_t region) const;
+  LearnedSummary summary() const;
+
+ private:
+  struct Pending {  // this pass, integer atomics
+    std::atomic<uint64_t> n[2], traced[2], err[2], cost_n_p[2], cost_n_o[2], ticks_p[2], ticks_o[2],
+        v_n;
+    std::atomic<int64_t> v_sum, v_cross;
+  };
+  struct Learned {  // passes so far
+    double n[2] = {0, 0};
+    double err_weighted[2] = {0, 0};  // sum of errors / q of their pass
+    double cost_n_p[2] = {0, 0}, cost_n_o[2] = {0, 0}, ticks_p[2] = {0, 0}, ticks_o[2] = {0, 0};
+    double v_sum = 0, v_cross = 0, v_n = 0;
+  };
+  struct PointHistory {
+    int64_t sum = 0;  // fixed point
+    uint32_t count = 0;
+  };
+
+  Options options_;
+  std::vector<Plan> plans_;
+  std::unique_ptr<Pending[]> pending_;
+  std::vector<Learned> learned_;
+  std::vector<PointHistory> points_;
+  ClassCosts global_costs_;
+};
+
+}  // namespace proxyvis
