@@ -56,7 +56,7 @@ void fillRelativeEfficiency(std::vector<ReportRow>& rows, std::string_view table
 
 nlohmann::json rowToJson(const ReportRow& r) {
   double px = r.pixels > 0 ? r.pixels : 1;
-  return {
+  nlohmann::json j = {
       {"table", r.table},
       {"estimator", r.estimator},
       {"spp", r.spp},
@@ -72,6 +72,10 @@ nlohmann::json rowToJson(const ReportRow& r) {
         {"original", r.rays.original / px},
         {"probe", r.rays.probe / px}}},
       {"seeds", r.seeds}};
+  // The contract keys win over extras of the same name.
+  for (auto it = r.extra.begin(); it != r.extra.end(); ++it)
+    if (!j.contains(it.key())) j[it.key()] = it.value();
+  return j;
 }
 
 nlohmann::json reportToJson(const Report& report) {

@@ -30,6 +30,7 @@ struct ReportRow {
   ReportRays rays;
   double pixels = 1;  // for rays per pixel
   int seeds = 0;
+  nlohmann::json extra = nlohmann::json::object();  // more keys for the JSON row (e.g. timings)
 };
 
 struct Report {

@@ -1,0 +1,93 @@
+#include "compare_options.h"
+
+#include <algorithm>
+#include <sstream>
+
+#include "util/error.h"
+
+namespace proxyvis {
+
+namespace {
+
+std::vector<std::string> splitList(const std::string& list) {
+  std::vector<std::string> items;
+  std::stringstream in(list);
+  std::string item;
+  while (std::getline(in, item, ','))
+    if (!item.empty()) items.push_back(item);
+  return items;
+}
+
+}  // namespace
+
+void addCompareOptions(CLI::App& app, CompareOptions& o) {
+  app.add_option("scene", o.scene, "Scene file (JSON, scenes/FORMAT.md)")->required();
+  app.add_option("--out", o.out, "Output directory (created if missing)")->required();
+  app.add_option("--estimators", o.estimators, "Comma-separated estimators")->capture_default_str();
+  app.add_option("--spp", o.spp,
+                 "Comma-separated light samples per pixel for the equal-sample table")
+      ->capture_default_str();
+  app.add_option("--equal-time", o.equal_time,
+                 "Seconds per render for the equal-time table (0 = no such table)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  app.add_option("--reference-spp", o.reference_spp,
+                 "Samples per pixel of the exact reference (0 = max(1024, 16 x largest --spp))")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  app.add_option("--seeds", o.seeds,
+                 "Independent renders per table cell (standard error over them)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--width", o.width, "Override the scene's image width (0 = keep)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--height", o.height, "Override the scene's image height (0 = keep)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--proxy-kind", o.proxy_kind,
+                 "Use each mesh's proxy of this kind (outside, inside, general; default: first)");
+  app.add_option("--q-min", o.q_min, "Roulette floor where an error class is possible")
+      ->check(CLI::Range(1e-6, 1.0))
+      ->capture_default_str();
+  app.add_option("--probes", o.probes, "Probe rays per shading point (paper-optimal, paper-cost)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  addCommonOptions(app, o.common);
+}
+
+void CompareOptions::resolve() {
+  estimator_list.clear();
+  for (const std::string& name : splitList(estimators)) {
+    EstimatorKind kind = parseEstimatorName(name);
+    if (std::find(estimator_list.begin(), estimator_list.end(), kind) == estimator_list.end())
+      estimator_list.push_back(kind);
+  }
+  if (estimator_list.empty())
+    throw Error({}, "--estimators is empty", {},
+                "name at least one estimator, e.g. exact,roulette");
+  spp_list.clear();
+  for (const std::string& item : splitList(spp)) {
+    size_t used = 0;
+    int v = 0;
+    try {
+      v = std::stoi(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != item.size() || v <= 0)
+      throw Error({}, "--spp: '" + item + "' is not a positive integer", {},
+                  "give a comma-separated list such as 4,16");
+    spp_list.push_back(v);
+  }
+  std::sort(spp_list.begin(), spp_list.end());
+  spp_list.erase(std::unique(spp_list.begin(), spp_list.end()), spp_list.end());
+  if (spp_list.empty() && !(equal_time > 0))
+    throw Error({}, "nothing to compare", "--spp is empty and --equal-time is 0");
+}
+
+int CompareOptions::referenceSpp() const {
+  if (reference_spp > 0) return reference_spp;
+  int largest = spp_list.empty() ? 1 : spp_list.back();
+  return std::max(1024, 16 * largest);
+}
+
+}  // namespace proxyvis

@@ -1,0 +1,38 @@
+#pragma once
+// render-compare's settings (the CLI flags) and the pieces of work derived from them.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "estimate/visibility_estimator.h"
+#include "util/app_main.h"
+
+namespace proxyvis {
+
+struct CompareOptions {
+  std::filesystem::path scene;
+  std::filesystem::path out;
+  std::string estimators = "exact,culling,paper-equal,paper-optimal,paper-cost,roulette";
+  std::string spp = "4,16";
+  double equal_time = 1.0;  // seconds per render; 0 = no equal-time table
+  int reference_spp = 0;    // 0 = max(1024, 16 × the largest spp)
+  int seeds = 3;
+  int width = 0, height = 0;  // 0 = the scene's resolution
+  std::string proxy_kind;     // which proxy of each mesh ("outside", "inside", "general")
+  double q_min = 0.05;
+  int probes = 16;
+  CommonOptions common;
+
+  // Parsed from the strings above by resolve(); throws Error for bad values.
+  std::vector<EstimatorKind> estimator_list;
+  std::vector<int> spp_list;
+  void resolve();
+  int referenceSpp() const;
+};
+
+void addCompareOptions(CLI::App& app, CompareOptions& options);
+
+}  // namespace proxyvis

@@ -1,0 +1,118 @@
+#include "outputs.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "render/image_io.h"
+
+namespace proxyvis {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Inverse of the sRGB transfer curve (IEC 61966-2-1), for colours that are already display-
+// encoded but go through writeImage's linear-to-sRGB PNG path.
+float srgbToLinear(float v) {
+  return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
+}
+
+std::string rangeText(const HeatMapRange& r) {
+  return fmt::format("log scale, {:.1e} (dark) to {:.1e} (bright)", r.lo, r.hi);
+}
+
+}  // namespace
+
+float autoExposure(const Image& reference) {
+  std::vector<float> brightest;
+  for (size_t p = 0; p + 2 < reference.pixels.size(); p += 3)
+    brightest.push_back(
+        std::max({reference.pixels[p], reference.pixels[p + 1], reference.pixels[p + 2]}));
+  if (brightest.empty()) return 1;
+  size_t k = size_t(0.99 * double(brightest.size() - 1));
+  std::nth_element(brightest.begin(), brightest.begin() + k, brightest.end());
+  return brightest[k] > 0 ? 1.0f / brightest[k] : 1.0f;
+}
+
+std::vector<float> raysPerPixel(const Image& cost) {
+  std::vector<float> out(size_t(cost.width) * cost.height, 0.0f);
+  if (cost.channels < 3) return out;
+  for (size_t p = 0; p < out.size(); ++p)
+    out[p] = cost.pixels[3 * p] + cost.pixels[3 * p + 1] + 2 * cost.pixels[3 * p + 2];
+  return out;
+}
+
+HeatMapRange sharedLogRange(const std::vector<const std::vector<float>*>& maps) {
+  std::vector<float> all;
+  for (const auto* m : maps) all.insert(all.end(), m->begin(), m->end());
+  return robustLogRange(all);
+}
+
+Image heatMapImage(const std::vector<float>& values, int width, int height,
+                   const HeatMapRange& range) {
+  Image image{width, height, 3, heatMapRgb(values, range)};
+  for (float& v : image.pixels) v = srgbToLinear(v);
+  return image;
+}
+
+void writeCellImages(const CellImages& images, const fs::path& dir, float exposure,
+                     const HeatMapRange& error_range, const HeatMapRange& cost_range) {
+  const RenderResult& r = images.cell->first;
+  writeImage(r.radiance, dir / (images.stem + ".exr"));
+  writeImage(r.radiance, dir / (images.stem + ".png"), {exposure, false});
+  const int w = r.radiance.width, h = r.radiance.height;
+  writeImage(heatMapImage(images.cell->error_map, w, h, error_range),
+             dir / (images.stem + "_error.png"));
+  writeImage(heatMapImage(raysPerPixel(r.cost), w, h, cost_range),
+             dir / (images.stem + "_cost.png"));
+}
+
+std::vector<HtmlGallery> cellGalleries(const std::string& title, const std::string& reference_png,
+                                       const std::vector<CellImages>& cells,
+                                       const HeatMapRange& error_range,
+                                       const HeatMapRange& cost_range) {
+  HtmlGallery renders{title + ": images",
+                      "Tone-mapped PNG (linear EXR beside it), first seed.",
+                      {{reference_png, "reference", "exact, converged"}}};
+  HtmlGallery errors{title + ": squared error per pixel",
+                     "Mean over RGB of (I − I_ref)², " + rangeText(error_range) +
+                         ", the same scale for every estimator.",
+                     {}};
+  HtmlGallery costs{title + ": rays per pixel",
+                    "proxy + original + 2 × probe rays per pixel, " + rangeText(cost_range) + ".",
+                    {}};
+  for (const CellImages& c : cells) {
+    const ReportRow& row = c.cell->row;
+    std::string detail =
+        fmt::format("{:.0f} spp · {:.2f} s · MSE {:.2e}", row.spp, row.seconds, row.mse);
+    renders.images.push_back({c.stem + ".png", row.estimator, detail});
+    errors.images.push_back({c.stem + "_error.png", row.estimator, detail});
+    double px = row.pixels > 0 ? row.pixels : 1;
+    costs.images.push_back(
+        {c.stem + "_cost.png", row.estimator,
+         fmt::format("{:.1f} proxy · {:.1f} orig · {:.1f} probe /px", row.rays.proxy / px,
+                     row.rays.original / px, row.rays.probe / px)});
+  }
+  return {renders, errors, costs};
+}
+
+LogLogPlot mseTimePlot(const std::vector<ReportRow>& rows) {
+  LogLogPlot plot;
+  plot.title = "MSE against render time (log-log; lower left is better)";
+  plot.x_label = "time per render (s)";
+  plot.y_label = "MSE";
+  for (const ReportRow& r : rows) {
+    auto it = std::find_if(plot.series.begin(), plot.series.end(),
+                           [&](const PlotSeries& s) { return s.name == r.estimator; });
+    if (it == plot.series.end()) {
+      plot.series.push_back({r.estimator, {}});
+      it = plot.series.end() - 1;
+    }
+    it->points.push_back({r.seconds, r.mse, fmt::format("{} {:.0f} spp", r.table, r.spp)});
+  }
+  return plot;
+}
+
+}  // namespace proxyvis

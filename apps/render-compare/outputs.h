@@ -1,0 +1,48 @@
+#pragma once
+// Everything render-compare writes besides the tables: the rendered images (EXR + PNG), the
+// error and cost heat-maps (PNG), and the galleries and plot of the HTML report.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "metrics/heat_map.h"
+#include "metrics/html_report.h"
+#include "reference.h"
+#include "runs.h"
+
+namespace proxyvis {
+
+// Exposure for the tone-mapped PNGs: the 99th percentile of the reference's brightest channel
+// maps to 1, the same for every image so they compare.
+float autoExposure(const Image& reference);
+
+// Rays per pixel weighted by what they cost in traversals: proxy + original + 2 × probe (a probe
+// is traced against both).
+std::vector<float> raysPerPixel(const Image& cost);
+
+// One log range covering several maps, so heat-maps of different estimators compare.
+HeatMapRange sharedLogRange(const std::vector<const std::vector<float>*>& maps);
+
+// The images of one cell, written as `stem`.exr / .png / _error.png / _cost.png in `dir`.
+struct CellImages {
+  std::string stem;
+  const CellResult* cell = nullptr;
+};
+void writeCellImages(const CellImages& images, const std::filesystem::path& dir, float exposure,
+                     const HeatMapRange& error_range, const HeatMapRange& cost_range);
+
+// A heat-map as an image for writeImage's PNG path (linear values that its sRGB curve turns
+// back into the colour map).
+Image heatMapImage(const std::vector<float>& values, int width, int height,
+                   const HeatMapRange& range);
+
+// Galleries for one table: the images beside the reference, the error and the cost heat-maps.
+std::vector<HtmlGallery> cellGalleries(const std::string& title, const std::string& reference_png,
+                                       const std::vector<CellImages>& cells,
+                                       const HeatMapRange& error_range,
+                                       const HeatMapRange& cost_range);
+
+// MSE against time, one series per estimator (every row of every table).
+LogLogPlot mseTimePlot(const std::vector<ReportRow>& rows);
+
+}  // namespace proxyvis

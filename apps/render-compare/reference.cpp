@@ -1,0 +1,113 @@
+#include "reference.h"
+
+#include <fmt/format.h>
+
+#include <nlohmann/json.hpp>
+
+#include "metrics/image_variance.h"
+#include "metrics/stopwatch.h"
+#include "render/image_io.h"
+#include "util/atomic_write.h"
+#include "util/error.h"
+#include "util/progress.h"
+#include "util/rng.h"
+
+namespace proxyvis {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Partial renders averaged into the reference: enough for a stable variance estimate (the
+// relative s.e. of s² is sqrt(2/(R−1)) per pixel, far less once averaged over the image).
+constexpr int kPartials = 16;
+// Reference seeds do not depend on --seed, so one cached reference serves every seed.
+constexpr uint64_t kReferenceSeed = 0x7265666572656e63ULL;  // "referenc"
+// Bump when the reference's meaning changes (renderer conventions, partial scheme).
+constexpr int kCacheVersion = 1;
+
+uint64_t fnv1a(const std::string& s) {
+  uint64_t h = 0xcbf29ce484222325ULL;
+  for (unsigned char c : s) h = (h ^ c) * 0x100000001b3ULL;
+  return h;
+}
+
+std::string cacheKey(const SceneDesc& desc, int spp, int partials) {
+  std::string text = fmt::format("v{}|{}|{}x{}|{}|{}", kCacheVersion, sceneHash(desc),
+                                 desc.camera.width, desc.camera.height, spp, partials);
+  return fmt::format("{:016x}", fnv1a(text));
+}
+
+bool loadCached(Reference& ref, const fs::path& json_file, int width, int height) {
+  std::error_code ec;
+  if (!fs::exists(ref.file, ec) || !fs::exists(json_file, ec)) return false;
+  try {
+    nlohmann::json j = nlohmann::json::parse(readTextFile(json_file));
+    Image image = readImage(ref.file);
+    if (j.at("key") != ref.key || image.width != width || image.height != height ||
+        image.channels < 3)
+      return false;
+    if (image.channels != 3) {  // keep RGB only
+      Image rgb{width, height, 3, std::vector<float>(size_t(width) * height * 3)};
+      for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x)
+          for (int c = 0; c < 3; ++c) rgb.at(x, y, c) = image.at(x, y, c);
+      image = std::move(rgb);
+    }
+    ref.radiance = std::move(image);
+    ref.variance_of_mean = j.at("variance_of_mean").get<double>();
+    ref.seconds = j.at("seconds").get<double>();
+    ref.cached = true;
+    return true;
+  } catch (const std::exception&) {
+    return false;  // a damaged cache is re-rendered, never trusted
+  }
+}
+
+}  // namespace
+
+Reference loadOrRenderReference(const RenderScene& scene, const CompareOptions& options) {
+  const SceneDesc& desc = scene.desc();
+  Reference ref;
+  ref.partials = std::min(kPartials, options.referenceSpp());
+  const int per_partial = (options.referenceSpp() + ref.partials - 1) / ref.partials;
+  ref.spp = per_partial * ref.partials;
+  ref.key = cacheKey(desc, ref.spp, ref.partials);
+  ref.file = options.out / ("reference-" + ref.key + ".exr");
+  const fs::path json_file = options.out / ("reference-" + ref.key + ".json");
+  if (loadCached(ref, json_file, desc.camera.width, desc.camera.height)) return ref;
+
+  ImageVarianceAccumulator acc;
+  Stopwatch watch;
+  Progress progress(fmt::format("reference ({} spp)", ref.spp), uint64_t(ref.partials),
+                    options.common.quiet);
+  for (int r = 0; r < ref.partials; ++r) {
+    RenderSettings settings;
+    settings.estimator.kind = EstimatorKind::kExact;
+    settings.spp = per_partial;
+    settings.seed = hashKeys(kReferenceSeed, uint64_t(r));
+    settings.quiet = true;
+    RenderResult result = render(scene, settings);
+    acc.add(result.radiance.pixels);
+    progress.update();
+  }
+  progress.done();
+  ref.seconds = watch.seconds();
+  ref.variance_of_mean = acc.meanVarianceOfMean();
+  ref.radiance = Image{desc.camera.width, desc.camera.height, 3, acc.mean()};
+
+  writeImage(ref.radiance, ref.file, {1.0f, /*full_float=*/true});
+  nlohmann::json j = {{"key", ref.key},
+                      {"scene", desc.path.string()},
+                      {"scene_hash", sceneHash(desc)},
+                      {"width", desc.camera.width},
+                      {"height", desc.camera.height},
+                      {"spp", ref.spp},
+                      {"partials", ref.partials},
+                      {"variance_of_mean", ref.variance_of_mean},
+                      {"seconds", ref.seconds}};
+  writeTextAtomically(json_file, j.dump(2) + "\n");
+  return ref;
+}
+
+}  // namespace proxyvis

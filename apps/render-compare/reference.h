@@ -1,0 +1,29 @@
+#pragma once
+// The converged reference: `exact` at many samples, as the mean of independent partial renders
+// (so its own error can be estimated from their spread), cached in the output directory under a
+// key of the scene's content hash, the resolution and the sample counts.
+#include <filesystem>
+#include <string>
+
+#include "compare_options.h"
+#include "render/render_scene.h"
+#include "render/renderer.h"
+
+namespace proxyvis {
+
+struct Reference {
+  Image radiance;
+  int spp = 0;       // total samples per pixel
+  int partials = 0;  // independent renders averaged
+  // Mean over pixels and channels of the estimated variance of the reference's mean: its own
+  // expected MSE against the true image.
+  double variance_of_mean = 0;
+  double seconds = 0;  // render time (of the run that produced the cache)
+  bool cached = false;
+  std::string key;
+  std::filesystem::path file;  // the EXR
+};
+
+Reference loadOrRenderReference(const RenderScene& scene, const CompareOptions& options);
+
+}  // namespace proxyvis

@@ -1,0 +1,83 @@
+#include "runs.h"
+
+#include <fmt/core.h>
+
+#include <climits>
+#include <cstdio>
+
+#include "metrics/efficiency.h"
+#include "metrics/image_error.h"
+#include "util/rng.h"
+
+namespace proxyvis {
+
+namespace {
+
+nlohmann::json learnedToJson(const LearnedSummary& l) {
+  return {{"regions", l.regions},
+          {"regions_roulette", l.regions_roulette},
+          {"p_proxy_blocked", l.p_proxy_blocked},
+          {"error_given_blocked", l.error_given_blocked},
+          {"error_given_visible", l.error_given_visible},
+          {"var_exact", l.var_exact},
+          {"cost_proxy", {l.costs.proxy[0], l.costs.proxy[1]}},
+          {"cost_original", {l.costs.original[0], l.costs.original[1]}}};
+}
+
+}  // namespace
+
+CellResult runCell(const RenderScene& scene, const CompareOptions& options, EstimatorKind kind,
+                   int spp, double time_budget, const Image& reference, std::string_view table) {
+  std::vector<double> mse, relmse, seconds, spp_reached, shading, visibility;
+  CellResult cell;
+  ReportRow& row = cell.row;
+  for (int k = 0; k < options.seeds; ++k) {
+    RenderSettings settings;
+    settings.estimator.kind = kind;
+    settings.estimator.q_min = options.q_min;
+    settings.estimator.probes_per_point = options.probes;
+    settings.spp = time_budget > 0 ? INT_MAX : spp;
+    settings.time_budget = time_budget;
+    // Seed k of every cell is the same stream key: estimators differ only in what they trace.
+    settings.seed = hashKeys(options.common.seed, uint64_t(k));
+    settings.quiet = options.common.quiet;
+    RenderResult r = render(scene, settings);
+    mse.push_back(meanSquaredError(r.radiance.pixels, reference.pixels));
+    relmse.push_back(relativeMeanSquaredError(r.radiance.pixels, reference.pixels));
+    seconds.push_back(r.seconds);
+    spp_reached.push_back(r.spp);
+    shading.push_back(r.shading_seconds);
+    visibility.push_back(r.visibility_seconds);
+    row.rays.proxy += double(r.rays.proxy) / options.seeds;
+    row.rays.original += double(r.rays.original) / options.seeds;
+    row.rays.probe += double(r.rays.probe) / options.seeds;
+    if (!options.common.quiet)
+      std::fprintf(stderr, "render-compare: %-13s %-10s seed %d/%d: %4d spp %7.3f s MSE %.3e\n",
+                   estimatorName(kind), std::string(table).c_str(), k + 1, options.seeds, r.spp,
+                   r.seconds, mse.back());
+    if (k == 0) {
+      cell.error_map = squaredErrorPerPixel(r.radiance.pixels, reference.pixels, 3);
+      row.extra["proxy_class"] = proxyClassName(r.proxy_class);
+      if (kind == EstimatorKind::kRoulette) row.extra["learned"] = learnedToJson(r.learned);
+      cell.first = std::move(r);
+    }
+  }
+  SeedSummary m = summarizeSeeds(mse), rel = summarizeSeeds(relmse);
+  row.table = std::string(table);
+  row.estimator = estimatorName(kind);
+  row.spp = summarizeSeeds(spp_reached).mean;
+  row.seconds = summarizeSeeds(seconds).mean;
+  row.mse = m.mean;
+  row.mse_stderr = m.standard_error;
+  row.relmse = rel.mean;
+  row.relmse_stderr = rel.standard_error;
+  row.pixels = double(reference.width) * reference.height;
+  row.seeds = options.seeds;
+  row.extra["shading_seconds"] = summarizeSeeds(shading).mean;
+  row.extra["visibility_seconds"] = summarizeSeeds(visibility).mean;
+  row.extra["mse_per_seed"] = mse;
+  if (time_budget > 0) row.extra["time_budget"] = time_budget;
+  return cell;
+}
+
+}  // namespace proxyvis
