@@ -1,0 +1,180 @@
+// proxy-gen: builds an outside, inside or general proxy of a mesh, or of every mesh of a scene,
+// verifies its guarantee and writes it (DESIGN.md §1). Thin CLI over
+// proxies/general/proxy_pipeline.h.
+#include <fmt/core.h>
+#include <tbb/parallel_for.h>
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <mutex>
+
+#include "mesh/mesh_io.h"
+#include "proxies/general/proxy_pipeline.h"
+#include "scene/scene_desc.h"
+#include "util/app_main.h"
+#include "util/atomic_write.h"
+#include "util/error.h"
+#include "util/progress.h"
+#include "util/rng.h"
+
+namespace fs = std::filesystem;
+using namespace proxyvis;
+using json = nlohmann::json;
+
+namespace {
+
+struct Args {
+  std::string input, output, out_dir, kind = "outside", method;
+  std::optional<double> alpha, offset, ratio, erosion;
+  size_t max_faces = 0;
+  bool fill_holes = false;
+};
+
+ProxyGenOptions toOptions(const Args& a, const CommonOptions& common) {
+  ProxyGenOptions o;
+  const std::optional<ProxyClass> kind = parseProxyClass(a.kind);
+  if (!kind)
+    throw Error("", fmt::format("unknown --kind '{}'", a.kind), "use outside, inside or general");
+  o.kind = *kind;
+  o.method = a.method;
+  o.alpha = a.alpha;
+  o.offset = a.offset;
+  o.ratio = a.ratio;
+  o.erosion = a.erosion;
+  o.max_faces = a.max_faces;
+  o.fill_holes = a.fill_holes;
+  o.seed = common.seed;
+  return o;
+}
+
+// The JSON goes to --json; the human summary to stdout, or to stderr when stdout carries JSON.
+void emit(const json& report, const std::string& summary, const CommonOptions& common) {
+  if (!common.json_path.empty()) writeTextAtomically(common.json_path, report.dump(2) + "\n");
+  if (common.json_path == "-") {
+    if (!common.quiet) std::fputs(summary.c_str(), stderr);
+  } else {
+    std::fputs(summary.c_str(), stdout);
+  }
+}
+
+int runMesh(const Args& a, const CommonOptions& common) {
+  if (a.output.empty())
+    throw Error("", "no output file", "a mesh input needs -o OUTPUT", "add -o proxy.ply");
+  if (!isSupportedMeshExtension(a.output))
+    throw Error(a.output, "unsupported output extension",
+                "proxy-gen writes .obj, .ply, .off or .drc");
+  const TriMesh input = loadMesh(a.input);
+  ProxyGenResult result = generateProxy(input, toOptions(a, common));
+  saveMesh(result.proxy, a.output);
+  result.report["output"] = a.output;
+  emit(result.report, formatProxyReport(result.report), common);
+  return kExitOk;
+}
+
+int runScene(const Args& a, const CommonOptions& common) {
+  if (a.out_dir.empty())
+    throw Error(a.input, "no output directory", "a scene input needs --out-dir DIR",
+                "add --out-dir out/");
+  SceneDesc scene = loadSceneDesc(a.input);
+  const ProxyGenOptions base = toOptions(a, common);
+  std::error_code ec;
+  fs::create_directories(a.out_dir, ec);
+  if (ec) throw WriteError(a.out_dir, "cannot create the output directory", ec.message());
+
+  const size_t n = scene.meshes.size();
+  std::vector<json> reports(n);
+  std::vector<std::optional<ProxyRef>> refs(n);
+  std::vector<std::string> errors(n);
+  std::vector<int> codes(n, kExitOk);
+  Progress progress("proxy-gen", n, common.quiet);
+  tbb::parallel_for(size_t(0), n, [&](size_t i) {
+    const SceneMeshDesc& mesh = scene.meshes[i];
+    const fs::path out = fs::path(a.out_dir) / fmt::format("{}.{}.ply", mesh.name, a.kind);
+    try {
+      ProxyGenOptions o = base;
+      o.seed = hashKeys(common.seed, i);  // per-mesh stream: same result at any thread count
+      ProxyGenResult r = generateProxy(loadMesh(mesh.file), o);
+      saveMesh(r.proxy, out);
+      r.report["name"] = mesh.name;
+      r.report["output"] = out.string();
+      ProxyRef ref;
+      ref.kind = a.kind;
+      ref.method = r.report["method"].get<std::string>();
+      ref.file = fs::absolute(out);
+      if (r.verified) ref.verified_class = base.kind;
+      refs[i] = ref;
+      reports[i] = std::move(r.report);
+    } catch (const Error& e) {
+      errors[i] = e.what();
+      codes[i] = e.exitCode();
+      reports[i] = {{"name", mesh.name}, {"error", e.what()}};
+    }
+    progress.update();
+  });
+  progress.done();
+
+  int code = kExitOk;
+  std::string summary;
+  for (size_t i = 0; i < n; ++i) {
+    if (!errors[i].empty()) {
+      summary += fmt::format("== {}: FAILED: {}\n", scene.meshes[i].name, errors[i]);
+      code = std::max(code, codes[i]);
+      continue;
+    }
+    summary += fmt::format("== {}\n{}", scene.meshes[i].name, formatProxyReport(reports[i]));
+    auto& proxies = scene.meshes[i].proxies;
+    std::erase_if(proxies, [&](const ProxyRef& p) { return p.kind == a.kind; });
+    proxies.push_back(*refs[i]);
+  }
+  const fs::path scene_out = fs::path(a.out_dir) / "scene.json";
+  saveSceneDesc(scene, scene_out);
+  summary += fmt::format("scene with proxies: {}\n", scene_out.string());
+  emit({{"scene", a.input}, {"scene_out", scene_out.string()}, {"meshes", reports}}, summary,
+       common);
+  return code;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "proxy-gen: builds an outside (hull, wrap), inside (wrap, erode) or general (qem, cgal-sms, "
+      "meshopt) "
+      "proxy of a mesh, or of every mesh of a scene (SCENE.json), verifies its guarantee exactly "
+      "and "
+      "writes it. Sizes are fractions of the bounding-box diagonal.",
+      "proxy-gen"};
+  Args a;
+  CommonOptions common;
+  app.add_option("input", a.input, "Mesh (.obj .ply .off .drc) or scene (.json)")->required();
+  app.add_option("--kind", a.kind, "outside | inside | general")->capture_default_str();
+  app.add_option(
+      "--method", a.method,
+      "outside: wrap (default), hull; inside: wrap (default), erode; general: qem (default), "
+      "cgal-sms, meshopt");
+  app.add_option("-o,--output", a.output, "Output mesh (mesh input)");
+  app.add_option("--out-dir", a.out_dir,
+                 "Output directory (scene input): DIR/<mesh>.<kind>.ply, DIR/scene.json");
+  app.add_option("--alpha", a.alpha, "wrap: alpha as a fraction of the diagonal (default 1/50)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--offset", a.offset, "wrap: offset as a fraction of the diagonal (default 1/600)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--max-faces", a.max_faces,
+                 "Face budget; outside/inside keep their guarantee while reducing (0 = none)");
+  app.add_option("--ratio", a.ratio,
+                 "general: faces kept as a fraction of the input (default 0.02)")
+      ->check(CLI::Range(0.0, 1.0));
+  app.add_option("--erosion", a.erosion,
+                 "erode: erosion distance as a fraction of the diagonal (default 1/75)")
+      ->check(CLI::PositiveNumber);
+  app.add_flag("--fill-holes", a.fill_holes, "inside: fill the holes of an open input first");
+  addCommonOptions(app, common);
+  return runApp(app, argc, argv, common, [&] {
+    fs::path in(a.input);
+    std::string ext = in.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
+    return ext == ".json" ? runScene(a, common) : runMesh(a, common);
+  });
+}

@@ -1,0 +1,125 @@
+// General simplifiers without CGAL: OpenMesh's Decimater (M. Garland, P. Heckbert, "Surface
+// simplification using quadric error metrics", SIGGRAPH 1997) and meshoptimizer (A. Kapoulkine).
+#include <meshoptimizer.h>
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <OpenMesh/Tools/Decimater/DecimaterT.hh>
+#include <OpenMesh/Tools/Decimater/ModHausdorffT.hh>
+#include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
+#include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
+
+#include <algorithm>
+#include <cmath>
+
+#include "proxies/general/general_proxy.h"
+#include "util/error.h"
+
+namespace proxyvis {
+namespace {
+
+using OmMesh = OpenMesh::TriMesh_ArrayKernelT<>;
+
+TriMesh compact(const std::vector<Vec3f>& vertices, const std::vector<uint32_t>& indices,
+                const std::string& source) {
+  TriMesh out;
+  out.source = source;
+  std::vector<uint32_t> remap(vertices.size(), UINT32_MAX);
+  for (size_t i = 0; i + 2 < indices.size(); i += 3) {
+    Triangle t{};
+    for (int k = 0; k < 3; ++k) {
+      uint32_t& r = remap[indices[i + k]];
+      if (r == UINT32_MAX) {
+        r = uint32_t(out.vertices.size());
+        out.vertices.push_back(vertices[indices[i + k]]);
+      }
+      t[k] = r;
+    }
+    out.triangles.push_back(t);
+  }
+  return out;
+}
+
+std::vector<uint32_t> flatIndices(const TriMesh& mesh) {
+  std::vector<uint32_t> idx;
+  idx.reserve(mesh.triangles.size() * 3);
+  for (const Triangle& t : mesh.triangles) idx.insert(idx.end(), t.begin(), t.end());
+  return idx;
+}
+
+}  // namespace
+
+size_t generalTargetFaces(const TriMesh& input, const GeneralOptions& options) {
+  if (options.max_faces > 0) return std::max<size_t>(options.max_faces, 4);
+  if (!(options.ratio > 0) || options.ratio > 1)
+    throw Error("", "--ratio must be in (0, 1]", "it is the fraction of faces kept");
+  return std::max<size_t>(4, size_t(std::llround(options.ratio * double(input.numTriangles()))));
+}
+
+TriMesh weldVertices(const TriMesh& input) {
+  // meshopt_generateVertexRemap merges vertices whose bytes are equal: exactly equal positions.
+  std::vector<uint32_t> idx = flatIndices(input);
+  std::vector<uint32_t> remap(input.vertices.size());
+  const size_t unique =
+      meshopt_generateVertexRemap(remap.data(), idx.data(), idx.size(), input.vertices.data(),
+                                  input.vertices.size(), sizeof(Vec3f));
+  std::vector<Vec3f> welded(unique);
+  meshopt_remapVertexBuffer(welded.data(), input.vertices.data(), input.vertices.size(),
+                            sizeof(Vec3f), remap.data());
+  for (uint32_t& i : idx) i = remap[i];
+  return compact(welded, idx, input.source);
+}
+
+TriMesh simplifyQem(const TriMesh& input, const GeneralOptions& options) {
+  const TriMesh welded = weldVertices(input);
+  OmMesh om;
+  std::vector<OmMesh::VertexHandle> vh;
+  vh.reserve(welded.vertices.size());
+  for (const Vec3f& v : welded.vertices) vh.push_back(om.add_vertex(OmMesh::Point(v.x, v.y, v.z)));
+  for (const Triangle& t : welded.triangles) om.add_face(vh[t[0]], vh[t[1]], vh[t[2]]);
+
+  OpenMesh::Decimater::DecimaterT<OmMesh> decimater(om);
+  OpenMesh::Decimater::ModQuadricT<OmMesh>::Handle quadric;
+  OpenMesh::Decimater::ModNormalFlippingT<OmMesh>::Handle normal_flipping;
+  OpenMesh::Decimater::ModHausdorffT<OmMesh>::Handle hausdorff;
+  decimater.add(quadric);
+  decimater.add(normal_flipping);
+  if (options.hausdorff > 0) {
+    decimater.add(hausdorff);
+    decimater.module(hausdorff).set_tolerance(float(options.hausdorff * input.diagonal()));
+  }
+  decimater.initialize();
+  decimater.decimate_to_faces(0, generalTargetFaces(input, options));
+  om.garbage_collection();
+
+  TriMesh out;
+  out.source = "qem of " + input.source;
+  for (auto v : om.vertices()) {
+    const auto& p = om.point(v);
+    out.vertices.emplace_back(p[0], p[1], p[2]);
+  }
+  for (auto f : om.faces()) {
+    Triangle t{};
+    int k = 0;
+    for (auto v : om.fv_range(f)) t[k++] = uint32_t(v.idx());
+    out.triangles.push_back(t);
+  }
+  return out;
+}
+
+TriMesh simplifyMeshopt(const TriMesh& input, const GeneralOptions& options) {
+  const TriMesh welded = weldVertices(input);
+  const size_t target = generalTargetFaces(input, options);
+  std::vector<uint32_t> idx = flatIndices(welded), out(idx.size());
+  // target_error 1 (relative to the mesh extent) lets the face budget alone decide.
+  size_t n = meshopt_simplify(out.data(), idx.data(), idx.size(), &welded.vertices[0].x,
+                              welded.vertices.size(), sizeof(Vec3f), target * 3, 1.0f);
+  if (n > target * 3) {
+    std::vector<uint32_t> sloppy(idx.size());
+    n = meshopt_simplifySloppy(sloppy.data(), out.data(), n, &welded.vertices[0].x,
+                               welded.vertices.size(), sizeof(Vec3f), target * 3, 1.0f, nullptr);
+    out.swap(sloppy);
+  }
+  out.resize(n);
+  return compact(welded.vertices, out, "meshopt of " + input.source);
+}
+
+}  // namespace proxyvis

@@ -1,0 +1,275 @@
+#include "proxies/general/proxy_pipeline.h"
+
+#include <fmt/core.h>
+
+#include <chrono>
+#include <cmath>
+
+#include "mesh/validation.h"
+#include "proxies/check/containment.h"
+#include "proxies/check/mesh_distance.h"
+#include "proxies/general/general_proxy.h"
+#include "proxies/inside/inside_proxy.h"
+#include "proxies/outside/bounded_simplify.h"
+#include "proxies/outside/outside_proxy.h"
+#include "util/error.h"
+
+namespace proxyvis {
+namespace {
+
+using json = nlohmann::json;
+
+class StageTimer {
+ public:
+  explicit StageTimer(json& seconds) : seconds_(seconds) {}
+  template <typename F>
+  auto run(const char* stage, F&& f) {
+    const auto start = std::chrono::steady_clock::now();
+    auto finish = [&] {
+      const double s =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      seconds_[stage] = seconds_.value(stage, 0.0) + s;
+    };
+    if constexpr (std::is_void_v<decltype(f())>) {
+      f();
+      finish();
+    } else {
+      auto r = f();
+      finish();
+      return r;
+    }
+  }
+
+ private:
+  json& seconds_;
+};
+
+std::string resolveMethod(const ProxyGenOptions& options) {
+  const std::vector<std::string>& methods = proxyMethods(options.kind);
+  const std::string method = options.method.empty() ? methods.front() : options.method;
+  if (std::find(methods.begin(), methods.end(), method) == methods.end()) {
+    std::string list;
+    for (const std::string& m : methods) list += (list.empty() ? "" : ", ") + m;
+    throw Error(
+        "", fmt::format("unknown method '{}' for --kind {}", method, proxyClassName(options.kind)),
+        fmt::format("the {} methods are {}", proxyClassName(options.kind), list));
+  }
+  return method;
+}
+
+struct Built {
+  TriMesh mesh;          // before the budget
+  bool bounded = false;  // reduce with simplifyBounded (outside/inside) rather than not at all
+  json extra = json::object();
+};
+
+Built build(const TriMesh& reference, const ProxyGenOptions& o, const std::string& method,
+            json& params) {
+  Built b;
+  if (o.kind == ProxyClass::kOutside) {
+    b.bounded = true;
+    if (method == "hull") {
+      HullOptions h;
+      params["hull_epsilon"] = h.epsilon;
+      b.mesh = makeHullProxy(reference, h);
+    } else {
+      WrapOptions w;
+      w.alpha = o.alpha.value_or(w.alpha);
+      w.offset = o.offset.value_or(w.offset);
+      params["alpha"] = w.alpha;
+      params["offset"] = w.offset;
+      b.mesh = makeWrapProxy(reference, w);
+    }
+  } else if (o.kind == ProxyClass::kInside) {
+    b.bounded = true;
+    InsideStats stats;
+    if (method == "wrap") {
+      InsideWrapOptions w;
+      w.alpha = o.alpha.value_or(w.alpha);
+      w.offset = o.offset.value_or(w.offset);
+      params["alpha"] = w.alpha;
+      params["offset"] = w.offset;
+      b.mesh = makeInsideWrapProxy(reference, w, &stats);
+      b.extra["seeds"] = stats.seeds;
+    } else {
+      ErodeOptions e;
+      e.erosion = o.erosion.value_or(2 * e.voxel);
+      params["erosion"] = e.erosion;
+      params["voxel"] = e.voxel;
+      b.mesh = makeErodeProxy(reference, e, &stats);
+      b.extra["voxels"] = stats.voxels;
+    }
+  } else {
+    GeneralOptions g;
+    g.max_faces = o.max_faces;
+    g.ratio = o.ratio.value_or(g.ratio);
+    params["ratio"] = g.ratio;
+    if (method == "qem")
+      b.mesh = simplifyQem(reference, g);
+    else if (method == "cgal-sms")
+      b.mesh = simplifyCgalSms(reference, g);
+    else
+      b.mesh = simplifyMeshopt(reference, g);
+  }
+  return b;
+}
+
+}  // namespace
+
+const std::vector<std::string>& proxyMethods(ProxyClass kind) {
+  static const std::vector<std::string> outside{"wrap", "hull"}, inside{"wrap", "erode"},
+      general{"qem", "cgal-sms", "meshopt"};
+  return kind == ProxyClass::kOutside ? outside : kind == ProxyClass::kInside ? inside : general;
+}
+
+ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::string method = resolveMethod(options);
+  json report;
+  json& seconds = report["seconds"] = json::object();
+  StageTimer timer(seconds);
+  if (input.empty())
+    throw Error(input.source, "the mesh has no triangles", "there is nothing to build a proxy of");
+
+  const MeshReport in_report = timer.run("validate_input", [&] { return validateMesh(input); });
+  report["input"] = {{"path", input.source},
+                     {"faces", in_report.faces},
+                     {"closed", in_report.closed},
+                     {"manifold", in_report.manifold},
+                     {"boundary_edges", in_report.boundary_edges}};
+  report["kind"] = proxyClassName(options.kind);
+  report["method"] = method;
+  json& params = report["parameters"] = {
+      {"max_faces", options.max_faces}, {"fill_holes", options.fill_holes}, {"seed", options.seed}};
+
+  // The mesh the guarantee refers to: the input, or the input with its holes filled.
+  TriMesh reference = input;
+  if (options.kind == ProxyClass::kInside && !in_report.closed) {
+    if (!options.fill_holes)
+      throw Error(input.source,
+                  fmt::format("{} boundary edges, {} non-manifold edges", in_report.boundary_edges,
+                              in_report.non_manifold_edges),
+                  "an inside proxy needs a closed mesh: an open surface has no inside",
+                  "try --fill-holes, or --kind outside");
+    size_t holes = 0;
+    reference = timer.run("fill_holes", [&] { return fillHoles(input, &holes); });
+    report["holes_filled"] = holes;
+  }
+
+  Built built = timer.run("build", [&] { return build(reference, options, method, params); });
+  report.update(built.extra);
+  report["faces_before_budget"] = built.mesh.numTriangles();
+
+  const double ref_volume = reference.signedVolume();
+  const bool ref_closed = options.kind == ProxyClass::kInside || in_report.closed;
+  const ContainmentVerdict expected = options.kind == ProxyClass::kOutside
+                                          ? ContainmentVerdict::kContains
+                                          : ContainmentVerdict::kContained;
+
+  // Budget, then checks. A bounded collapse can still let new faces cut through a thin, distant
+  // part of the surface; then the budget is retried with collapses kept closer to their edges.
+  TriMesh proxy;
+  MeshReport p_report;
+  std::optional<ContainmentResult> containment;
+  BoundedSimplifyStats simplify_stats;
+  const double move_limits[] = {1.0, 0.5, 0.25};
+  for (double move : move_limits) {
+    proxy = built.mesh;
+    if (built.bounded && options.max_faces > 0) {
+      BoundedSimplifyOptions s;
+      s.max_faces = options.max_faces;
+      s.side = options.kind == ProxyClass::kOutside ? BoundSide::kOutside : BoundSide::kInside;
+      s.max_move_edges = move;
+      proxy =
+          timer.run("simplify", [&] { return simplifyBounded(built.mesh, s, &simplify_stats); });
+    }
+    p_report = timer.run("verify", [&] {
+      ValidationOptions v;
+      v.self_intersections = true;
+      return validateMesh(proxy, v);
+    });
+    if (options.kind == ProxyClass::kGeneral) break;
+    containment = timer.run("verify", [&] { return checkContainment(reference, proxy); });
+    const bool ok = p_report.closed && p_report.manifold &&
+                    p_report.self_intersecting_pairs.value_or(1) == 0 &&
+                    containment->verdict == expected;
+    if (ok || !(built.bounded && options.max_faces > 0 &&
+                proxy.numTriangles() < built.mesh.numTriangles()))
+      break;
+  }
+  if (built.bounded && options.max_faces > 0)
+    report["budget_reached"] = simplify_stats.budget_reached;
+
+  const uint64_t si = p_report.self_intersecting_pairs.value_or(0);
+  report["checks"] = {{"closed", p_report.closed},
+                      {"manifold", p_report.manifold},
+                      {"self_intersecting_pairs", si}};
+  bool verified = p_report.closed && p_report.manifold && si == 0;
+  if (containment) {
+    report["checks"]["containment"] = containmentName(containment->verdict);
+    report["checks"]["containment_detail"] = containment->detail;
+    verified = verified && containment->verdict == expected;
+  }
+  report["faces"] = proxy.numTriangles();
+  report["verified"] = verified;
+  report["class"] = verified ? json(proxyClassName(options.kind)) : json(nullptr);
+
+  timer.run("metrics", [&] {
+    const double diag = reference.diagonal();
+    report["volume_ratio"] = (ref_closed && p_report.closed && ref_volume > 0)
+                                 ? json(proxy.signedVolume() / ref_volume)
+                                 : json(nullptr);
+    report["hausdorff_proxy_to_original"] =
+        sampledOneSidedDistance(proxy, reference, options.hausdorff_samples, options.seed) / diag;
+    report["hausdorff_original_to_proxy"] =
+        sampledOneSidedDistance(reference, proxy, options.hausdorff_samples, options.seed + 1) /
+        diag;
+  });
+  seconds["total"] =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  if (options.kind != ProxyClass::kGeneral && !verified) {
+    std::string what;
+    if (!p_report.closed)
+      what = "the proxy is not closed";
+    else if (!p_report.manifold)
+      what = "the proxy is not manifold";
+    else if (si > 0)
+      what = fmt::format("the proxy has {} self-intersecting face pairs", si);
+    else
+      what = fmt::format("containment is '{}', not '{}': {}", containmentName(containment->verdict),
+                         containmentName(expected), containment->detail);
+    throw CheckFailed(input.source,
+                      fmt::format("the {} {} proxy failed its guarantee: {}", method,
+                                  proxyClassName(options.kind), what),
+                      "it is not written", "try other --alpha/--offset, or a larger --max-faces");
+  }
+  return {std::move(proxy), verified, std::move(report)};
+}
+
+std::string formatProxyReport(const json& r) {
+  auto num = [](const json& v, const char* fmt_str) {
+    return v.is_number() ? fmt::format(fmt::runtime(fmt_str), v.get<double>()) : std::string("n/a");
+  };
+  std::string s;
+  s += fmt::format("input:      {} ({} faces, {})\n", r["input"]["path"].get<std::string>(),
+                   r["input"]["faces"].get<uint64_t>(),
+                   r["input"]["closed"].get<bool>() ? "closed" : "open");
+  s += fmt::format("proxy:      {} / {}, {} faces (before budget {})\n",
+                   r["kind"].get<std::string>(), r["method"].get<std::string>(),
+                   r["faces"].get<uint64_t>(), r["faces_before_budget"].get<uint64_t>());
+  s += fmt::format("parameters: {}\n", r["parameters"].dump());
+  s += fmt::format("volume ratio: {}\n", num(r["volume_ratio"], "{:.4f}"));
+  s += fmt::format("hausdorff (fraction of diagonal): proxy->original {}, original->proxy {}\n",
+                   num(r["hausdorff_proxy_to_original"], "{:.5f}"),
+                   num(r["hausdorff_original_to_proxy"], "{:.5f}"));
+  s += fmt::format("checks:     {}\n", r["checks"].dump());
+  s += fmt::format("verified:   {}\n", r["verified"].get<bool>() ? "yes" : "NO");
+  std::string secs;
+  for (const auto& [k, v] : r["seconds"].items())
+    secs += fmt::format("{}{} {:.3f}", secs.empty() ? "" : ", ", k, v.get<double>());
+  s += fmt::format("seconds:    {}\n", secs);
+  return s;
+}
+
+}  // namespace proxyvis

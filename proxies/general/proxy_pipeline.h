@@ -1,0 +1,48 @@
+#pragma once
+// The proxy-gen pipeline for one mesh: build the proxy of the requested kind and method, reduce
+// it to a face budget, verify it (closed, manifold, no self-intersection, and for outside /
+// inside the exact containment test of proxies/check), and measure it (volume ratio, sampled
+// Hausdorff distances both ways, seconds per stage). Used by apps/proxy-gen, the tests and
+// bench/proxy_gen.
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "mesh/tri_mesh.h"
+#include "util/proxy_class.h"
+
+namespace proxyvis {
+
+struct ProxyGenOptions {
+  ProxyClass kind = ProxyClass::kOutside;
+  std::string method;             // empty = the kind's default: wrap, wrap, qem
+  std::optional<double> alpha;    // wrap: fraction of the diagonal (default 1/50)
+  std::optional<double> offset;   // wrap: fraction of the diagonal (default 1/600)
+  size_t max_faces = 0;           // face budget; 0 = none (general: use ratio)
+  std::optional<double> ratio;    // general: fraction of the input faces (default 0.02)
+  std::optional<double> erosion;  // erode: fraction of the diagonal (default 1/75)
+  bool fill_holes = false;        // inside: fill the holes of an open input first
+  uint64_t seed = 0;              // sampling of the Hausdorff estimates
+  uint64_t hausdorff_samples = 20000;
+};
+
+// Methods accepted for a kind ("hull", "wrap" / "wrap", "erode" / "qem", "cgal-sms", "meshopt").
+const std::vector<std::string>& proxyMethods(ProxyClass kind);
+
+struct ProxyGenResult {
+  TriMesh proxy;
+  bool verified = false;  // outside/inside: containment proven; general: closed, manifold, no SI
+  nlohmann::json report;  // see formatProxyReport for the keys
+};
+
+// Builds and checks the proxy of `input` (report key "input.path" = input.source). Throws Error
+// on bad input or options (e.g. an open mesh for --kind inside without fill_holes, naming the
+// boundary edges), CheckFailed when an outside/inside proxy fails its guarantee. A general proxy
+// that is not closed/manifold/free of self-intersections is returned with verified = false.
+ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& options);
+
+// The human summary of a report (one "key: value" line per number).
+std::string formatProxyReport(const nlohmann::json& report);
+
+}  // namespace proxyvis

@@ -1,0 +1,54 @@
+#pragma once
+// Inside proxies: closed meshes contained in a closed input (no MH' rays, DESIGN.md §2). Sizes
+// are fractions of the input's bounding-box diagonal. These functions only build; the caller
+// (proxies/general/proxy_pipeline.h) verifies containment exactly before anything is written.
+#include <cstddef>
+
+#include "mesh/tri_mesh.h"
+
+namespace proxyvis {
+
+struct InsideWrapOptions {
+  // alpha_wrap_3 carved from interior seeds: the result is the interior offset surface.
+  double alpha = 1.0 / 50;
+  double offset = 1.0 / 600;
+  // Seeds: local maxima of the distance to the surface on a grid of seed_grid cells along the
+  // longest box side, deeper than 2·offset, at most max_seeds of them (deepest first). Several
+  // seeds reach thin parts that alpha-sized passages do not connect.
+  int seed_grid = 40;
+  size_t max_seeds = 400;
+};
+
+struct ErodeOptions {
+  double voxel = 1.0 / 150;    // voxel edge length
+  double erosion = 1.0 / 150;  // erosion distance (rounded up to whole voxels, at least 1)
+};
+
+struct InsideStats {
+  size_t seeds = 0;   // wrap: seeds used
+  size_t voxels = 0;  // erode: voxels left after erosion
+};
+
+// Number of boundary edges of `input` after welding equal positions (0 = closed).
+size_t countBoundaryEdges(const TriMesh& input);
+
+// Fills every hole of `input` (CGAL triangulate_refine_and_fair_hole; plain triangulation when
+// fairing fails) after welding equal positions and dropping unreferenced vertices. Throws
+// Error when the result is still not closed (e.g. non-manifold edges). `holes` (optional)
+// receives the number of holes filled.
+TriMesh fillHoles(const TriMesh& input, size_t* holes = nullptr);
+
+// Inner alpha-wrap from interior seeds (CGAL alpha_wrap_3 with seed_points). `input` must be
+// closed: otherwise throws Error naming the boundary edges and suggesting --fill-holes or
+// --kind outside. Throws Error when no interior point is deeper than the offset.
+TriMesh makeInsideWrapProxy(const TriMesh& input, const InsideWrapOptions& options = {},
+                            InsideStats* stats = nullptr);
+
+// Solid voxelisation (ray parity along x), erosion by a cube of ceil(erosion/voxel) voxels,
+// removal of voxels that would make the surface non-manifold, and the boundary of the voxel
+// set as a closed, outward oriented triangle mesh (not simplified: use simplifyBounded with
+// BoundSide::kInside). Throws Error when nothing is left after erosion.
+TriMesh makeErodeProxy(const TriMesh& input, const ErodeOptions& options = {},
+                       InsideStats* stats = nullptr);
+
+}  // namespace proxyvis

@@ -1,0 +1,179 @@
+// Inside proxies from CGAL: alpha_wrap_3 carving from interior seed points (P. Portaneri et al.,
+// "Alpha wrapping with an offset", ACM TOG 41(4), 2022, §5: seeds start the carving inside),
+// and hole filling (P. Liepa, "Filling holes in meshes", SGP 2003) for scans such as bun_zipper.
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/orientation.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
+#include <CGAL/Side_of_triangle_mesh.h>
+#include <CGAL/alpha_wrap_3.h>
+#include <fmt/core.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "proxies/inside/inside_proxy.h"
+#include "proxies/outside/internal/cgal_mesh.h"
+#include "util/error.h"
+
+namespace proxyvis {
+namespace {
+
+namespace PMP = CGAL::Polygon_mesh_processing;
+using cgal::Kernel;
+using cgal::Point3;
+using cgal::SurfaceMesh;
+using Side = CGAL::Side_of_triangle_mesh<SurfaceMesh, Kernel>;
+using Tree = Side::AABB_tree;
+
+// Welds equal positions, drops unreferenced points and builds an oriented Surface_mesh.
+// Non-manifold vertices are split by orient_polygon_soup, so the result is always valid.
+SurfaceMesh toWeldedMesh(const TriMesh& input) {
+  cgal::Soup soup = cgal::toSoup(input);
+  PMP::merge_duplicate_points_in_polygon_soup(soup.points, soup.faces);
+  PMP::remove_isolated_points_in_polygon_soup(soup.points, soup.faces);
+  PMP::orient_polygon_soup(soup.points, soup.faces);
+  SurfaceMesh sm;
+  PMP::polygon_soup_to_polygon_mesh(soup.points, soup.faces, sm);
+  return sm;
+}
+
+size_t countBorderHalfedges(const SurfaceMesh& sm) {
+  size_t n = 0;
+  for (auto h : sm.halfedges())
+    if (sm.is_border(h)) ++n;
+  return n;
+}
+
+// The closed, outward oriented input the inside methods need, or an Error that says why not.
+SurfaceMesh closedInput(const TriMesh& input, const char* method) {
+  SurfaceMesh sm = toWeldedMesh(input);
+  const size_t boundary = countBorderHalfedges(sm);
+  if (boundary > 0 || sm.number_of_faces() == 0)
+    throw Error(
+        input.source, fmt::format("{} boundary edges", boundary),
+        fmt::format("the inside proxy ({}) needs a closed mesh: an open surface has no inside",
+                    method),
+        "try --fill-holes, or --kind outside");
+  if (!PMP::is_outward_oriented(sm)) PMP::reverse_face_orientations(sm);
+  return sm;
+}
+
+// Grid points inside the mesh whose distance to the surface is a local maximum over their 26
+// neighbours and exceeds min_depth; deepest first, at most max_seeds.
+std::vector<Point3> findSeeds(const SurfaceMesh& sm, const InsideWrapOptions& options,
+                              double min_depth) {
+  Tree tree(faces(sm).first, faces(sm).second, sm);
+  tree.accelerate_distance_queries();
+  Side side(tree);
+  const CGAL::Bbox_3 box = PMP::bbox(sm);
+  const double longest =
+      std::max({box.xmax() - box.xmin(), box.ymax() - box.ymin(), box.zmax() - box.zmin()});
+  const double h = longest / std::max(options.seed_grid, 2);
+  const int n[3] = {int(std::ceil((box.xmax() - box.xmin()) / h)) + 1,
+                    int(std::ceil((box.ymax() - box.ymin()) / h)) + 1,
+                    int(std::ceil((box.zmax() - box.zmin()) / h)) + 1};
+  auto point = [&](int i, int j, int k) {
+    return Point3(box.xmin() + (i + 0.5) * h, box.ymin() + (j + 0.5) * h,
+                  box.zmin() + (k + 0.5) * h);
+  };
+  auto index = [&](int i, int j, int k) { return (size_t(k) * n[1] + j) * n[0] + i; };
+  std::vector<double> depth(size_t(n[0]) * n[1] * n[2], 0.0);
+  tbb::parallel_for(0, n[2], [&](int k) {
+    for (int j = 0; j < n[1]; ++j)
+      for (int i = 0; i < n[0]; ++i) {
+        const Point3 p = point(i, j, k);
+        if (side(p) == CGAL::ON_BOUNDED_SIDE)
+          depth[index(i, j, k)] = std::sqrt(tree.squared_distance(p));
+      }
+  });
+  std::vector<std::pair<double, Point3>> maxima;
+  for (int k = 0; k < n[2]; ++k)
+    for (int j = 0; j < n[1]; ++j)
+      for (int i = 0; i < n[0]; ++i) {
+        const double d = depth[index(i, j, k)];
+        if (!(d > min_depth)) continue;
+        bool is_max = true;
+        for (int dk = -1; dk <= 1 && is_max; ++dk)
+          for (int dj = -1; dj <= 1 && is_max; ++dj)
+            for (int di = -1; di <= 1 && is_max; ++di) {
+              const int a = i + di, b = j + dj, c = k + dk;
+              if (a < 0 || b < 0 || c < 0 || a >= n[0] || b >= n[1] || c >= n[2]) continue;
+              if (depth[index(a, b, c)] > d) is_max = false;
+            }
+        if (is_max) maxima.emplace_back(d, point(i, j, k));
+      }
+  std::stable_sort(maxima.begin(), maxima.end(),
+                   [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::vector<Point3> seeds;
+  for (size_t i = 0; i < maxima.size() && i < options.max_seeds; ++i)
+    seeds.push_back(maxima[i].second);
+  return seeds;
+}
+
+}  // namespace
+
+size_t countBoundaryEdges(const TriMesh& input) {
+  return countBorderHalfedges(toWeldedMesh(input));
+}
+
+TriMesh fillHoles(const TriMesh& input, size_t* holes) {
+  SurfaceMesh sm = toWeldedMesh(input);
+  size_t filled = 0;
+  std::vector<SurfaceMesh::Halfedge_index> borders;
+  for (auto h : sm.halfedges())
+    if (sm.is_border(h)) borders.push_back(h);
+  std::vector<bool> seen(sm.number_of_halfedges(), false);
+  for (auto h : borders) {
+    if (seen[h.idx()] || !sm.is_border(h)) continue;
+    for (auto g : CGAL::halfedges_around_face(h, sm)) seen[g.idx()] = true;
+    std::vector<SurfaceMesh::Face_index> new_faces;
+    std::vector<SurfaceMesh::Vertex_index> new_vertices;
+    PMP::triangulate_refine_and_fair_hole(sm, h, std::back_inserter(new_faces),
+                                          std::back_inserter(new_vertices));
+    ++filled;
+  }
+  if (holes) *holes = filled;
+  if (!CGAL::is_closed(sm))
+    throw Error(
+        input.source,
+        fmt::format("{} boundary edges remain after hole filling", countBorderHalfedges(sm)),
+        "the holes could not all be triangulated", "repair the mesh, or use --kind outside");
+  if (!PMP::is_outward_oriented(sm)) PMP::reverse_face_orientations(sm);
+  return cgal::fromSurfaceMesh(sm, input.source);
+}
+
+TriMesh makeInsideWrapProxy(const TriMesh& input, const InsideWrapOptions& options,
+                            InsideStats* stats) {
+  if (!(options.alpha > 0) || !(options.offset > 0))
+    throw Error("", "alpha and offset must be positive fractions of the diagonal",
+                "alpha_wrap_3 is undefined otherwise");
+  SurfaceMesh sm = closedInput(input, "wrap");
+  const double diag = input.diagonal();
+  const double offset = options.offset * diag;
+  std::vector<Point3> seeds = findSeeds(sm, options, 2 * offset);
+  if (seeds.empty())
+    throw Error(input.source, "no interior point is deeper than twice the offset",
+                "the inner wrap is carved from interior seeds", "lower --offset");
+  if (stats) stats->seeds = seeds.size();
+  SurfaceMesh wrap;
+  // seed_points belongs to the SECOND (output) named-parameter pack: in the first it is
+  // silently ignored and the result is an outer wrap (measured with CGAL 5.5, issue #4).
+  CGAL::alpha_wrap_3(sm, options.alpha * diag, offset, wrap, CGAL::parameters::default_values(),
+                     CGAL::parameters::seed_points(seeds));
+  if (wrap.number_of_faces() == 0)
+    throw Error(input.source, "the inner alpha wrap is empty", "no seed region could be carved",
+                "lower --alpha or --offset");
+  TriMesh out = cgal::fromSurfaceMesh(wrap, "inside wrap of " + input.source);
+  // The carved region is the inside here, and the wrap's faces point into it: flip them.
+  if (out.signedVolume() < 0)
+    for (Triangle& t : out.triangles) std::swap(t[1], t[2]);
+  return out;
+}
+
+}  // namespace proxyvis

@@ -1,0 +1,34 @@
+#pragma once
+// Edge-collapse simplification of a closed, outward-oriented mesh that keeps it on one side of
+// itself: every accepted collapse produces a mesh that contains the previous one (kOutside, the
+// progressive hulls of Sander et al., "Silhouette clipping", SIGGRAPH 2000) or is contained in it
+// (kInside, the mirror image). Budget proxies thus keep their outside/inside guarantee, up to
+// float rounding and far-away self-intersections, which the caller's exact check catches.
+#include <cstddef>
+
+#include "mesh/tri_mesh.h"
+
+namespace proxyvis {
+
+enum class BoundSide { kOutside, kInside };
+
+struct BoundedSimplifyOptions {
+  size_t max_faces = 0;  // target face count; 0 = no simplification
+  BoundSide side = BoundSide::kOutside;
+  // A collapsed vertex may move at most this many edge lengths from the edge midpoint; keeps
+  // new faces local so they do not cut through distant parts of the surface.
+  double max_move_edges = 1.0;
+};
+
+struct BoundedSimplifyStats {
+  size_t faces_before = 0, faces_after = 0;
+  size_t collapses = 0;
+  bool budget_reached = false;  // false when no admissible collapse was left before the budget
+};
+
+// `mesh` must be closed, 2-manifold and outward oriented (positive volume); otherwise throws
+// Error. Returns the simplified mesh; stats (optional) says how far it got.
+TriMesh simplifyBounded(const TriMesh& mesh, const BoundedSimplifyOptions& options,
+                        BoundedSimplifyStats* stats = nullptr);
+
+}  // namespace proxyvis

@@ -1,0 +1,77 @@
+#pragma once
+// Private to proxies/: conversions between TriMesh and CGAL's Surface_mesh / triangle soups.
+// Including this header pulls in CGAL; only proxies/**/*.cpp may include it.
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <array>
+#include <vector>
+
+#include "mesh/tri_mesh.h"
+#include "util/error.h"
+
+namespace proxyvis::cgal {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point3 = Kernel::Point_3;
+using Vector3 = Kernel::Vector_3;
+using SurfaceMesh = CGAL::Surface_mesh<Point3>;
+
+// A triangle soup in CGAL's types: what alpha_wrap_3 and the PMP soup functions take.
+struct Soup {
+  std::vector<Point3> points;
+  std::vector<std::array<std::size_t, 3>> faces;
+};
+
+inline Soup toSoup(const TriMesh& mesh) {
+  Soup soup;
+  soup.points.reserve(mesh.vertices.size());
+  for (const Vec3f& v : mesh.vertices) soup.points.emplace_back(v.x, v.y, v.z);
+  soup.faces.reserve(mesh.triangles.size());
+  for (const Triangle& t : mesh.triangles) soup.faces.push_back({t[0], t[1], t[2]});
+  return soup;
+}
+
+// Builds a Surface_mesh from a mesh whose faces form a valid oriented polygon mesh (e.g. a
+// closed manifold proxy). Returns false when Surface_mesh rejects a face (non-manifold input).
+inline bool toSurfaceMesh(const TriMesh& mesh, SurfaceMesh& out) {
+  out.clear();
+  std::vector<SurfaceMesh::Vertex_index> vmap(mesh.vertices.size());
+  for (size_t i = 0; i < mesh.vertices.size(); ++i) {
+    const Vec3f& v = mesh.vertices[i];
+    vmap[i] = out.add_vertex(Point3(v.x, v.y, v.z));
+  }
+  for (const Triangle& t : mesh.triangles) {
+    if (out.add_face(vmap[t[0]], vmap[t[1]], vmap[t[2]]) == SurfaceMesh::null_face()) return false;
+  }
+  // Drop vertices no face references (e.g. bun_zipper's 1,113 stray scan points).
+  for (SurfaceMesh::Vertex_index v : out.vertices())
+    if (out.is_isolated(v)) out.remove_vertex(v);
+  out.collect_garbage();
+  return true;
+}
+
+// Converts back, rounding coordinates to float (what TriMesh stores); vertex indices compacted.
+inline TriMesh fromSurfaceMesh(const SurfaceMesh& sm, std::string source) {
+  TriMesh mesh;
+  mesh.source = std::move(source);
+  std::vector<uint32_t> index(sm.number_of_vertices() + sm.number_of_removed_vertices(), 0);
+  for (SurfaceMesh::Vertex_index v : sm.vertices()) {
+    index[v.idx()] = uint32_t(mesh.vertices.size());
+    const Point3& p = sm.point(v);
+    mesh.vertices.emplace_back(float(p.x()), float(p.y()), float(p.z()));
+  }
+  for (SurfaceMesh::Face_index f : sm.faces()) {
+    Triangle t{};
+    int k = 0;
+    for (SurfaceMesh::Vertex_index v : CGAL::vertices_around_face(sm.halfedge(f), sm)) {
+      if (k < 3) t[k] = index[v.idx()];
+      ++k;
+    }
+    PV_CHECK_MSG(k == 3, "fromSurfaceMesh expects triangles");
+    mesh.triangles.push_back(t);
+  }
+  return mesh;
+}
+
+}  // namespace proxyvis::cgal
