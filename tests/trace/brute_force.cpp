@@ -1,7 +1,9 @@
 #include "brute_force.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace proxyvis::test {
 
@@ -20,6 +22,34 @@ BruteForceMesh::BruteForceMesh(const TriMesh& mesh) {
     tri.h[2] = lc > 0 ? twice_area / lc : 0;
     tris_.push_back(tri);
   }
+  for (size_t c = 0; c < tris_.size(); c += kCluster) {
+    Bounds3d b;
+    for (size_t i = c; i < std::min(tris_.size(), c + kCluster); ++i) {
+      const Tri& t = tris_[i];
+      b.extend(t.v0);
+      b.extend(t.v0 + t.e1);
+      b.extend(t.v0 + t.e2);
+    }
+    Vec3d pad = Vec3d(1, 1, 1) * (1e-9 * (b.diagonal() + 1.0));
+    b.lo -= pad;
+    b.hi += pad;
+    clusters_.push_back(b);
+  }
+}
+
+// Slab test of the segment's t-range against the cluster's box. Infinite inv_d components (axis
+// parallel segments) give infinite or NaN slab ends; NaN compares false, which keeps the cluster.
+bool BruteForceMesh::segmentMissesCluster(size_t cluster, const Vec3d& o, const Vec3d& inv_d,
+                                          double t0, double t1) const {
+  const Bounds3d& b = clusters_[cluster];
+  for (int a = 0; a < 3; ++a) {
+    double ta = (b.lo[a] - o[a]) * inv_d[a], tb = (b.hi[a] - o[a]) * inv_d[a];
+    if (ta > tb) std::swap(ta, tb);
+    if (ta > t0) t0 = ta;
+    if (tb < t1) t1 = tb;
+    if (t0 > t1) return true;
+  }
+  return false;
 }
 
 bool BruteForceMesh::crossing(const Tri& tri, const Vec3d& o, const Vec3d& d, double& t, double& b1,
@@ -38,10 +68,14 @@ bool BruteForceMesh::crossing(const Tri& tri, const Vec3d& o, const Vec3d& d, do
 
 bool BruteForceMesh::occluded(const Segment& s) const {
   Vec3d o(s.org), d(s.dir);
-  for (const Tri& tri : tris_) {
-    double t, b1, b2;
-    if (!crossing(tri, o, d, t, b1, b2)) continue;
-    if (b1 >= 0 && b2 >= 0 && b1 + b2 <= 1 && t >= s.tnear && t <= s.tfar) return true;
+  Vec3d inv_d(1.0 / d.x, 1.0 / d.y, 1.0 / d.z);
+  for (size_t c = 0; c < clusters_.size(); ++c) {
+    if (segmentMissesCluster(c, o, inv_d, s.tnear, s.tfar)) continue;
+    for (size_t i = c * kCluster; i < std::min(tris_.size(), (c + 1) * kCluster); ++i) {
+      double t, b1, b2;
+      if (!crossing(tris_[i], o, d, t, b1, b2)) continue;
+      if (b1 >= 0 && b2 >= 0 && b1 + b2 <= 1 && t >= s.tnear && t <= s.tfar) return true;
+    }
   }
   return false;
 }

@@ -42,7 +42,13 @@ class BruteForceMesh {
   // Plane crossing: t and barycentrics (b0, b1, b2) of org + t*dir; false if parallel.
   static bool crossing(const Tri& tri, const Vec3d& o, const Vec3d& d, double& t, double& b1,
                        double& b2);
+  // Runs of kCluster consecutive triangles with a padded box; a run whose box the segment misses
+  // is skipped (only a speed-up: it never changes an answer, the padding keeps it conservative).
+  static constexpr size_t kCluster = 16;
+  bool segmentMissesCluster(size_t cluster, const Vec3d& o, const Vec3d& inv_d, double t0,
+                            double t1) const;
   std::vector<Tri> tris_;
+  std::vector<Bounds3d> clusters_;
 };
 
 }  // namespace proxyvis::test

@@ -42,6 +42,29 @@ void expectAgreement(const OcclusionAgreement& a, size_t max_disagreements) {
               a.segments, a.occluded, a.disagreements, a.unexplained);
 }
 
+// The classifier that explains disagreements must itself discriminate, or the agreement tests
+// could not fail: segments through an edge, a vertex or ending on a face are "near a boundary",
+// segments through the middle of faces or far away are not.
+TEST(BruteForce, NearBoundaryClassifiesEdgesVerticesAndEndpoints) {
+  TriMesh b = box({0, 0, 0}, {1, 1, 1});
+  BruteForceMesh ref(b);
+  const double eps = 1e-5;
+  EXPECT_TRUE(ref.nearBoundary({{-1, 0.5f, 0.5f}, 0, {3, 0, 0}, 1}, eps));      // face diagonal
+  EXPECT_TRUE(ref.nearBoundary({{-1, 0, 0.3f}, 0, {3, 0, 0}, 1}, eps));         // box edge
+  EXPECT_TRUE(ref.nearBoundary({{-1, 1, 1}, 0, {3, 0, 0}, 1}, eps));            // box corner
+  EXPECT_TRUE(ref.nearBoundary({{-1, 0.3f, 0.6f}, 0, {1, 0, 0}, 1}, eps));      // ends on a face
+  EXPECT_TRUE(ref.nearBoundary({{-1, 0.3f, -0.5f}, 0, {2, 0, 1}, 1}, eps));     // enters on an edge
+  EXPECT_FALSE(ref.nearBoundary({{-1, 0.3f, 0.6f}, 0, {3, 0, 0}, 1}, eps));     // through two faces
+  EXPECT_FALSE(ref.nearBoundary({{-1, 0.3f, 0.6f}, 0, {0.5f, 0, 0}, 1}, eps));  // stops short
+  EXPECT_FALSE(ref.nearBoundary({{-1, 2, 2}, 0, {3, 0, 0}, 1}, eps));           // far away
+  EXPECT_TRUE(ref.occluded({{-1, 0.3f, 0.6f}, 0, {3, 0, 0}, 1}));
+  EXPECT_FALSE(ref.occluded({{-1, 0.3f, 0.6f}, 0, {0.5f, 0, 0}, 1}));
+  BruteHit h = ref.intersect({{-1, 0.3f, 0.6f}, 0, {3, 0, 0}, 1});
+  ASSERT_TRUE(h.hit);
+  EXPECT_NEAR(h.t, 1.0 / 3.0, 1e-12);
+  EXPECT_TRUE(h.prim == 8 || h.prim == 9);  // the x = 0 face
+}
+
 TEST(TraceScene, IcosphereOcclusionMatchesBruteForce) {
   TraceDevice device;
   TriMesh mesh = icosphere(4);  // 5120 triangles
