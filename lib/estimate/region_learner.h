@@ -59,7 +59,7 @@ struct RegionTally {
 class RegionLearner {
  public:
   static constexpr int kMinSamples = 64;            // observations before leaving exact
-  static constexpr double kExploreRate = 1.0 / 16;  // proxy rays traced in exact mode afterwards
+  static constexpr double kExploreRate = 1.0 / 32;  // proxy rays traced in exact mode afterwards
   static constexpr int64_t kFixedOne = int64_t(1) << 20;
 
   struct Options {

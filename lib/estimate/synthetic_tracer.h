@@ -1,16 +1,20 @@
 #pragma once
-// A SegmentTracer without geometry: the segment's org encodes (mix, index) and its classes
-// (V, V') are drawn from mixes[mix] with a stream keyed on (seed, mix, index), so a segment's
-// answer is fixed and independent of call order. Lets the tests set the class probabilities
-// exactly and compare estimators with closed forms.
+// A SegmentTracer without geometry, for tests and bench_estimators: the segment's org encodes
+// (mix, index) and its classes (V, V') are drawn from mixes[mix] with a stream keyed on
+// (seed, mix, index), so a segment's answer is fixed and independent of call order. Lets tests
+// set the class probabilities exactly and compare estimators with closed forms. Optionally
+// charges every ray its class cost (ClassCosts by V') to a counter, for cost measurements in
+// model units; that counter is not thread-safe, so only a single-threaded caller may set costs.
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "estimate/class_probabilities.h"
+#include "estimate/roulette.h"
 #include "estimate/visibility_estimator.h"
 #include "util/rng.h"
 
-namespace proxyvis::test {
+namespace proxyvis {
 
 class SyntheticTracer final : public SegmentTracer {
  public:
@@ -40,33 +44,26 @@ class SyntheticTracer final : public SegmentTracer {
     if (u < p.hh + p.hm + p.mh) return {true, false};
     return {true, true};
   }
-  bool proxyVisible(const Segment& s) const override { return classes(s).vp; }
-  bool originalVisible(const Segment& s) const override { return classes(s).v; }
+  bool proxyVisible(const Segment& s) const override {
+    const Classes c = classes(s);
+    if (costs_) spent_ += costs_->proxy[c.vp];
+    return c.vp;
+  }
+  bool originalVisible(const Segment& s) const override {
+    const Classes c = classes(s);
+    if (costs_) spent_ += costs_->original[c.vp];
+    return c.v;
+  }
+
+  // Charge rays from now on (single-threaded use only); spent() is the sum so far.
+  void chargeCosts(const ClassCosts& costs) { costs_ = costs; }
+  double spent() const { return spent_; }
 
  private:
   std::vector<ClassProbabilities> mixes_;
   uint64_t seed_;
+  std::optional<ClassCosts> costs_;
+  mutable double spent_ = 0;
 };
 
-// The tracer's own seed, apart from every estimator stream of a test keyed on `seed`.
-inline uint64_t tracerSeed(uint64_t seed, uint64_t k) {
-  return hashKeys(seed, 0x7ace5eed, k);
-}
-
-// Class mixes used throughout, one per proxy class (outside: no HM'; inside: no MH').
-inline ClassProbabilities outsideMix() {
-  return {0.30, 0.00, 0.15, 0.55};
-}
-inline ClassProbabilities insideMix() {
-  return {0.35, 0.12, 0.00, 0.53};
-}
-inline ClassProbabilities generalMix() {
-  return {0.30, 0.08, 0.10, 0.52};
-}
-inline ClassProbabilities mixFor(ProxyClass c) {
-  return c == ProxyClass::kOutside  ? outsideMix()
-         : c == ProxyClass::kInside ? insideMix()
-                                    : generalMix();
-}
-
-}  // namespace proxyvis::test
+}  // namespace proxyvis

@@ -11,13 +11,11 @@
 #include "estimate/roulette.h"
 #include "estimate/visibility_estimator.h"
 #include "moments.h"
-#include "synthetic_tracer.h"
+#include "test_mixes.h"
 #include "util/stats.h"
 
 namespace proxyvis {
 namespace {
-
-using test::SyntheticTracer;
 
 constexpr uint64_t kSeed = 31337;
 constexpr double kAlpha = 0.01;

@@ -9,13 +9,11 @@
 
 #include "estimate/sample_estimators.h"
 #include "moments.h"
-#include "synthetic_tracer.h"
+#include "test_mixes.h"
 #include "util/stats.h"
 
 namespace proxyvis {
 namespace {
-
-using test::SyntheticTracer;
 
 constexpr uint64_t kSeed = 20140625;  // fixed; never retuned
 constexpr double kAlpha = 0.01;       // family-wise, per test
