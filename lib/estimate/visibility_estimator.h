@@ -2,8 +2,27 @@
 // The boundary between the renderer (lib/render) and the visibility estimators (lib/estimate).
 // The renderer owns cameras, lights, shading and the Embree scenes; an estimator only decides
 // which rays to trace for the light samples of one shading point and how to weight them.
-// DRAFT CONTRACT written before either side: lib/estimate owns this file and may extend it;
-// keep the renderer's calls (estimate(), beginPass(), endPass(), makeEstimator()) working.
+// lib/estimate owns this file; keep the renderer's calls (estimate(), beginPass(), endPass(),
+// probesPerPoint(), makeEstimator()) working.
+//
+// The renderer's side, per render:
+//   auto e = makeEstimator(setup);         // setup: kind, verified proxy_class, num_regions,
+//                                          // num_points, probes_per_point, q_min, fixed_costs
+//   for each pass k: e->beginPass(k); parallel: e->estimate(query, rng, out, counts); e->endPass();
+//   e->learnedSummary() for the report.
+// The estimators (DESIGN.md §2; math in class_probabilities.h, selection.h, roulette.h):
+//   exact          original only.
+//   culling        proxy pre-test where the verified class guarantees the answer; a general
+//                  proxy guarantees nothing, so culling is exact there (proxy not traced).
+//   paper-equal    selection, p = 1/3 each (1/2 when a verified class drops a branch).
+//   paper-optimal  selection, p_i ~ sqrt(a_i) from the query's probe segments (each traced
+//                  against both; RayCounts::probe), class probabilities with a Dirichlet(1/2)
+//                  prior so no needed branch gets p = 0.
+//   paper-cost     paper-optimal with the paper's error^(1/4) heuristic.
+//   roulette       per region (tile x light): exact or proxy + roulette, decided each pass from
+//                  earlier passes only (region_learner.h); no probe rays. Statistics persist
+//                  across render() calls with the same estimator; make a new one to start fresh.
+// Every estimate is unbiased for any statistics; every traced ray is counted.
 #include <cstdint>
 #include <memory>
 #include <optional>
