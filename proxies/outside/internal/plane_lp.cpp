@@ -54,13 +54,29 @@ std::optional<Vec3d> solvePlaneLp(const PlaneLpProblem& problem) {
   const double tol = 1e-9 * problem.half_size;
   const size_t m = planes.size();
 
-  struct Vertex {
-    double value;
-    Vec3d x;
+  // Upper bound from the extra candidates, then only vertices that can beat it are tested for
+  // feasibility (most are cut by one dot product), in enumeration order.
+  std::optional<Vec3d> best;
+  double best_value = std::numeric_limits<double>::infinity();
+  double best_dist2 = std::numeric_limits<double>::infinity();
+  const double tie = 1e-9 * length(problem.objective) * problem.half_size + 1e-300;
+  auto consider = [&](const Vec3d& x) {
+    const double value = dot(problem.objective, x);
+    if (value > best_value + tie) return;
+    if (!isFeasible(planes, x, tol)) return;
+    const Vec3d off = x - problem.center;
+    const double dist2 = dot(off, off);
+    if (value < best_value - tie) {
+      best_value = value;
+      best = x;
+      best_dist2 = dist2;
+    } else if (dist2 < best_dist2) {
+      best_value = std::min(best_value, value);
+      best = x;
+      best_dist2 = dist2;
+    }
   };
-  std::vector<Vertex> vertices;
-  vertices.reserve(m * m * m / 6 + problem.candidates.size());
-  for (const Vec3d& x : problem.candidates) vertices.push_back({dot(problem.objective, x), x});
+  for (const Vec3d& x : problem.candidates) consider(x);
 
   std::vector<Vec3d> cross_nm(m * m);
   for (size_t i = 0; i < m; ++i)
@@ -72,28 +88,9 @@ std::optional<Vec3d> solvePlaneLp(const PlaneLpProblem& problem) {
         const double det = dot(planes[i].n, jk);
         if (std::abs(det) < 1e-9) continue;  // (nearly) parallel planes: no single vertex
         // Cramer's rule in the form x = (d_i (n_j×n_k) + d_j (n_k×n_i) + d_k (n_i×n_j)) / det.
-        const Vec3d x = (jk * planes[i].d - cross_nm[i * m + k] * planes[j].d +
-                         cross_nm[i * m + j] * planes[k].d) /
-                        det;
-        vertices.push_back({dot(problem.objective, x), x});
+        consider((jk * planes[i].d - cross_nm[i * m + k] * planes[j].d + cross_nm[i * m + j] * planes[k].d) /
+                 det);
       }
-    }
-  }
-  std::sort(vertices.begin(), vertices.end(),
-            [](const Vertex& a, const Vertex& b) { return a.value < b.value; });
-
-  std::optional<Vec3d> best;
-  double best_value = 0, best_dist2 = std::numeric_limits<double>::infinity();
-  const double tie = 1e-9 * length(problem.objective) * problem.half_size + 1e-300;
-  for (const Vertex& v : vertices) {
-    if (best && v.value > best_value + tie) break;
-    if (!isFeasible(planes, v.x, tol)) continue;
-    const Vec3d off = v.x - problem.center;
-    const double dist2 = dot(off, off);
-    if (!best) best_value = v.value;
-    if (dist2 < best_dist2) {
-      best = v.x;
-      best_dist2 = dist2;
     }
   }
   return best;

@@ -1,0 +1,79 @@
+// General proxies: the three simplifiers meet the face budget, stay near the surface, and the
+// pipeline's report has every documented key and survives a JSON round trip.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "proxies/general/general_proxy.h"
+#include "proxies/general/proxy_pipeline.h"
+#include "tests/proxies/gen_test_util.h"
+
+namespace proxyvis {
+namespace {
+
+using gen_test::mesh;
+
+class GeneralMethod : public testing::TestWithParam<const char*> {};
+
+TEST_P(GeneralMethod, MeetsBudgetAndStaysClose) {
+  const TriMesh& input = mesh("meshes/bunny.off");
+  ProxyGenOptions o;
+  o.kind = ProxyClass::kGeneral;
+  o.method = GetParam();
+  o.max_faces = 700;
+  o.hausdorff_samples = 4000;
+  const ProxyGenResult r = generateProxy(input, o);
+  EXPECT_LE(r.proxy.numTriangles(), 700u);
+  EXPECT_GT(r.proxy.numTriangles(), 350u);
+  // 10 % of the input faces: a decent simplifier stays within 2 % of the diagonal.
+  EXPECT_LT(r.report["hausdorff_proxy_to_original"].get<double>(), 0.02);
+  EXPECT_LT(r.report["hausdorff_original_to_proxy"].get<double>(), 0.02);
+  EXPECT_TRUE(r.report["class"].is_null() || r.report["class"] == "general");
+}
+
+INSTANTIATE_TEST_SUITE_P(AllMethods, GeneralMethod, testing::Values("qem", "cgal-sms", "meshopt"));
+
+TEST(GeneralRatio, RatioSetsTheBudget) {
+  const TriMesh& input = mesh("meshes/spot_triangulated.obj");
+  GeneralOptions g;
+  g.ratio = 0.1;
+  const size_t target = generalTargetFaces(input, g);
+  EXPECT_EQ(target, size_t(std::llround(0.1 * double(input.numTriangles()))));
+  EXPECT_LE(simplifyQem(input, g).numTriangles(), target);
+  g.ratio = 0;
+  EXPECT_THROW(generalTargetFaces(input, g), Error);
+}
+
+TEST(GeneralWeld, SharedPositionsBecomeOneVertex) {
+  // Two triangles of a quad stored with six unshared vertices (as leaf cards are).
+  TriMesh quad;
+  quad.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  quad.triangles = {{0, 1, 2}, {3, 4, 5}};
+  const TriMesh welded = weldVertices(quad);
+  EXPECT_EQ(welded.numVertices(), 4u);
+  EXPECT_EQ(welded.numTriangles(), 2u);
+}
+
+TEST(GeneralReport, HasEveryKeyAndRoundTrips) {
+  const TriMesh& input = mesh("meshes/bunny.off");
+  ProxyGenOptions o;
+  o.kind = ProxyClass::kGeneral;
+  o.ratio = 0.05;
+  o.hausdorff_samples = 1000;
+  const ProxyGenResult r = generateProxy(input, o);
+  const nlohmann::json parsed = nlohmann::json::parse(r.report.dump());
+  for (const char* key : {"input", "kind", "method", "parameters", "faces", "volume_ratio",
+                          "hausdorff_proxy_to_original", "hausdorff_original_to_proxy", "verified", "seconds"})
+    EXPECT_TRUE(parsed.contains(key)) << key;
+  for (const char* key : {"path", "faces", "closed"}) EXPECT_TRUE(parsed["input"].contains(key)) << key;
+  EXPECT_EQ(parsed["kind"], "general");
+  EXPECT_EQ(parsed["method"], "qem");
+  EXPECT_EQ(parsed["input"]["faces"].get<size_t>(), input.numTriangles());
+  EXPECT_TRUE(parsed["seconds"].contains("total"));
+  const std::string summary = formatProxyReport(parsed);
+  EXPECT_NE(summary.find("volume ratio"), std::string::npos);
+  EXPECT_NE(summary.find("hausdorff"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace proxyvis
