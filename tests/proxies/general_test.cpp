@@ -62,10 +62,12 @@ TEST(GeneralReport, HasEveryKeyAndRoundTrips) {
   o.hausdorff_samples = 1000;
   const ProxyGenResult r = generateProxy(input, o);
   const nlohmann::json parsed = nlohmann::json::parse(r.report.dump());
-  for (const char* key : {"input", "kind", "method", "parameters", "faces", "volume_ratio",
-                          "hausdorff_proxy_to_original", "hausdorff_original_to_proxy", "verified", "seconds"})
+  for (const char* key :
+       {"input", "kind", "method", "parameters", "faces", "volume_ratio",
+        "hausdorff_proxy_to_original", "hausdorff_original_to_proxy", "verified", "seconds"})
     EXPECT_TRUE(parsed.contains(key)) << key;
-  for (const char* key : {"path", "faces", "closed"}) EXPECT_TRUE(parsed["input"].contains(key)) << key;
+  for (const char* key : {"path", "faces", "closed"})
+    EXPECT_TRUE(parsed["input"].contains(key)) << key;
   EXPECT_EQ(parsed["kind"], "general");
   EXPECT_EQ(parsed["method"], "qem");
   EXPECT_EQ(parsed["input"]["faces"].get<size_t>(), input.numTriangles());

@@ -45,15 +45,17 @@ TEST_P(OutsideContainment, ExactCheckProvesContainment) {
   EXPECT_EQ(r.report["faces"].get<size_t>(), r.proxy.numTriangles());
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    ClosedMeshes, OutsideContainment,
-    testing::Values(Case{"meshes/bunny.off", "hull", 0, 0}, Case{"meshes/bunny.off", "hull", 0.02, 0},
-                    Case{"meshes/bunny.off", "wrap", 0, 0}, Case{"meshes/bunny.off", "wrap", 0.05, 0},
-                    Case{"meshes/bunny.off", "wrap", 0.02, 1.0 / 20},
-                    Case{"meshes/spot_triangulated.obj", "hull", 0.05, 0},
-                    Case{"meshes/spot_triangulated.obj", "wrap", 0, 1.0 / 30},
-                    Case{"meshes/spot_triangulated.obj", "wrap", 0.03, 0}, Case{"meshes/dragon.ply", "hull", 0, 0},
-                    Case{"meshes/dragon.ply", "wrap", 0.02, 0}));
+INSTANTIATE_TEST_SUITE_P(ClosedMeshes, OutsideContainment,
+                         testing::Values(Case{"meshes/bunny.off", "hull", 0, 0},
+                                         Case{"meshes/bunny.off", "hull", 0.02, 0},
+                                         Case{"meshes/bunny.off", "wrap", 0, 0},
+                                         Case{"meshes/bunny.off", "wrap", 0.05, 0},
+                                         Case{"meshes/bunny.off", "wrap", 0.02, 1.0 / 20},
+                                         Case{"meshes/spot_triangulated.obj", "hull", 0.05, 0},
+                                         Case{"meshes/spot_triangulated.obj", "wrap", 0, 1.0 / 30},
+                                         Case{"meshes/spot_triangulated.obj", "wrap", 0.03, 0},
+                                         Case{"meshes/dragon.ply", "hull", 0, 0},
+                                         Case{"meshes/dragon.ply", "wrap", 0.02, 0}));
 
 TEST(OutsideHull, UnpushedHullTouchesTheSurface) {
   // Why HullOptions::epsilon exists: CGAL's hull faces lie on input faces, which the exact
@@ -61,7 +63,8 @@ TEST(OutsideHull, UnpushedHullTouchesTheSurface) {
   const TriMesh& input = mesh("meshes/bunny.off");
   HullOptions touching;
   touching.epsilon = 0;
-  EXPECT_EQ(checkContainment(input, makeHullProxy(input, touching)).verdict, ContainmentVerdict::kIntersecting);
+  EXPECT_EQ(checkContainment(input, makeHullProxy(input, touching)).verdict,
+            ContainmentVerdict::kIntersecting);
   EXPECT_EQ(checkContainment(input, makeHullProxy(input)).verdict, ContainmentVerdict::kContains);
 }
 
@@ -82,7 +85,8 @@ TEST(OutsideFoliage, OpenNonManifoldLeavesAreWrapped) {
 TEST(OutsideBudget, BoundedSimplifyOnlyGrowsTheVolume) {
   const TriMesh wrap = makeWrapProxy(mesh("meshes/bunny.off"));
   BoundedSimplifyStats stats;
-  const TriMesh small = simplifyBounded(wrap, {wrap.numTriangles() / 10, BoundSide::kOutside}, &stats);
+  const TriMesh small =
+      simplifyBounded(wrap, {wrap.numTriangles() / 10, BoundSide::kOutside}, &stats);
   EXPECT_TRUE(stats.budget_reached);
   EXPECT_LE(small.numTriangles(), wrap.numTriangles() / 10);
   EXPECT_GT(stats.collapses, 0u);
