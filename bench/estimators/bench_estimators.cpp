@@ -10,6 +10,7 @@
 // both); their closed-form rows use the true class probabilities (an oracle: free probes).
 #include <fmt/core.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -195,6 +196,65 @@ void printScenario(const Scenario& s, uint64_t samples) {
   }
 }
 
+// Wall time per segment of estimate() on the synthetic tracer (one segment per query, as the
+// renderer calls it), against the tracer calls alone: the estimator's own overhead, which counts
+// against it in equal-time comparisons.
+void printOverhead(uint64_t samples) {
+  const Scenario s = scenarios()[4];
+  SyntheticTracer tracer({s.mix}, 7);
+  using Clock = std::chrono::steady_clock;
+  const uint32_t points = 4096;
+  const uint64_t passes = std::max<uint64_t>(4, samples / points);
+  auto time_calls = [&] {
+    const auto t0 = Clock::now();
+    int sink = 0;
+    for (uint64_t i = 0; i < passes * points; ++i)
+      sink += tracer.proxyVisible(SyntheticTracer::segment(0, i));
+    const double ns = std::chrono::duration<double, std::nano>(Clock::now() - t0).count();
+    return ns / double(passes * points) + (sink == -1 ? 1 : 0);
+  };
+  const double call_ns = time_calls();
+  fmt::print("\n## overhead per segment (ns; synthetic tracer call = {:.1f} ns)\n\n", call_ns);
+  fmt::print("| {:<13} | {:>8} | {:>12} | {:>10}\n", "estimator", "ns/seg", "tracer calls", "overhead");
+  fmt::print("|{:-<15}|{:-<10}|{:-<14}|{:-<11}\n", "", "", "", "");
+  for (EstimatorKind kind : {EstimatorKind::kExact, EstimatorKind::kCulling,
+                             EstimatorKind::kPaperEqual, EstimatorKind::kRoulette}) {
+    for (bool measured : {false, true}) {
+      if (measured && kind != EstimatorKind::kRoulette) continue;
+      EstimatorSetup setup;
+      setup.kind = kind;
+      setup.proxy_class = s.cls;
+      setup.num_regions = 16;
+      setup.num_points = points;
+      if (!measured) setup.fixed_costs = s.costs;
+      const auto e = makeEstimator(setup);
+      RayCounts counts;
+      double out = 0;
+      const auto t0 = Clock::now();
+      for (uint64_t pass = 0; pass < passes; ++pass) {
+        e->beginPass(int(pass));
+        for (uint32_t p = 0; p < points; ++p) {
+          const Segment seg = SyntheticTracer::segment(0, pass * points + p);
+          ShadingPointQuery q;
+          q.segments = std::span<const Segment>(&seg, 1);
+          q.tracer = &tracer;
+          q.region = p / 256;
+          q.point = p;
+          Rng rng(kSeed, hashKeys(p, pass));
+          e->estimate(q, rng, std::span<double>(&out, 1), counts);
+        }
+        e->endPass();
+      }
+      const double n = double(passes * points);
+      const double ns = std::chrono::duration<double, std::nano>(Clock::now() - t0).count() / n;
+      const double calls = double(counts.proxy + counts.original) / n;
+      fmt::print("| {:<13} | {:>8.1f} | {:>12.2f} | {:>10.1f}\n",
+                 std::string(estimatorName(kind)) + (measured ? " (timed)" : ""), ns, calls,
+                 ns - calls * call_ns);
+    }
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -213,5 +273,6 @@ int main(int argc, char** argv) {
       "eff = Var_exact*Cost_exact / (Var*Cost); roulette = per-region exact-or-proxy "
       "decision (measured: learned over passes, with exploration)\n");
   for (const Scenario& s : scenarios()) printScenario(s, samples);
+  printOverhead(samples * 8);
   return 0;
 }

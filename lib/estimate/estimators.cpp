@@ -92,7 +92,7 @@ class RouletteEstimator final : public VisibilityEstimator {
                 RayCounts& counts) override {
     PV_CHECK_MSG(q.region < regions(), "query region out of range of EstimatorSetup::num_regions");
     const RegionLearner::Plan& plan = learner_.plan(q.region);
-    RegionTally t;
+    RegionTally& t = learner_.local(q.region);
     // Which rays get timed: every 8th per thread. Never depends on the random numbers, so it
     // cannot influence an estimate.
     thread_local uint32_t timing_counter = 0;
@@ -133,7 +133,6 @@ class RouletteEstimator final : public VisibilityEstimator {
       }
     }
     learner_.addEstimates(q.point, out.first(q.segments.size()), t);
-    learner_.flush(q.region, t);
   }
 
  private:

@@ -1,5 +1,6 @@
 #include "estimate/region_learner.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "util/error.h"
@@ -16,7 +17,7 @@ constexpr double kCostShrinkage = 8.0;
 constexpr double kMinVariancePairs = 16.0;
 
 int64_t toFixed(double x) {
-  return std::llround(x * double(RegionLearner::kFixedOne));
+  return int64_t(x * double(RegionLearner::kFixedOne));
 }
 
 template <class T>
@@ -25,6 +26,21 @@ uint64_t take(std::atomic<T>& a) {
 }
 
 }  // namespace
+
+void RegionTally::add(const RegionTally& o) {
+  for (int i = 0; i < 2; ++i) {
+    n[i] += o.n[i];
+    traced[i] += o.traced[i];
+    err[i] += o.err[i];
+    cost_n_p[i] += o.cost_n_p[i];
+    cost_n_o[i] += o.cost_n_o[i];
+    ticks_p[i] += o.ticks_p[i];
+    ticks_o[i] += o.ticks_o[i];
+  }
+  v_sum += o.v_sum;
+  v_cross += o.v_cross;
+  v_n += o.v_n;
+}
 
 RegionDecision decideRegion(const RouletteModel& m, ProxyClass cls, double q_min, double margin) {
   RegionDecision d;
@@ -35,38 +51,17 @@ RegionDecision decideRegion(const RouletteModel& m, ProxyClass cls, double q_min
 }
 
 RegionLearner::RegionLearner(uint32_t num_regions, uint32_t num_points, const Options& options)
-    : options_(options),
-      plans_(num_regions),
-      pending_(new Pending[num_regions]()),
-      learned_(num_regions),
-      points_(num_points) {
+    : options_(options), plans_(num_regions), learned_(num_regions), points_(num_points) {
   PV_CHECK(num_regions > 0);
   PV_CHECK(options.q_min > 0 && options.q_min <= 1);
   if (options_.fixed_costs) global_costs_ = *options_.fixed_costs;
 }
 
-void RegionLearner::flush(uint32_t region, const RegionTally& t) {
+RegionTally& RegionLearner::local(uint32_t region) {
   PV_CHECK(region < plans_.size());
-  Pending& p = pending_[region];
-  constexpr auto relaxed = std::memory_order_relaxed;
-  for (int i = 0; i < 2; ++i) {
-    if (t.n[i]) p.n[i].fetch_add(t.n[i], relaxed);
-    if (t.traced[i]) p.traced[i].fetch_add(t.traced[i], relaxed);
-    if (t.err[i]) p.err[i].fetch_add(t.err[i], relaxed);
-    if (t.cost_n_p[i]) {
-      p.cost_n_p[i].fetch_add(t.cost_n_p[i], relaxed);
-      p.ticks_p[i].fetch_add(t.ticks_p[i], relaxed);
-    }
-    if (t.cost_n_o[i]) {
-      p.cost_n_o[i].fetch_add(t.cost_n_o[i], relaxed);
-      p.ticks_o[i].fetch_add(t.ticks_o[i], relaxed);
-    }
-  }
-  if (t.v_n) {
-    p.v_n.fetch_add(t.v_n, relaxed);
-    p.v_sum.fetch_add(t.v_sum, relaxed);
-    p.v_cross.fetch_add(t.v_cross, relaxed);
-  }
+  std::vector<RegionTally>& v = locals_.local();
+  if (v.empty()) v.resize(plans_.size());
+  return v[region];
 }
 
 void RegionLearner::addEstimates(uint32_t point, std::span<const double> estimates,
@@ -151,29 +146,32 @@ void RegionLearner::beginPass() {
 }
 
 void RegionLearner::endPass() {
+  std::vector<RegionTally> pass(plans_.size());
+  for (std::vector<RegionTally>& v : locals_) {
+    for (size_t r = 0; r < v.size(); ++r) pass[r].add(v[r]);
+    std::fill(v.begin(), v.end(), RegionTally{});
+  }
   double sum_p[2] = {0, 0}, n_p[2] = {0, 0}, sum_o[2] = {0, 0}, n_o[2] = {0, 0};
   for (uint32_t r = 0; r < plans_.size(); ++r) {
-    Pending& p = pending_[r];
+    const RegionTally& p = pass[r];
     Learned& l = learned_[r];
     const Plan& plan = plans_[r];
     const double q[2] = {plan.roulette ? plan.q.q0 : 1.0, plan.roulette ? plan.q.q1 : 1.0};
     for (int i = 0; i < 2; ++i) {
-      l.n[i] += double(take(p.n[i]));
-      take(p.traced[i]);
-      const uint64_t err = take(p.err[i]);
-      if (err) l.err_weighted[i] += double(err) / q[i];  // traced => q[i] > 0
-      l.cost_n_p[i] += double(take(p.cost_n_p[i]));
-      l.ticks_p[i] += double(take(p.ticks_p[i]));
-      l.cost_n_o[i] += double(take(p.cost_n_o[i]));
-      l.ticks_o[i] += double(take(p.ticks_o[i]));
+      l.n[i] += double(p.n[i]);
+      if (p.err[i]) l.err_weighted[i] += double(p.err[i]) / q[i];  // traced => q[i] > 0
+      l.cost_n_p[i] += double(p.cost_n_p[i]);
+      l.ticks_p[i] += double(p.ticks_p[i]);
+      l.cost_n_o[i] += double(p.cost_n_o[i]);
+      l.ticks_o[i] += double(p.ticks_o[i]);
       sum_p[i] += l.ticks_p[i];
       n_p[i] += l.cost_n_p[i];
       sum_o[i] += l.ticks_o[i];
       n_o[i] += l.cost_n_o[i];
     }
-    l.v_n += double(take(p.v_n));
-    l.v_sum += double(int64_t(take(p.v_sum))) / double(kFixedOne);
-    l.v_cross += double(int64_t(take(p.v_cross))) / double(kFixedOne);
+    l.v_n += double(p.v_n);
+    l.v_sum += double(p.v_sum) / double(kFixedOne);
+    l.v_cross += double(p.v_cross) / double(kFixedOne);
   }
   if (options_.fixed_costs) return;
   // Global mean per class; a class never timed borrows the other class's mean.

@@ -21,11 +21,12 @@
 // The variance exact visibility leaves per pixel, mean_p V_p(1-V_p), is learned as
 // E[V~] - E[V~_prev * V~], where V~_prev is the mean of the same point's estimates in earlier
 // passes (independent of the current one, so the product has expectation V_p^2), or from pairs of
-// segments of one query. Every counter a pass adds is an integer (estimates in fixed point), so
-// the statistics, and with fixed costs the output, do not depend on the thread count.
-#include <atomic>
+// segments of one query. Every counter a pass adds is an integer (estimates in fixed point, kept
+// per thread and summed at the end of the pass), so the statistics, and with fixed costs the
+// output, do not depend on the thread count or the order queries arrive in.
+#include <tbb/enumerable_thread_specific.h>
+
 #include <cstdint>
-#include <memory>
 #include <optional>
 #include <span>
 #include <vector>
@@ -45,7 +46,7 @@ struct RegionDecision {
 // to be at least (1 + margin) times as efficient as exact, else exact.
 RegionDecision decideRegion(const RouletteModel& m, ProxyClass cls, double q_min, double margin);
 
-// What one estimate() call observed, accumulated locally, then flushed with a few atomic adds.
+// What a thread observed in one region during the current pass (integers only).
 struct RegionTally {
   uint64_t n[2] = {0, 0};                               // proxy rays with V' = i
   uint64_t traced[2] = {0, 0};                          // originals traced after V' = i
@@ -54,6 +55,7 @@ struct RegionTally {
   uint64_t ticks_p[2] = {0, 0}, ticks_o[2] = {0, 0};
   int64_t v_sum = 0, v_cross = 0;  // fixed point (kFixedOne)
   uint64_t v_n = 0;
+  void add(const RegionTally& o);
 };
 
 class RegionLearner {
@@ -78,8 +80,9 @@ class RegionLearner {
   const Plan& plan(uint32_t region) const { return plans_[region]; }
   bool measuresCosts() const { return !options_.fixed_costs; }
 
-  // Thread-safe: adds a query's tally to its region.
-  void flush(uint32_t region, const RegionTally& t);
+  // The calling thread's tally of `region` for this pass: estimate() adds to it without atomics;
+  // endPass() sums every thread's tallies (integer sums: the order does not matter).
+  RegionTally& local(uint32_t region);
   // Variance learning for one query's estimates. `point` may be kNoPoint. Each point must be
   // passed at most once per pass (its history must come from earlier passes).
   void addEstimates(uint32_t point, std::span<const double> estimates, RegionTally& t);
@@ -113,7 +116,11 @@ class RegionLearner {
 
   Options options_;
   std::vector<Plan> plans_;
-  std::unique_ptr<Pending[]> pending_;
+  // ets_key_per_instance: a native TLS key, the fastest lookup TBB offers (once per query).
+  tbb::enumerable_thread_specific<std::vector<RegionTally>,
+                                  tbb::cache_aligned_allocator<std::vector<RegionTally>>,
+                                  tbb::ets_key_per_instance>
+      locals_;
   std::vector<Learned> learned_;
   std::vector<PointHistory> points_;
   ClassCosts global_costs_;
