@@ -87,6 +87,7 @@ class RouletteEstimator final : public VisibilityEstimator {
   void beginPass(int) override { learner_.beginPass(); }
   void endPass() override { learner_.endPass(); }
   LearnedSummary learnedSummary() const override { return learner_.summary(); }
+  void setPerSampleCost(double cost) override { learner_.setPerSampleCost(cost); }
 
   void estimate(const ShadingPointQuery& q, Rng& rng, std::span<double> out,
                 RayCounts& counts) override {

@@ -1,7 +1,10 @@
 #include "estimate/region_learner.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+
+#include "estimate/cpu_ticks.h"
 
 #include "util/error.h"
 
@@ -54,7 +57,10 @@ RegionLearner::RegionLearner(uint32_t num_regions, uint32_t num_points, const Op
     : options_(options), plans_(num_regions), learned_(num_regions), points_(num_points) {
   PV_CHECK(num_regions > 0);
   PV_CHECK(options.q_min > 0 && options.q_min <= 1);
-  if (options_.fixed_costs) global_costs_ = *options_.fixed_costs;
+  if (options_.fixed_costs) {
+    global_costs_ = *options_.fixed_costs;
+    per_sample_ = options_.fixed_costs->per_sample;
+  }
 }
 
 RegionTally& RegionLearner::local(uint32_t region) {
@@ -122,17 +128,31 @@ RouletteModel RegionLearner::model(uint32_t region) const {
   if (options_.fixed_costs) {
     m.costs = *options_.fixed_costs;
   } else {
+    const double ns = nsPerTick();
     for (int i = 0; i < 2; ++i) {
-      m.costs.proxy[i] = (l.ticks_p[i] + kCostShrinkage * global_costs_.proxy[i]) /
+      m.costs.proxy[i] = (l.ticks_p[i] * ns + kCostShrinkage * global_costs_.proxy[i]) /
                          (l.cost_n_p[i] + kCostShrinkage);
-      m.costs.original[i] = (l.ticks_o[i] + kCostShrinkage * global_costs_.original[i]) /
+      m.costs.original[i] = (l.ticks_o[i] * ns + kCostShrinkage * global_costs_.original[i]) /
                             (l.cost_n_o[i] + kCostShrinkage);
     }
   }
+  m.costs.per_sample = per_sample_;
   return m;
 }
 
+namespace {
+int64_t steadyNs() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+}  // namespace
+
 void RegionLearner::beginPass() {
+  if (measuresCosts()) {
+    pass_start_ns_ = steadyNs();
+    pass_start_ticks_ = cpuTicks();
+  }
   for (uint32_t r = 0; r < plans_.size(); ++r) {
     Plan& p = plans_[r];
     if (observations(r) < uint64_t(kMinSamples)) {
@@ -146,6 +166,10 @@ void RegionLearner::beginPass() {
 }
 
 void RegionLearner::endPass() {
+  if (measuresCosts() && pass_start_ns_ != 0) {
+    calib_ns_ += double(steadyNs() - pass_start_ns_);
+    calib_ticks_ += double(cpuTicks() - pass_start_ticks_);
+  }
   std::vector<RegionTally> pass(plans_.size());
   for (std::vector<RegionTally>& v : locals_) {
     for (size_t r = 0; r < v.size(); ++r) pass[r].add(v[r]);
@@ -174,8 +198,9 @@ void RegionLearner::endPass() {
     l.v_cross += double(p.v_cross) / double(kFixedOne);
   }
   if (options_.fixed_costs) return;
-  // Global mean per class; a class never timed borrows the other class's mean.
-  auto mean = [](double s, double n) { return n > 0 ? s / n : 0.0; };
+  // Global mean per class in ns; a class never timed borrows the other class's mean.
+  const double ns = nsPerTick();
+  auto mean = [&](double s, double n) { return n > 0 ? s * ns / n : 0.0; };
   double cp[2] = {mean(sum_p[0], n_p[0]), mean(sum_p[1], n_p[1])};
   double co[2] = {mean(sum_o[0], n_o[0]), mean(sum_o[1], n_o[1])};
   for (int i = 0; i < 2; ++i) {
@@ -209,6 +234,7 @@ LearnedSummary RegionLearner::summary() const {
   s.error_given_visible = n[1] > 0 ? err[1] / n[1] : 0;
   s.var_exact = v_n > 0 ? v_diff / v_n : 0;
   s.costs = global_costs_;
+  s.costs.per_sample = per_sample_;
   return s;
 }
 

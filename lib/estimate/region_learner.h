@@ -88,9 +88,13 @@ class RegionLearner {
   void addEstimates(uint32_t point, std::span<const double> estimates, RegionTally& t);
 
   // Single-threaded. beginPass freezes the plans from everything folded in so far; endPass folds
-  // the pass's counters into the statistics.
+  // the pass's counters into the statistics. In measured mode they also calibrate CPU ticks
+  // against steady_clock over the passes, so that learned costs are reported in ns.
   void beginPass();
   void endPass();
+  // Cost every light sample pays outside visibility (ClassCosts::per_sample): ns in measured
+  // mode, the fixed costs' unit otherwise. Takes effect at the next beginPass.
+  void setPerSampleCost(double cost) { per_sample_ = cost; }
 
   // The model a region's decision uses (costs shrunk towards the global mean per class).
   RouletteModel model(uint32_t region) const;
@@ -123,7 +127,13 @@ class RegionLearner {
       locals_;
   std::vector<Learned> learned_;
   std::vector<PointHistory> points_;
-  ClassCosts global_costs_;
+  ClassCosts global_costs_;  // ns when measured (once calibrated)
+  double per_sample_ = 0;
+  // Tick calibration: the pass being timed, and totals over passes.
+  int64_t pass_start_ns_ = 0;
+  uint64_t pass_start_ticks_ = 0;
+  double calib_ns_ = 0, calib_ticks_ = 0;
+  double nsPerTick() const { return calib_ticks_ > 0 ? calib_ns_ / calib_ticks_ : 1.0; }
 };
 
 }  // namespace proxyvis

@@ -37,12 +37,13 @@ double rouletteVariance(const RouletteModel& m, const RouletteQ& q) {
 
 double rouletteCost(const RouletteModel& m, const RouletteQ& q) {
   const double p0 = m.p_blocked, p1 = 1 - m.p_blocked;
-  return p0 * (m.costs.proxy[0] + q.q0 * m.costs.original[0]) +
+  return m.costs.per_sample + p0 * (m.costs.proxy[0] + q.q0 * m.costs.original[0]) +
          p1 * (m.costs.proxy[1] + q.q1 * m.costs.original[1]);
 }
 
 double exactCost(const RouletteModel& m) {
-  return m.p_blocked * m.costs.original[0] + (1 - m.p_blocked) * m.costs.original[1];
+  return m.costs.per_sample + m.p_blocked * m.costs.original[0] +
+         (1 - m.p_blocked) * m.costs.original[1];
 }
 
 RouletteQ optimalRouletteQ(const RouletteModel& m, ProxyClass cls, double q_min) {
@@ -51,7 +52,7 @@ RouletteQ optimalRouletteQ(const RouletteModel& m, ProxyClass cls, double q_min)
   const bool need1 = cls != ProxyClass::kOutside;  // HM' possible
   RouletteQ q{need0 ? 1.0 : 0.0, need1 ? 1.0 : 0.0};
   const double p0 = m.p_blocked, p1 = 1 - m.p_blocked;
-  const double cbar_p = p0 * m.costs.proxy[0] + p1 * m.costs.proxy[1];
+  const double cbar_p = m.costs.per_sample + p0 * m.costs.proxy[0] + p1 * m.costs.proxy[1];
   const double b0 = p0 * m.costs.original[0], b1 = p1 * m.costs.original[1];
   const double base = m.var_exact - (need0 ? m.p_mh : 0) - (need1 ? m.p_hm : 0);
   for (int iter = 0; iter < 200; ++iter) {

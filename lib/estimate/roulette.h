@@ -5,7 +5,7 @@
 //   V' = 1:  V~ = 1 - (1 - V) / q1 with probability q1, else 1
 // Unbiased for any q_i > 0 where the error class (MH' for i = 0, HM' for i = 1) is possible.
 //   Var  = V(1-V) + P(MH')(1/q0 - 1) + P(HM')(1/q1 - 1)
-//   Cost = sum_i P(V'=i) (c_p|i + q_i c_o|i)
+//   Cost = c_s + sum_i P(V'=i) (c_p|i + q_i c_o|i)     (c_s = ClassCosts::per_sample)
 // Costs are per class of V' (DESIGN.md §2b: where the proxy blocks, both rays cost several times
 // more than where it does not; one average cost overstates the gain).
 #include "estimate/class_probabilities.h"
@@ -16,6 +16,10 @@ namespace proxyvis {
 struct ClassCosts {
   double proxy[2] = {1, 1};     // c_p | V' = 0, c_p | V' = 1
   double original[2] = {1, 1};  // c_o | V' = 0, c_o | V' = 1
+  // Paid by every light sample whatever the estimator: light sampling, shading, accumulation,
+  // the primary ray's share (DESIGN.md §2b point 4). Added to both exact and roulette costs; the
+  // larger it is, the more variance matters against ray savings.
+  double per_sample = 0;
 };
 
 struct RouletteQ {
@@ -36,7 +40,7 @@ struct RouletteModel {
 // Var as above; an error class with probability > 0 and q = 0 gives +infinity (biased).
 double rouletteVariance(const RouletteModel& m, const RouletteQ& q);
 double rouletteCost(const RouletteModel& m, const RouletteQ& q);
-// Exact visibility: one original ray per sample, sum_i P(V'=i) c_o|i.
+// Exact visibility: one original ray per sample, c_s + sum_i P(V'=i) c_o|i.
 double exactCost(const RouletteModel& m);
 
 // The q minimising Var x Cost over [q_min, 1]^2, with q1 = 0 exactly for a verified outside proxy
@@ -44,7 +48,7 @@ double exactCost(const RouletteModel& m);
 // possible but estimated at 0 gets q_min, which keeps the estimate unbiased when the statistics
 // are wrong. Unclamped and with var_exact > P(MH') + P(HM') the optimum is
 //   q_i = sqrt( P(error | V'=i) * cbar_p / (c_o|i * (V(1-V) - P(MH') - P(HM'))) ),
-// cbar_p = sum_i P(V'=i) c_p|i; the product is convex in each q_i separately, so coordinate
+// cbar_p = c_s + sum_i P(V'=i) c_p|i; the product is convex in each q_i separately, so coordinate
 // descent with that closed form per coordinate also handles the clamped cases.
 RouletteQ optimalRouletteQ(const RouletteModel& m, ProxyClass cls, double q_min);
 

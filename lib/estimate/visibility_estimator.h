@@ -95,14 +95,15 @@ struct EstimatorSetup {
   double q_min = 0.05;        // roulette floor where an error class is possible
   uint32_t num_points = 0;    // roulette: size of the ShadingPointQuery::point range (0 = none)
   // Roulette cost model. Unset: ray costs per class of V' are measured per region with the CPU
-  // tick counter on 1 ray in 8, which makes roulette's choices (never its expectation) depend
-  // on timing, so output is unbiased but not bit-reproducible. Set (any unit, e.g. ns from a
-  // bench): deterministic output at any thread count.
+  // tick counter on 1 ray in 8 (reported in ns, calibrated against steady_clock per pass), which
+  // makes roulette's choices (never its expectation) depend on timing, so output is unbiased but
+  // not bit-reproducible. Set (any unit, e.g. ns from a bench): deterministic output at any thread
+  // count.
   std::optional<ClassCosts> fixed_costs;
 };
 
 // What a learning estimator found, for reports (all zero for the others). Costs in the unit of
-// EstimatorSetup::fixed_costs, or CPU ticks when measured.
+// EstimatorSetup::fixed_costs, or ns when measured.
 struct LearnedSummary {
   uint32_t regions = 0;           // regions with statistics
   uint32_t regions_roulette = 0;  // of those, regions that used proxy + roulette in the last pass
@@ -127,6 +128,11 @@ class VisibilityEstimator {
   virtual int probesPerPoint() const { return 0; }
   // Statistics learned so far (roulette); call between passes.
   virtual LearnedSummary learnedSummary() const { return {}; }
+  // Between passes (optional): what every light sample costs outside visibility (light sampling,
+  // shading, the primary ray's share), in ns, or in fixed_costs' unit when those are set. Roulette
+  // weighs its added variance against the whole sample's cost (ClassCosts::per_sample); without
+  // it, it optimises shadow-ray time alone and overrates the proxy when shading is costly.
+  virtual void setPerSampleCost(double cost) { (void)cost; }
 };
 
 std::unique_ptr<VisibilityEstimator> makeEstimator(const EstimatorSetup& setup);

@@ -58,6 +58,16 @@ TEST(Decision, ProxyWhereItPays) {
   EXPECT_EQ(d.q.q1, 0.0);
 }
 
+TEST(Decision, CostlyShadingMakesTheProxyNotPay) {
+  // The same region as ProxyWhereItPays, but every sample also pays 1000 for shading: saving
+  // rays no longer buys back the added variance.
+  const ClassProbabilities c{0.45, 0.0, 0.02, 0.53};
+  ClassCosts k = costs(1, 1, 10, 10);
+  k.per_sample = 1000;
+  EXPECT_FALSE(
+      decideRegion(RouletteModel::fromPoint(c, k), ProxyClass::kOutside, 0.05, 0.05).roulette);
+}
+
 TEST(Decision, NothingToEstimateAndNoErrorsChoosesTheCheaperRay) {
   // Fully lit region, outside proxy never blocks: culling (proxy only) is exact and cheaper.
   const ClassProbabilities c{0, 0, 0, 1};
@@ -81,7 +91,8 @@ struct ImageRun {
 constexpr int kPointsPerRegion = 64;
 
 ImageRun runImage(const std::vector<ClassProbabilities>& mixes, ProxyClass cls, int passes,
-                  int threads, bool reverse, bool use_points, int segs_per_query = 1) {
+                  int threads, bool reverse, bool use_points, int segs_per_query = 1,
+                  bool measure_costs = false) {
   const SyntheticTracer tracer(mixes, test::tracerSeed(kSeed, 0));
   const uint32_t regions = uint32_t(mixes.size());
   const uint32_t points = regions * kPointsPerRegion;
@@ -90,7 +101,7 @@ ImageRun runImage(const std::vector<ClassProbabilities>& mixes, ProxyClass cls, 
   setup.proxy_class = cls;
   setup.num_regions = regions;
   setup.num_points = use_points ? points : 0;
-  setup.fixed_costs = costs(1, 1, 6, 3);
+  if (!measure_costs) setup.fixed_costs = costs(1, 1, 6, 3);
   const auto e = makeEstimator(setup);
   ImageRun run;
   run.estimates.assign(points, {});
@@ -155,6 +166,23 @@ TEST(Learning, ChoosesProxyWhereItPaysAndExactElsewhereAndStaysUnbiased) {
     EXPECT_LE(std::abs(m.mean - kTwoRegions[r].vAvg()), z * std::sqrt(m.variance / m.n))
         << "region " << r << " seed " << kSeed;
   }
+}
+
+TEST(Learning, MeasuredCostsStayUnbiased) {
+  // Costs timed with the tick counter: choices depend on timing, expectations must not.
+  constexpr int kPasses = 60;
+  const ImageRun run =
+      runImage(kTwoRegions, ProxyClass::kGeneral, kPasses, 2, false, true, 1, true);
+  const double z = sidakZ(kAlpha, 2);
+  for (int r = 0; r < 2; ++r) {
+    std::vector<double> all;
+    for (int p = r * kPointsPerRegion; p < (r + 1) * kPointsPerRegion; ++p)
+      all.insert(all.end(), run.estimates[p].begin(), run.estimates[p].end());
+    const test::Moments m = test::moments(all);
+    EXPECT_LE(std::abs(m.mean - kTwoRegions[r].vAvg()), z * std::sqrt(m.variance / m.n))
+        << "region " << r;
+  }
+  EXPECT_GT(run.summary.costs.proxy[1], 0.0);  // something was timed (no claim about speed)
 }
 
 TEST(Learning, LearnsClassRatesAndExactVariance) {

@@ -77,6 +77,7 @@ std::vector<std::pair<RouletteModel, ProxyClass>> randomModels() {
       costs.proxy[i] = 0.2 + rng.uniformDouble();
       costs.original[i] = costs.proxy[i] * (1.0 + 9.0 * rng.uniformDouble());
     }
+    if (k % 2 == 0) costs.per_sample = 3 * rng.uniformDouble();
     RouletteModel m = RouletteModel::fromPoint(c, costs);
     // Per-pixel variance smaller than the pooled one, as in a region of several points.
     m.var_exact *= 0.2 + 0.8 * rng.uniformDouble();
@@ -134,6 +135,22 @@ TEST(Roulette, InteriorOptimumIsTheClosedForm) {
   const double b = m.var_exact - c.mh - c.hm;
   EXPECT_NEAR(q.q0, std::sqrt(c.errorGivenProxyBlocked() * cbar_p / (8.0 * b)), 1e-9);
   EXPECT_NEAR(q.q1, std::sqrt(c.errorGivenProxyVisible() * cbar_p / (3.0 * b)), 1e-9);
+}
+
+TEST(Roulette, PerSampleCostEntersBothCosts) {
+  const ClassProbabilities c{0.30, 0.0, 0.05, 0.65};
+  ClassCosts costs;
+  costs.proxy[0] = costs.proxy[1] = 10;
+  costs.original[0] = costs.original[1] = 100;
+  const RouletteModel m = RouletteModel::fromPoint(c, costs);
+  costs.per_sample = 1000;
+  const RouletteModel ms = RouletteModel::fromPoint(c, costs);
+  const RouletteQ q{0.3, 0.0};
+  EXPECT_DOUBLE_EQ(rouletteCost(ms, q), rouletteCost(m, q) + 1000);
+  EXPECT_DOUBLE_EQ(exactCost(ms), exactCost(m) + 1000);
+  // Costly shading makes variance dearer: the optimal q grows towards 1.
+  EXPECT_GT(optimalRouletteQ(ms, ProxyClass::kOutside, 0.05).q0,
+            optimalRouletteQ(m, ProxyClass::kOutside, 0.05).q0);
 }
 
 TEST(Roulette, ErrorsAboveExactVarianceGiveCulling) {
