@@ -27,7 +27,7 @@ struct Row {
 };
 
 fs::path findMesh(const std::string& name) {
-  for (const fs::path root :
+  for (const fs::path& root :
        {fs::path(PROXYVIS_DATA_DIR) / "meshes", fs::path(PROXYVIS_SHARED_DATA_DIR) / "meshes"})
     if (fs::exists(root / name)) return root / name;
   throw Error(name, "mesh not found", "looked in data/meshes and the shared data folder");

@@ -9,6 +9,7 @@
 #include "proxies/general/proxy_pipeline.h"
 #include "proxies/inside/inside_proxy.h"
 #include "tests/proxies/gen_test_util.h"
+#include "util/error.h"
 
 namespace proxyvis {
 namespace {
@@ -37,8 +38,9 @@ TEST_P(InsideContainment, ExactCheckProvesContainment) {
   EXPECT_TRUE(r.verified) << r.report.dump(2);
   const ContainmentResult check = checkContainment(input, r.proxy);
   EXPECT_EQ(check.verdict, ContainmentVerdict::kContained) << check.detail;
-  if (o.max_faces > 0 && r.report["budget_reached"].get<bool>())
+  if (o.max_faces > 0 && r.report["budget_reached"].get<bool>()) {
     EXPECT_LE(r.proxy.numTriangles(), o.max_faces);
+  }
   const double ratio = r.report["volume_ratio"].get<double>();
   EXPECT_GT(ratio, 0.3);
   EXPECT_LE(ratio, 1.0);

@@ -11,6 +11,7 @@
 #include "proxies/outside/bounded_simplify.h"
 #include "proxies/outside/outside_proxy.h"
 #include "tests/proxies/gen_test_util.h"
+#include "util/error.h"
 
 namespace proxyvis {
 namespace {
@@ -40,7 +41,9 @@ TEST_P(OutsideContainment, ExactCheckProvesContainment) {
   // Independently of the report: the exact verdict on what would be written.
   const ContainmentResult check = checkContainment(input, r.proxy);
   EXPECT_EQ(check.verdict, ContainmentVerdict::kContains) << check.detail;
-  if (o.max_faces > 0) EXPECT_LE(r.proxy.numTriangles(), o.max_faces);
+  if (o.max_faces > 0) {
+    EXPECT_LE(r.proxy.numTriangles(), o.max_faces);
+  }
   EXPECT_GE(r.report["volume_ratio"].get<double>(), 1.0);
   EXPECT_EQ(r.report["faces"].get<size_t>(), r.proxy.numTriangles());
 }
