@@ -72,7 +72,8 @@ struct Hit {
 };
 
 // Owns one RTCDevice and registers one error callback that turns Embree errors into messages;
-// the builder turns pending messages into proxyvis::Error.
+// the builder turns pending messages into proxyvis::Error. Must outlive every builder and scene
+// made with it (the callback writes into it).
 class TraceDevice {
  public:
   TraceDevice();

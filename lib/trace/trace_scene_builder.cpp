@@ -65,12 +65,18 @@ RTCGeometry newTriangleGeometry(TraceDevice& device, const TriMesh& mesh) {
                                      sizeof(Vec3f), nv);
   void* ib = rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                      sizeof(Triangle), nt);
-  device.throwIfError("allocating buffers for " + mesh.source);
+  if (std::string errors = device.takeErrors(); !errors.empty()) {
+    rtcReleaseGeometry(geom);
+    throw Error(mesh.source, "Embree cannot allocate the mesh buffers", errors);
+  }
   static_assert(sizeof(Vec3f) == 12 && sizeof(Triangle) == 12);
   if (nv) std::memcpy(vb, mesh.vertices.data(), nv * sizeof(Vec3f));
   if (nt) std::memcpy(ib, mesh.triangles.data(), nt * sizeof(Triangle));
   rtcCommitGeometry(geom);
-  device.throwIfError("committing " + mesh.source);
+  if (std::string errors = device.takeErrors(); !errors.empty()) {
+    rtcReleaseGeometry(geom);
+    throw Error(mesh.source, "Embree rejected the mesh", errors);
+  }
   return geom;
 }
 
@@ -141,9 +147,15 @@ uint32_t TraceSceneBuilder::addMesh(const TriMesh& mesh, uint32_t user_id) {
 }
 
 uint32_t TraceSceneBuilder::addPrototype(const TriMesh& mesh) {
-  RTCGeometry geom = newTriangleGeometry(impl_->device, mesh);
   Prototype proto;
   proto.scene = newScene(impl_->device, impl_->options);
+  RTCGeometry geom = nullptr;
+  try {
+    geom = newTriangleGeometry(impl_->device, mesh);
+  } catch (...) {
+    rtcReleaseScene(proto.scene);
+    throw;
+  }
   rtcAttachGeometry(proto.scene, geom);
   rtcReleaseGeometry(geom);
   rtcCommitScene(proto.scene);
