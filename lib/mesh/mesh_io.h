@@ -13,9 +13,9 @@
 namespace proxyvis {
 
 struct SaveOptions {
-  bool binary = true;          // PLY only: binary_little_endian (true) or ASCII
-  int draco_quantization = 16; // .drc only: position quantization bits (0 = lossless float)
-  int draco_speed = 5;         // .drc only: encoder speed 0 (best) .. 10 (fastest)
+  bool binary = true;           // PLY only: binary_little_endian (true) or ASCII
+  int draco_quantization = 16;  // .drc only: position quantization bits (0 = lossless float)
+  int draco_speed = 5;          // .drc only: encoder speed 0 (best) .. 10 (fastest)
 };
 
 // Loads a triangle mesh; polygons are fan-triangulated. Vertex order is kept.
@@ -23,7 +23,8 @@ TriMesh loadMesh(const std::filesystem::path& path);
 
 // Saves atomically (temporary file + rename). Throws WriteError when the file cannot be written,
 // Error for an unknown extension.
-void saveMesh(const TriMesh& mesh, const std::filesystem::path& path, const SaveOptions& options = {});
+void saveMesh(const TriMesh& mesh, const std::filesystem::path& path,
+              const SaveOptions& options = {});
 
 // True if the extension is one loadMesh/saveMesh understands (.obj .ply .off .drc).
 bool isSupportedMeshExtension(const std::filesystem::path& path);

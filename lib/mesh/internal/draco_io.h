@@ -1,0 +1,18 @@
+#pragma once
+// Draco .drc decoding and encoding through the Draco library.
+#include <string>
+
+#include "mesh/tri_mesh.h"
+
+namespace proxyvis::detail {
+
+// Decodes a Draco triangle mesh: one vertex per decoded point (decoder order), POSITION only.
+// Throws Error naming `file` for point clouds, corrupt data or a missing POSITION attribute.
+void decodeDraco(const std::string& bytes, const std::string& file, TriMesh& out);
+
+// Encodes positions and triangles; quantization_bits 0 keeps float positions losslessly.
+// Throws WriteError naming `file` if Draco refuses the mesh.
+std::string encodeDraco(const TriMesh& mesh, int quantization_bits, int speed,
+                        const std::string& file);
+
+}  // namespace proxyvis::detail

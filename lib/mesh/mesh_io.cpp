@@ -1,0 +1,102 @@
+#include "mesh/mesh_io.h"
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+
+#include "mesh/internal/draco_io.h"
+#include "mesh/internal/header_check.h"
+#include "mesh/internal/openmesh_soup.h"
+#include "util/atomic_write.h"
+#include "util/error.h"
+
+namespace proxyvis {
+namespace fs = std::filesystem;
+
+namespace {
+
+// "obj", "ply", "off", "drc" or "" for anything else.
+std::string formatOf(const fs::path& path) {
+  std::string ext = path.extension().string();
+  if (!ext.empty()) ext.erase(0, 1);
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  return (ext == "obj" || ext == "ply" || ext == "off" || ext == "drc") ? ext : std::string();
+}
+
+Error unknownExtension(const fs::path& path) {
+  return Error(path.string(), "unknown mesh file extension '" + path.extension().string() + "'",
+               "the format is chosen by the extension", "use .obj, .ply, .off or .drc");
+}
+
+// What every loader output must satisfy before anyone uses it.
+void checkLoaded(const TriMesh& mesh, const std::string& file) {
+  for (size_t i = 0; i < mesh.vertices.size(); ++i) {
+    if (!isFinite(mesh.vertices[i]))
+      throw Error(file, "vertex " + std::to_string(i) + " has a NaN or infinite coordinate",
+                  "positions must be finite numbers", "fix or re-export the mesh");
+  }
+  const size_t n = mesh.vertices.size();
+  for (size_t f = 0; f < mesh.triangles.size(); ++f) {
+    for (uint32_t i : mesh.triangles[f]) {
+      if (i >= n)
+        throw Error(file, "vertex index out of range",
+                    "triangle " + std::to_string(f) + " references vertex " + std::to_string(i) +
+                        " but there are " + std::to_string(n),
+                    "the file is corrupt; re-export it");
+    }
+  }
+  if (mesh.triangles.empty())
+    throw Error(file, "no triangles",
+                "the file holds " + std::to_string(n) + " vertices and no faces",
+                "a mesh file with at least one face is needed");
+}
+
+}  // namespace
+
+bool isSupportedMeshExtension(const fs::path& path) {
+  return !formatOf(path).empty();
+}
+
+TriMesh loadMesh(const fs::path& path) {
+  const std::string file = path.string();
+  const std::string format = formatOf(path);
+  std::error_code ec;
+  if (format.empty() && fs::is_regular_file(path, ec)) throw unknownExtension(path);
+  const std::string bytes = readTextFile(path);  // missing, directory, unreadable -> Error
+  if (format.empty()) throw unknownExtension(path);
+  if (bytes.empty())
+    throw Error(file, "empty file", "0 bytes", "the file was not written completely; re-export it");
+
+  TriMesh mesh;
+  mesh.source = file;
+  if (format == "drc") {
+    detail::decodeDraco(bytes, file, mesh);
+  } else {
+    detail::checkDeclaredCounts(bytes, format, file);
+    detail::readWithOpenMesh(bytes, format, file, mesh);
+  }
+  checkLoaded(mesh, file);
+  return mesh;
+}
+
+void saveMesh(const TriMesh& mesh, const fs::path& path, const SaveOptions& options) {
+  const std::string file = path.string();
+  const std::string format = formatOf(path);
+  if (format.empty()) throw unknownExtension(path);
+  writeAtomically(path, [&](const fs::path& tmp) {
+    std::ofstream out(tmp, std::ios::binary);
+    if (!out) throw WriteError(file, "cannot write output", "cannot create '" + tmp.string() + "'");
+    if (format == "drc") {
+      const std::string bytes =
+          detail::encodeDraco(mesh, options.draco_quantization, options.draco_speed, file);
+      out.write(bytes.data(), std::streamsize(bytes.size()));
+    } else if (!detail::writeWithOpenMesh(mesh, format, out, options.binary)) {
+      throw WriteError(file, "cannot write output", "OpenMesh's " + format + " writer failed");
+    }
+    out.close();
+    if (!out) throw WriteError(file, "cannot write output", "write failed (disk full?)");
+  });
+}
+
+}  // namespace proxyvis
