@@ -18,6 +18,7 @@ constexpr double kErrorPriorErrors = 0.5, kErrorPriorSamples = 1.0;
 constexpr double kCostShrinkage = 8.0;
 // Variance pairs a region needs before its own V(1-V) estimate replaces the pooled one.
 constexpr double kMinVariancePairs = 16.0;
+constexpr uint32_t kVarianceStride = 4;
 
 int64_t toFixed(double x) {
   return int64_t(x * double(RegionLearner::kFixedOne));
@@ -74,6 +75,9 @@ void RegionLearner::addEstimates(uint32_t point, std::span<const double> estimat
                                  RegionTally& t) {
   if (estimates.empty()) return;
   if (point != ShadingPointQuery::kNoPoint && point < points_.size()) {
+    // One point in kVarianceStride is enough for a region's mean V(1-V), and the history
+    // update is the learner's largest per-query cost.
+    if (point % kVarianceStride != 0) return;
     PointHistory& h = points_[point];
     if (h.count > 0) {
       const double prev = double(h.sum) / (double(h.count) * double(kFixedOne));

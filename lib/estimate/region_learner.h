@@ -20,7 +20,8 @@
 //
 // The variance exact visibility leaves per pixel, mean_p V_p(1-V_p), is learned as
 // E[V~] - E[V~_prev * V~], where V~_prev is the mean of the same point's estimates in earlier
-// passes (independent of the current one, so the product has expectation V_p^2), or from pairs of
+// passes (independent of the current one, so the product has expectation V_p^2), kept for one
+// point in four (the history is the learner's largest per-query cost), or from pairs of
 // segments of one query. Every counter a pass adds is an integer (estimates in fixed point, kept
 // per thread and summed at the end of the pass), so the statistics, and with fixed costs the
 // output, do not depend on the thread count or the order queries arrive in.
