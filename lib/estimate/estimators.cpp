@@ -94,6 +94,7 @@ class RouletteEstimator final : public VisibilityEstimator {
     PV_CHECK_MSG(q.region < regions(), "query region out of range of EstimatorSetup::num_regions");
     const RegionLearner::Plan& plan = learner_.plan(q.region);
     RegionTally& t = learner_.local(q.region);
+    t.samples += q.segments.size();
     // Which rays get timed: every 8th per thread. Never depends on the random numbers, so it
     // cannot influence an estimate.
     thread_local uint32_t timing_counter = 0;

@@ -44,6 +44,7 @@ void RegionTally::add(const RegionTally& o) {
   v_sum += o.v_sum;
   v_cross += o.v_cross;
   v_n += o.v_n;
+  samples += o.samples;
 }
 
 RegionDecision decideRegion(const RouletteModel& m, ProxyClass cls, double q_min, double margin) {
@@ -198,6 +199,7 @@ void RegionLearner::endPass() {
       n_o[i] += l.cost_n_o[i];
     }
     l.v_n += double(p.v_n);
+    l.samples += double(p.samples);
     l.v_sum += double(p.v_sum) / double(kFixedOne);
     l.v_cross += double(p.v_cross) / double(kFixedOne);
   }
@@ -220,11 +222,19 @@ void RegionLearner::endPass() {
 LearnedSummary RegionLearner::summary() const {
   LearnedSummary s;
   double n[2] = {0, 0}, err[2] = {0, 0}, v_n = 0, v_diff = 0;
+  // Predicted efficiency of the current plans: sample-weighted sums of variance and cost.
+  double var_e = 0, cost_e = 0, var_plan = 0, cost_plan = 0;
   for (uint32_t r = 0; r < plans_.size(); ++r) {
     const Learned& l = learned_[r];
     if (l.n[0] + l.n[1] <= 0) continue;
     ++s.regions;
     if (plans_[r].roulette) ++s.regions_roulette;
+    const RouletteModel m = model(r);
+    const double w = l.samples;
+    var_e += w * m.var_exact;
+    cost_e += w * exactCost(m);
+    var_plan += w * (plans_[r].roulette ? rouletteVariance(m, plans_[r].q) : m.var_exact);
+    cost_plan += w * (plans_[r].roulette ? rouletteCost(m, plans_[r].q) : exactCost(m));
     for (int i = 0; i < 2; ++i) {
       n[i] += l.n[i];
       err[i] += l.err_weighted[i];
@@ -239,6 +249,8 @@ LearnedSummary RegionLearner::summary() const {
   s.var_exact = v_n > 0 ? v_diff / v_n : 0;
   s.costs = global_costs_;
   s.costs.per_sample = per_sample_;
+  if (var_plan > 0 && cost_plan > 0)
+    s.predicted_efficiency = var_e * cost_e / (var_plan * cost_plan);
   return s;
 }
 

@@ -56,6 +56,7 @@ struct RegionTally {
   uint64_t ticks_p[2] = {0, 0}, ticks_o[2] = {0, 0};
   int64_t v_sum = 0, v_cross = 0;  // fixed point (kFixedOne)
   uint64_t v_n = 0;
+  uint64_t samples = 0;  // every segment estimated, whatever the mode
   void add(const RegionTally& o);
 };
 
@@ -113,6 +114,7 @@ class RegionLearner {
     double err_weighted[2] = {0, 0};  // sum of errors / q of their pass
     double cost_n_p[2] = {0, 0}, cost_n_o[2] = {0, 0}, ticks_p[2] = {0, 0}, ticks_o[2] = {0, 0};
     double v_sum = 0, v_cross = 0, v_n = 0;
+    double samples = 0;
   };
   struct PointHistory {
     int64_t sum = 0;  // fixed point

@@ -110,7 +110,11 @@ struct LearnedSummary {
   double p_proxy_blocked = 0;     // P(V' = 0) over all learned samples
   double error_given_blocked = 0, error_given_visible = 0;  // P(V != V' | V' = i)
   double var_exact = 0;  // mean over samples of V_p(1 - V_p), as learned
-  ClassCosts costs;      // mean over regions' samples
+  // Efficiency of the last pass's plans relative to exact everywhere, predicted from the learned
+  // models (sample-weighted Var and Cost summed over regions); 0 when unknown. Exploration cost
+  // is not included.
+  double predicted_efficiency = 0;
+  ClassCosts costs;  // mean over regions' samples
 };
 
 class VisibilityEstimator {

@@ -155,6 +155,20 @@ TEST(Learning, ChoosesProxyWhereItPaysAndExactElsewhereAndStaysUnbiased) {
   EXPECT_GE(run.late_counts[1].original, uint64_t(late_queries));
   EXPECT_LT(run.late_counts[1].proxy, 0.2 * late_queries);  // only exploration
   EXPECT_EQ(run.summary.regions_roulette, 1u);
+  // Its predicted efficiency against the same plans on the true models (closed forms tested
+  // against Monte Carlo in roulette_test.cpp); loose: the learned models are estimates.
+  double ve = 0, ce = 0, vp = 0, cp = 0;
+  for (const ClassProbabilities& c : kTwoRegions) {
+    const RouletteModel m = RouletteModel::fromPoint(c, costs(1, 1, 6, 3));
+    const RegionDecision d = decideRegion(m, ProxyClass::kGeneral, 0.05, 0.05);
+    ve += m.var_exact;
+    ce += exactCost(m);
+    vp += d.roulette ? rouletteVariance(m, d.q) : m.var_exact;
+    cp += d.roulette ? rouletteCost(m, d.q) : exactCost(m);
+  }
+  const double expected = ve * ce / (vp * cp);
+  EXPECT_GT(expected, 1.05);
+  EXPECT_NEAR(run.summary.predicted_efficiency, expected, 0.15 * expected);
 
   // Unbiased: the mean over a region's estimates (segments random) is its V_avg.
   const double z = sidakZ(kAlpha, 2);
