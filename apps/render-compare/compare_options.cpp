@@ -1,6 +1,7 @@
 #include "compare_options.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <sstream>
 
 #include "util/error.h"
@@ -84,10 +85,12 @@ void CompareOptions::resolve() {
     throw Error({}, "nothing to compare", "--spp is empty and --equal-time is 0");
 }
 
-int CompareOptions::referenceSpp() const {
+int CompareOptions::referenceSpp(int largest_spp_reached) const {
   if (reference_spp > 0) return reference_spp;
-  int largest = spp_list.empty() ? 1 : spp_list.back();
-  return std::max(1024, 16 * largest);
+  int64_t wanted = std::max<int64_t>(1024, 16 * int64_t(largest_spp_reached));
+  int64_t spp = 1;
+  while (spp < wanted) spp *= 2;
+  return int(std::min<int64_t>(spp, 1 << 24));
 }
 
 }  // namespace proxyvis

@@ -18,7 +18,7 @@ struct CompareOptions {
   std::string estimators = "exact,culling,paper-equal,paper-optimal,paper-cost,roulette";
   std::string spp = "4,16";
   double equal_time = 1.0;  // seconds per render; 0 = no equal-time table
-  int reference_spp = 0;    // 0 = max(1024, 16 × the largest spp)
+  int reference_spp = 0;    // 0 = max(1024, 16 × the largest spp reached), a power of two
   int seeds = 3;
   int width = 0, height = 0;  // 0 = the scene's resolution
   std::string proxy_kind;     // which proxy of each mesh ("outside", "inside", "general")
@@ -30,7 +30,10 @@ struct CompareOptions {
   std::vector<EstimatorKind> estimator_list;
   std::vector<int> spp_list;
   void resolve();
-  int referenceSpp() const;
+  // The reference's samples per pixel given the most any compared render reached (equal-time
+  // renders may reach far more than --spp): --reference-spp, else max(1024, 16 × largest),
+  // rounded up to a power of two so that the cache key stays put from run to run.
+  int referenceSpp(int largest_spp_reached) const;
 };
 
 void addCompareOptions(CLI::App& app, CompareOptions& options);

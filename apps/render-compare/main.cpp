@@ -126,25 +126,29 @@ int runCompare(CompareOptions& o) {
   scene_options.quiet = o.common.quiet;
   std::unique_ptr<RenderScene> scene = loadRenderScene(desc, scene_options);
 
-  Reference ref = loadOrRenderReference(*scene, o);
-  if (!o.common.quiet)
-    std::fprintf(stderr, "render-compare: reference %s (%d spp, variance of mean %.2e)%s\n",
-                 ref.file.string().c_str(), ref.spp, ref.variance_of_mean,
-                 ref.cached ? " [cached]" : "");
-
   // Cells in table order; the stems name their images.
   std::vector<CellResult> cells;
   std::vector<std::string> stems;
   for (int spp : o.spp_list)
     for (EstimatorKind kind : o.estimator_list) {
-      cells.push_back(runCell(*scene, o, kind, spp, 0, ref.radiance, kEqualSppTable));
+      cells.push_back(runCell(*scene, o, kind, spp, 0, kEqualSppTable));
       stems.push_back(fmt::format("{}_{}", estimatorName(kind), spp));
     }
   if (o.equal_time > 0)
     for (EstimatorKind kind : o.estimator_list) {
-      cells.push_back(runCell(*scene, o, kind, 0, o.equal_time, ref.radiance, kEqualTimeTable));
+      cells.push_back(runCell(*scene, o, kind, 0, o.equal_time, kEqualTimeTable));
       stems.push_back(fmt::format("{}_equal-time", estimatorName(kind)));
     }
+  int largest_spp = 0;
+  for (const CellResult& c : cells)
+    largest_spp = std::max(largest_spp, c.row.extra.at("spp_max").get<int>());
+
+  Reference ref = loadOrRenderReference(*scene, o, o.referenceSpp(largest_spp));
+  if (!o.common.quiet)
+    std::fprintf(stderr, "render-compare: reference %s (%d spp, variance of mean %.2e)%s\n",
+                 ref.file.string().c_str(), ref.spp, ref.variance_of_mean,
+                 ref.cached ? " [cached]" : "");
+  for (CellResult& c : cells) scoreCell(c, ref.radiance);
 
   Report report = makeReport(o, *scene, ref);
   for (const CellResult& c : cells) report.rows.push_back(c.row);
@@ -156,43 +160,39 @@ int runCompare(CompareOptions& o) {
   addReferenceNotes(report, ref, o.common.quiet);
   for (size_t i = 0; i < cells.size(); ++i) cells[i].row = report.rows[i];
 
-  // Images and heat-maps, one colour scale per kind of map across all cells.
-  std::vector<const std::vector<float>*> error_maps;
-  std::vector<std::vector<float>> cost_maps;
-  for (const CellResult& c : cells) {
-    error_maps.push_back(&c.error_map);
-    cost_maps.push_back(raysPerPixel(c.first.cost));
-  }
-  std::vector<const std::vector<float>*> cost_ptrs;
-  for (const auto& m : cost_maps) cost_ptrs.push_back(&m);
-  HeatMapRange error_range = sharedLogRange(error_maps), cost_range = sharedLogRange(cost_ptrs);
+  // Images and heat-maps; one colour scale per kind of map and table, so the maps of the
+  // estimators in one table compare.
   float exposure = autoExposure(ref.radiance);
   const std::string reference_png = "reference.png";
   writeImage(ref.radiance, o.out / reference_png, {exposure, false});
-  std::vector<CellImages> images;
-  for (size_t i = 0; i < cells.size(); ++i) {
-    images.push_back({stems[i], &cells[i]});
-    writeCellImages(images.back(), o.out, exposure, error_range, cost_range);
-  }
-
   HtmlReportLayout layout;
   layout.plots.push_back(mseTimePlot(report.rows));
-  auto pick = [&](std::string_view table, double spp) {
-    std::vector<CellImages> out;
+  auto addTable = [&](std::string_view table, double spp, const std::string& title) {
+    std::vector<CellImages> images;
+    std::vector<const std::vector<float>*> error_maps, cost_ptrs;
+    std::vector<std::vector<float>> cost_maps;
+    for (size_t i = 0; i < cells.size(); ++i) {
+      const ReportRow& row = cells[i].row;
+      if (row.table != table || (table == kEqualSppTable && row.spp != spp)) continue;
+      images.push_back({stems[i], &cells[i]});
+      error_maps.push_back(&cells[i].error_map);
+      cost_maps.push_back(raysPerPixel(cells[i].first.cost));
+    }
+    for (const auto& m : cost_maps) cost_ptrs.push_back(&m);
+    HeatMapRange error_range = sharedLogRange(error_maps), cost_range = sharedLogRange(cost_ptrs);
     for (const CellImages& im : images)
-      if (im.cell->row.table == table && (table == kEqualTimeTable || im.cell->row.spp == spp))
-        out.push_back(im);
-    return out;
+      writeCellImages(im, o.out, exposure, error_range, cost_range);
+    return cellGalleries(title, reference_png, images, error_range, cost_range);
   };
-  auto add = [&](const std::vector<HtmlGallery>& g) {
-    layout.galleries.insert(layout.galleries.end(), g.begin(), g.end());
+  auto add = [&](const std::vector<HtmlGallery>& g, bool shown) {
+    if (shown) layout.galleries.insert(layout.galleries.end(), g.begin(), g.end());
   };
   if (o.equal_time > 0)
-    add(cellGalleries(fmt::format("Equal time ({:g} s)", o.equal_time), reference_png,
-                      pick(kEqualTimeTable, 0), error_range, cost_range));
-  if (!o.spp_list.empty())
-    add(cellGalleries(fmt::format("Equal samples ({} spp)", o.spp_list.back()), reference_png,
-                      pick(kEqualSppTable, o.spp_list.back()), error_range, cost_range));
+    add(addTable(kEqualTimeTable, 0, fmt::format("Equal time ({:g} s)", o.equal_time)), true);
+  // Every equal-spp cell gets its files; the HTML shows the largest spp.
+  for (int spp : o.spp_list)
+    add(addTable(kEqualSppTable, spp, fmt::format("Equal samples ({} spp)", spp)),
+        spp == o.spp_list.back());
 
   nlohmann::json json = reportToJson(report);
   const std::string json_text = json.dump(2) + "\n";

@@ -32,20 +32,20 @@ uint64_t fnv1a(const std::string& s) {
   return h;
 }
 
-std::string cacheKey(const SceneDesc& desc, int spp, int partials) {
-  std::string text = fmt::format("v{}|{}|{}x{}|{}|{}", kCacheVersion, sceneHash(desc),
-                                 desc.camera.width, desc.camera.height, spp, partials);
+std::string cacheKey(const SceneDesc& desc) {
+  std::string text = fmt::format("v{}|{}|{}x{}|{}", kCacheVersion, sceneHash(desc),
+                                 desc.camera.width, desc.camera.height, kPartials);
   return fmt::format("{:016x}", fnv1a(text));
 }
 
-bool loadCached(Reference& ref, const fs::path& json_file, int width, int height) {
+bool loadCached(Reference& ref, const fs::path& json_file, int width, int height, int min_spp) {
   std::error_code ec;
   if (!fs::exists(ref.file, ec) || !fs::exists(json_file, ec)) return false;
   try {
     nlohmann::json j = nlohmann::json::parse(readTextFile(json_file));
     Image image = readImage(ref.file);
-    if (j.at("key") != ref.key || image.width != width || image.height != height ||
-        image.channels < 3)
+    if (j.at("key") != ref.key || j.at("spp").get<int>() < min_spp || image.width != width ||
+        image.height != height || image.channels < 3)
       return false;
     if (image.channels != 3) {  // keep RGB only
       Image rgb{width, height, 3, std::vector<float>(size_t(width) * height * 3)};
@@ -55,6 +55,8 @@ bool loadCached(Reference& ref, const fs::path& json_file, int width, int height
       image = std::move(rgb);
     }
     ref.radiance = std::move(image);
+    ref.spp = j.at("spp").get<int>();
+    ref.partials = j.at("partials").get<int>();
     ref.variance_of_mean = j.at("variance_of_mean").get<double>();
     ref.seconds = j.at("seconds").get<double>();
     ref.cached = true;
@@ -66,16 +68,16 @@ bool loadCached(Reference& ref, const fs::path& json_file, int width, int height
 
 }  // namespace
 
-Reference loadOrRenderReference(const RenderScene& scene, const CompareOptions& options) {
+Reference loadOrRenderReference(const RenderScene& scene, const CompareOptions& options, int spp) {
   const SceneDesc& desc = scene.desc();
   Reference ref;
-  ref.partials = std::min(kPartials, options.referenceSpp());
-  const int per_partial = (options.referenceSpp() + ref.partials - 1) / ref.partials;
-  ref.spp = per_partial * ref.partials;
-  ref.key = cacheKey(desc, ref.spp, ref.partials);
+  ref.partials = std::min(kPartials, spp);
+  const int per_partial = (spp + ref.partials - 1) / ref.partials;
+  ref.key = cacheKey(desc);
   ref.file = options.out / ("reference-" + ref.key + ".exr");
   const fs::path json_file = options.out / ("reference-" + ref.key + ".json");
-  if (loadCached(ref, json_file, desc.camera.width, desc.camera.height)) return ref;
+  if (loadCached(ref, json_file, desc.camera.width, desc.camera.height, spp)) return ref;
+  ref.spp = per_partial * ref.partials;
 
   ImageVarianceAccumulator acc;
   Stopwatch watch;

@@ -1,7 +1,8 @@
 #pragma once
 // The converged reference: `exact` at many samples, as the mean of independent partial renders
 // (so its own error can be estimated from their spread), cached in the output directory under a
-// key of the scene's content hash, the resolution and the sample counts.
+// key of the scene's content hash and the resolution; a cached reference with at least the
+// samples asked for is reused.
 #include <filesystem>
 #include <string>
 
@@ -24,6 +25,6 @@ struct Reference {
   std::filesystem::path file;  // the EXR
 };
 
-Reference loadOrRenderReference(const RenderScene& scene, const CompareOptions& options);
+Reference loadOrRenderReference(const RenderScene& scene, const CompareOptions& options, int spp);
 
 }  // namespace proxyvis

@@ -2,6 +2,7 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <climits>
 #include <cstdio>
 
@@ -27,8 +28,8 @@ nlohmann::json learnedToJson(const LearnedSummary& l) {
 }  // namespace
 
 CellResult runCell(const RenderScene& scene, const CompareOptions& options, EstimatorKind kind,
-                   int spp, double time_budget, const Image& reference, std::string_view table) {
-  std::vector<double> mse, relmse, seconds, spp_reached, shading, visibility;
+                   int spp, double time_budget, std::string_view table) {
+  std::vector<double> seconds, spp_reached, shading, visibility;
   CellResult cell;
   ReportRow& row = cell.row;
   for (int k = 0; k < options.seeds; ++k) {
@@ -42,8 +43,6 @@ CellResult runCell(const RenderScene& scene, const CompareOptions& options, Esti
     settings.seed = hashKeys(options.common.seed, uint64_t(k));
     settings.quiet = options.common.quiet;
     RenderResult r = render(scene, settings);
-    mse.push_back(meanSquaredError(r.radiance.pixels, reference.pixels));
-    relmse.push_back(relativeMeanSquaredError(r.radiance.pixels, reference.pixels));
     seconds.push_back(r.seconds);
     spp_reached.push_back(r.spp);
     shading.push_back(r.shading_seconds);
@@ -52,32 +51,44 @@ CellResult runCell(const RenderScene& scene, const CompareOptions& options, Esti
     row.rays.original += double(r.rays.original) / options.seeds;
     row.rays.probe += double(r.rays.probe) / options.seeds;
     if (!options.common.quiet)
-      std::fprintf(stderr, "render-compare: %-13s %-10s seed %d/%d: %4d spp %7.3f s MSE %.3e\n",
+      std::fprintf(stderr, "render-compare: %-13s %-10s seed %d/%d: %5d spp %7.3f s\n",
                    estimatorName(kind), std::string(table).c_str(), k + 1, options.seeds, r.spp,
-                   r.seconds, mse.back());
+                   r.seconds);
+    cell.radiance_per_seed.push_back(r.radiance);
     if (k == 0) {
-      cell.error_map = squaredErrorPerPixel(r.radiance.pixels, reference.pixels, 3);
       row.extra["proxy_class"] = proxyClassName(r.proxy_class);
       if (kind == EstimatorKind::kRoulette) row.extra["learned"] = learnedToJson(r.learned);
       cell.first = std::move(r);
     }
   }
-  SeedSummary m = summarizeSeeds(mse), rel = summarizeSeeds(relmse);
   row.table = std::string(table);
   row.estimator = estimatorName(kind);
   row.spp = summarizeSeeds(spp_reached).mean;
   row.seconds = summarizeSeeds(seconds).mean;
+  row.pixels = double(cell.first.radiance.width) * cell.first.radiance.height;
+  row.seeds = options.seeds;
+  row.extra["spp_max"] = *std::max_element(spp_reached.begin(), spp_reached.end());
+  row.extra["shading_seconds"] = summarizeSeeds(shading).mean;
+  row.extra["visibility_seconds"] = summarizeSeeds(visibility).mean;
+  if (time_budget > 0) row.extra["time_budget"] = time_budget;
+  return cell;
+}
+
+void scoreCell(CellResult& cell, const Image& reference) {
+  std::vector<double> mse, relmse;
+  for (const Image& image : cell.radiance_per_seed) {
+    mse.push_back(meanSquaredError(image.pixels, reference.pixels));
+    relmse.push_back(relativeMeanSquaredError(image.pixels, reference.pixels));
+  }
+  cell.error_map = squaredErrorPerPixel(cell.first.radiance.pixels, reference.pixels, 3);
+  cell.radiance_per_seed.clear();
+  SeedSummary m = summarizeSeeds(mse), rel = summarizeSeeds(relmse);
+  ReportRow& row = cell.row;
   row.mse = m.mean;
   row.mse_stderr = m.standard_error;
   row.relmse = rel.mean;
   row.relmse_stderr = rel.standard_error;
-  row.pixels = double(reference.width) * reference.height;
-  row.seeds = options.seeds;
-  row.extra["shading_seconds"] = summarizeSeeds(shading).mean;
-  row.extra["visibility_seconds"] = summarizeSeeds(visibility).mean;
   row.extra["mse_per_seed"] = mse;
-  if (time_budget > 0) row.extra["time_budget"] = time_budget;
-  return cell;
 }
 
 }  // namespace proxyvis

@@ -2,6 +2,7 @@
 // One table cell: an estimator rendered with K seeds at a sample count (equal-spp) or a time
 // budget (equal-time), scored against the reference.
 #include <string_view>
+#include <vector>
 
 #include "compare_options.h"
 #include "metrics/report.h"
@@ -11,13 +12,19 @@
 namespace proxyvis {
 
 struct CellResult {
-  ReportRow row;                 // efficiency not filled yet (needs the exact row of the table)
-  RenderResult first;            // the render of the first seed (images for the report)
-  std::vector<float> error_map;  // its per-pixel squared error
+  ReportRow row;       // errors filled by scoreCell(), efficiency by the caller (needs exact's row)
+  RenderResult first;  // the render of the first seed (images for the report)
+  std::vector<Image> radiance_per_seed;  // kept until scoreCell()
+  std::vector<float> error_map;          // per-pixel squared error of the first seed
 };
 
-// spp > 0 and time_budget == 0 for equal-spp; time_budget > 0 (spp ignored) for equal-time.
+// Renders the cell with K seeds. spp > 0 and time_budget == 0 for equal-spp; time_budget > 0
+// (spp ignored) for equal-time. Rendering comes before scoring so that the reference can be
+// sized by the samples every cell actually reached.
 CellResult runCell(const RenderScene& scene, const CompareOptions& options, EstimatorKind kind,
-                   int spp, double time_budget, const Image& reference, std::string_view table);
+                   int spp, double time_budget, std::string_view table);
+
+// MSE, relMSE and their standard errors over the seeds; frees the per-seed images.
+void scoreCell(CellResult& cell, const Image& reference);
 
 }  // namespace proxyvis

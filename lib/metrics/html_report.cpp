@@ -14,21 +14,25 @@ constexpr const char* kStyle = R"(
 body { font-family: system-ui, sans-serif; margin: 24px 32px; color: #222; max-width: 1500px; }
 h1 { font-size: 24px; margin-bottom: 4px; } h2 { font-size: 19px; margin-top: 28px;
   border-bottom: 1px solid #ddd; padding-bottom: 4px; }
-.meta { color: #555; font-size: 13px; } .meta td { padding: 1px 12px 1px 0; }
-.notes li { color: #8a4b00; }
+.meta { color: #444; font-size: 13px; columns: 3; column-gap: 32px; max-width: 1300px;
+  margin: 8px 0; } .meta div { break-inside: avoid; padding: 1px 0; } .meta b { color: #777;
+  font-weight: normal; display: inline-block; min-width: 190px; }
+.notes { font-size: 13px; color: #444; } .notes li.warning { color: #b00020; font-weight: bold; }
 table.rows { border-collapse: collapse; font-size: 13px; font-variant-numeric: tabular-nums; }
 table.rows th, table.rows td { padding: 4px 10px; border-bottom: 1px solid #e4e4e4; text-align: right; }
 table.rows th { background: #f4f4f4; } table.rows td:first-child, table.rows th:first-child { text-align: left; }
 td.best { font-weight: bold; color: #0a6b0a; }
 .gallery { display: flex; flex-wrap: wrap; gap: 12px; }
 figure { margin: 0; text-align: center; font-size: 13px; }
-figure img { display: block; width: 220px; image-rendering: pixelated; border: 1px solid #ccc; }
+figure img { display: block; width: 176px; image-rendering: pixelated; border: 1px solid #ccc; }
 figcaption b { display: block; } figcaption span { color: #666; font-size: 12px; }
 p.desc { color: #555; font-size: 13px; margin-top: 0; }
 )";
 
 std::string metaValue(const nlohmann::json& v) {
-  return v.is_string() ? v.get<std::string>() : v.dump();
+  if (v.is_string()) return v.get<std::string>();
+  if (v.is_number_float()) return fmt::format("{:.4g}", v.get<double>());
+  return v.dump();
 }
 
 std::string htmlTable(const std::vector<ReportRow>& rows, std::string_view table) {
@@ -73,15 +77,17 @@ std::string reportToHtml(const Report& report, const HtmlReportLayout& layout) {
       "<style>{1}</style></head>\n<body>\n<h1>{0}</h1>\n",
       escapeHtml(report.title), kStyle);
   if (report.meta.is_object() && !report.meta.empty()) {
-    out += "<table class=\"meta\">\n";
+    out += "<div class=\"meta\">\n";
     for (auto it = report.meta.begin(); it != report.meta.end(); ++it)
-      out += fmt::format("<tr><td>{}</td><td>{}</td></tr>\n", escapeHtml(it.key()),
+      out += fmt::format("<div><b>{}</b>{}</div>\n", escapeHtml(it.key()),
                          escapeHtml(metaValue(it.value())));
-    out += "</table>\n";
+    out += "</div>\n";
   }
   if (!report.notes.empty()) {
     out += "<ul class=\"notes\">\n";
-    for (const std::string& n : report.notes) out += "<li>" + escapeHtml(n) + "</li>\n";
+    for (const std::string& n : report.notes)
+      out += (n.rfind("WARNING", 0) == 0 ? "<li class=\"warning\">" : "<li>") + escapeHtml(n) +
+             "</li>\n";
     out += "</ul>\n";
   }
   out += fmt::format(

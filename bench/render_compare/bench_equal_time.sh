@@ -1,0 +1,26 @@
+#!/bin/sh
+# Equal-time tables of all six estimators on dragon-plane and the foliage scene (issue #6
+# targets), plus the oracle ceiling of DESIGN.md §2b point 3 for each scene.
+#   bench/render_compare/bench_equal_time.sh [BUILD_DIR] [OUT_DIR]
+# Environment: SECONDS_PER_RENDER (default 4), SEEDS (3), KIND (outside), SPP (4,16),
+# EXTRA (more render-compare flags, e.g. "--width 96 --height 96").
+# Prints Markdown; the HTML reports are in OUT_DIR/<scene>/report/report.html.
+set -eu
+build=${1:-build}
+out=${2:-out/bench_equal_time}
+bin=$build/bin
+here=$(cd "$(dirname "$0")/../.." && pwd)
+for scene in dragon-plane foliage; do
+  dir=$out/$scene
+  mkdir -p "$dir"
+  echo "# $scene" >&2
+  "$bin/proxy-gen" "$here/scenes/$scene.json" --kind "${KIND:-outside}" --out-dir "$dir/proxies" \
+    --quiet --json "$dir/proxy-gen.json" >&2
+  echo "## $scene: equal time, ${SECONDS_PER_RENDER:-4} s per render, ${SEEDS:-3} seeds"
+  echo
+  "$bin/render-compare" "$dir/proxies/scene.json" --out "$dir/report" --quiet \
+    --spp "${SPP:-4,16}" --equal-time "${SECONDS_PER_RENDER:-4}" --seeds "${SEEDS:-3}" \
+    ${EXTRA:-}
+  echo
+  "$bin/bench_oracle_ceiling" "$dir/proxies/scene.json" --passes 16 --spp 64 ${EXTRA:-}
+done
