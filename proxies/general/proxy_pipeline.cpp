@@ -167,15 +167,20 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
                                           : ContainmentVerdict::kContained;
 
   // Budget, then checks. A bounded collapse can still let new faces cut through a thin, distant
-  // part of the surface; then the budget is retried with collapses kept closer to their edges.
+  // part of the surface, or pinch two sheets together; then the budget is retried with collapses
+  // kept closer to their edges, and last without simplification (budget_reached = false).
   TriMesh proxy;
   MeshReport p_report;
   std::optional<ContainmentResult> containment;
   BoundedSimplifyStats simplify_stats;
-  const double move_limits[] = {1.0, 0.5, 0.25};
+  const double move_limits[] = {1.0, 0.5, 0.25, 0.0};
   for (double move : move_limits) {
     proxy = built.mesh;
-    if (built.bounded && options.max_faces > 0) {
+    simplify_stats = {};
+    simplify_stats.faces_after = proxy.numTriangles();
+    simplify_stats.budget_reached =
+        options.max_faces == 0 || proxy.numTriangles() <= options.max_faces;
+    if (built.bounded && options.max_faces > 0 && move > 0) {
       BoundedSimplifyOptions s;
       s.max_faces = options.max_faces;
       s.side = options.kind == ProxyClass::kOutside ? BoundSide::kOutside : BoundSide::kInside;
@@ -193,9 +198,7 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
     const bool ok = p_report.closed && p_report.manifold &&
                     p_report.self_intersecting_pairs.value_or(1) == 0 &&
                     containment->verdict == expected;
-    if (ok || !(built.bounded && options.max_faces > 0 &&
-                proxy.numTriangles() < built.mesh.numTriangles()))
-      break;
+    if (ok || proxy.numTriangles() == built.mesh.numTriangles()) break;
   }
   if (built.bounded && options.max_faces > 0)
     report["budget_reached"] = simplify_stats.budget_reached;

@@ -16,7 +16,7 @@ struct Plane {
 
 // Unit normals make the feasibility tolerance a distance; near-duplicate planes (flat regions)
 // are merged, keeping the most restrictive one, which shrinks the triple count a lot.
-std::vector<Plane> normalizePlanes(const PlaneLpProblem& problem) {
+std::vector<Plane> normalizePlanes(const PlaneLpProblem& problem, size_t& num_constraints) {
   std::vector<Plane> planes;
   auto add = [&](Vec3d n, double d) {
     const double len = length(n);
@@ -32,6 +32,7 @@ std::vector<Plane> normalizePlanes(const PlaneLpProblem& problem) {
     planes.push_back({n, d});
   };
   for (const HalfSpace& h : problem.constraints) add(h.n, h.d);
+  num_constraints = planes.size();
   for (int axis = 0; axis < 3; ++axis) {
     Vec3d e(0, 0, 0);
     e[axis] = 1;
@@ -50,7 +51,8 @@ bool isFeasible(const std::vector<Plane>& planes, const Vec3d& x, double tol) {
 }  // namespace
 
 std::optional<Vec3d> solvePlaneLp(const PlaneLpProblem& problem) {
-  const std::vector<Plane> planes = normalizePlanes(problem);
+  size_t s = 0;
+  const std::vector<Plane> planes = normalizePlanes(problem, s);
   const double tol = 1e-9 * problem.half_size;
   const size_t m = planes.size();
 
@@ -81,18 +83,27 @@ std::optional<Vec3d> solvePlaneLp(const PlaneLpProblem& problem) {
   std::vector<Vec3d> cross_nm(m * m);
   for (size_t i = 0; i < m; ++i)
     for (size_t j = i + 1; j < m; ++j) cross_nm[i * m + j] = cross(planes[i].n, planes[j].n);
-  for (size_t i = 0; i < m; ++i) {
-    for (size_t j = i + 1; j < m; ++j) {
-      for (size_t k = j + 1; k < m; ++k) {
-        const Vec3d& jk = cross_nm[j * m + k];
-        const double det = dot(planes[i].n, jk);
-        if (std::abs(det) < 1e-9) continue;  // (nearly) parallel planes: no single vertex
-        // Cramer's rule in the form x = (d_i (n_j×n_k) + d_j (n_k×n_i) + d_k (n_i×n_j)) / det.
-        consider((jk * planes[i].d - cross_nm[i * m + k] * planes[j].d + cross_nm[i * m + j] * planes[k].d) /
-                 det);
+  // Pass 1: vertices of the constraint planes alone (C(s,3) instead of C(s+6,3) triples). Any
+  // feasible one inside the box will do: optimality only affects quality, feasibility is what
+  // keeps containment. Pass 2, with the box planes, only when pass 1 found nothing.
+  auto enumerate = [&](bool with_box) {
+    for (size_t i = 0; i < m; ++i) {
+      for (size_t j = i + 1; j < m; ++j) {
+        for (size_t k = j + 1; k < m; ++k) {
+          if ((k >= s) != with_box) continue;
+          const Vec3d& jk = cross_nm[j * m + k];
+          const double det = dot(planes[i].n, jk);
+          if (std::abs(det) < 1e-9) continue;  // (nearly) parallel planes: no single vertex
+          // Cramer's rule: x = (d_i (n_j×n_k) + d_j (n_k×n_i) + d_k (n_i×n_j)) / det.
+          consider((jk * planes[i].d - cross_nm[i * m + k] * planes[j].d +
+                    cross_nm[i * m + j] * planes[k].d) /
+                   det);
+        }
       }
     }
-  }
+  };
+  enumerate(false);
+  if (!best) enumerate(true);
   return best;
 }
 
