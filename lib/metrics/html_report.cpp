@@ -23,7 +23,7 @@ table.rows th, table.rows td { padding: 4px 10px; border-bottom: 1px solid #e4e4
 table.rows th { background: #f4f4f4; } table.rows td:first-child, table.rows th:first-child { text-align: left; }
 td.best { font-weight: bold; color: #0a6b0a; }
 .gallery { display: flex; flex-wrap: wrap; gap: 12px; }
-figure { margin: 0; text-align: center; font-size: 13px; }
+figure { margin: 0; width: 178px; text-align: center; font-size: 13px; overflow-wrap: anywhere; }
 figure img { display: block; width: 176px; image-rendering: pixelated; border: 1px solid #ccc; }
 figcaption b { display: block; } figcaption span { color: #666; font-size: 12px; }
 p.desc { color: #555; font-size: 13px; margin-top: 0; }
