@@ -163,7 +163,8 @@ class TraceScene {
   uint32_t geometryCount() const;  // top-level geometries: meshes + instances
 
   // Rays traced since construction or resetCounters() (occlusion and closest-hit, single and
-  // batch). Counted in per-thread slots, so counting costs no shared cache line per ray.
+  // batch). Counted in per-thread slots, so counting costs no shared cache line per ray; each
+  // live TraceScene holds one native thread-local key for them (a process has ~1000).
   // raysTraced() may be called while other threads trace; resetCounters() must not be.
   uint64_t raysTraced() const;
   void resetCounters();
