@@ -26,11 +26,13 @@ struct Row {
   double budget;  // fraction of the input faces; 0 = none
 };
 
+// data/ first (dragon.drc is the 16-bit Draco dragon), else the shared data folder.
 fs::path findMesh(const std::string& name) {
-  for (const fs::path& root :
-       {fs::path(PROXYVIS_DATA_DIR) / "meshes", fs::path(PROXYVIS_SHARED_DATA_DIR) / "meshes"})
-    if (fs::exists(root / name)) return root / name;
-  throw Error(name, "mesh not found", "looked in data/meshes and the shared data folder");
+  const fs::path data(PROXYVIS_DATA_DIR), shared = fs::path(PROXYVIS_SHARED_DATA_DIR) / "meshes";
+  for (const fs::path& p :
+       {data / name, shared / name, shared / fs::path(name).replace_extension(".ply")})
+    if (fs::exists(p)) return p;
+  throw Error(name, "mesh not found", "looked in data/ and the shared data folder");
 }
 
 std::string cell(const nlohmann::json& v, const char* f) {
@@ -42,8 +44,8 @@ std::string cell(const nlohmann::json& v, const char* f) {
 int main(int argc, char** argv) {
   CLI::App app{"bench_proxy_gen: quality and time of every proxy-gen method", "bench_proxy_gen"};
   CommonOptions common;
-  std::vector<std::string> meshes{"bunny.off", "spot_triangulated.obj", "dragon.ply"};
-  app.add_option("--mesh", meshes, "Meshes (names in data/meshes)")->capture_default_str();
+  std::vector<std::string> meshes{"bunny.off", "spot_triangulated.obj", "dragon.drc"};
+  app.add_option("--mesh", meshes, "Meshes (file names in data/)")->capture_default_str();
   addCommonOptions(app, common);
   return runApp(app, argc, argv, common, [&] {
     const std::vector<Row> rows{

@@ -10,12 +10,16 @@
 
 namespace proxyvis::gen_test {
 
-inline std::filesystem::path meshPath(const std::string& relative) {
-  for (const char* root : {PROXYVIS_DATA_DIR, PROXYVIS_SHARED_DATA_DIR}) {
-    std::filesystem::path p = std::filesystem::path(root) / relative;
-    if (std::filesystem::exists(p)) return p;
-  }
-  return std::filesystem::path(PROXYVIS_SHARED_DATA_DIR) / relative;
+// A bundled mesh by file name: data/ (bunny.off, dragon.drc, foliage/YELLOWFLOWER1.ply, ...),
+// else the shared data folder (meshes/, foliage/ecosys/; dragon.ply for dragon.drc).
+inline std::filesystem::path meshPath(const std::string& name) {
+  namespace fs = std::filesystem;
+  const fs::path data(PROXYVIS_DATA_DIR), shared(PROXYVIS_SHARED_DATA_DIR);
+  const fs::path ply = fs::path(name).replace_extension(".ply");
+  for (const fs::path& p : {data / name, data / "foliage" / name, shared / "meshes" / name,
+                            shared / "foliage" / "ecosys" / name, shared / "meshes" / ply})
+    if (fs::exists(p)) return p;
+  return data / name;
 }
 
 // Meshes are loaded once per test executable.

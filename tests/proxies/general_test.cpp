@@ -17,7 +17,7 @@ using gen_test::mesh;
 class GeneralMethod : public testing::TestWithParam<const char*> {};
 
 TEST_P(GeneralMethod, MeetsBudgetAndStaysClose) {
-  const TriMesh& input = mesh("meshes/bunny.off");
+  const TriMesh& input = mesh("bunny.off");
   ProxyGenOptions o;
   o.kind = ProxyClass::kGeneral;
   o.method = GetParam();
@@ -35,7 +35,7 @@ TEST_P(GeneralMethod, MeetsBudgetAndStaysClose) {
 INSTANTIATE_TEST_SUITE_P(AllMethods, GeneralMethod, testing::Values("qem", "cgal-sms", "meshopt"));
 
 TEST(GeneralRatio, RatioSetsTheBudget) {
-  const TriMesh& input = mesh("meshes/spot_triangulated.obj");
+  const TriMesh& input = mesh("spot_triangulated.obj");
   GeneralOptions g;
   g.ratio = 0.1;
   const size_t target = generalTargetFaces(input, g);
@@ -56,7 +56,7 @@ TEST(GeneralWeld, SharedPositionsBecomeOneVertex) {
 }
 
 TEST(GeneralReport, HasEveryKeyAndRoundTrips) {
-  const TriMesh& input = mesh("meshes/bunny.off");
+  const TriMesh& input = mesh("bunny.off");
   ProxyGenOptions o;
   o.kind = ProxyClass::kGeneral;
   o.ratio = 0.05;

@@ -47,15 +47,15 @@ TEST_P(InsideContainment, ExactCheckProvesContainment) {
 }
 
 INSTANTIATE_TEST_SUITE_P(ClosedMeshes, InsideContainment,
-                         testing::Values(Case{"meshes/bunny.off", "wrap", 0, 0},
-                                         Case{"meshes/bunny.off", "wrap", 0.05, 1.0 / 300},
-                                         Case{"meshes/spot_triangulated.obj", "wrap", 0.03, 0},
-                                         Case{"meshes/bunny.off", "erode", 0, 0},
-                                         Case{"meshes/spot_triangulated.obj", "erode", 0, 0},
-                                         Case{"meshes/dragon.ply", "wrap", 0.02, 0}));
+                         testing::Values(Case{"bunny.off", "wrap", 0, 0},
+                                         Case{"bunny.off", "wrap", 0.05, 1.0 / 300},
+                                         Case{"spot_triangulated.obj", "wrap", 0.03, 0},
+                                         Case{"bunny.off", "erode", 0, 0},
+                                         Case{"spot_triangulated.obj", "erode", 0, 0},
+                                         Case{"dragon.drc", "wrap", 0.02, 0}));
 
 TEST(InsideBudget, WrapBudgetIsRespected) {
-  const TriMesh& input = mesh("meshes/bunny.off");
+  const TriMesh& input = mesh("bunny.off");
   ProxyGenOptions o;
   o.kind = ProxyClass::kInside;
   o.max_faces = 300;
@@ -67,7 +67,7 @@ TEST(InsideBudget, WrapBudgetIsRespected) {
 }
 
 TEST(InsideOpenInput, IsAnErrorNamingBoundaryEdges) {
-  const TriMesh& input = mesh("meshes/bun_zipper.ply");
+  const TriMesh& input = mesh("bun_zipper.ply");
   ProxyGenOptions o;
   o.kind = ProxyClass::kInside;
   try {
@@ -86,7 +86,7 @@ TEST(InsideOpenInput, IsAnErrorNamingBoundaryEdges) {
 }
 
 TEST(InsideOpenInput, FillHolesMakesBunZipperWork) {
-  const TriMesh& input = mesh("meshes/bun_zipper.ply");
+  const TriMesh& input = mesh("bun_zipper.ply");
   size_t holes = 0;
   const TriMesh filled = fillHoles(input, &holes);
   EXPECT_EQ(countBoundaryEdges(filled), 0u);
@@ -103,7 +103,7 @@ TEST(InsideOpenInput, FillHolesMakesBunZipperWork) {
 
 TEST(InsideErode, ErosionShrinksTheVolume) {
   // More erosion leaves less inside: a property, not a stored number.
-  const TriMesh& input = mesh("meshes/spot_triangulated.obj");
+  const TriMesh& input = mesh("spot_triangulated.obj");
   ErodeOptions small, large;
   small.erosion = small.voxel;
   large.erosion = 3 * large.voxel;
