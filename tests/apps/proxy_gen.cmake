@@ -24,7 +24,7 @@ if(CMAKE_SCRIPT_MODE_FILE)
       endif()
     endforeach()
     if(JSON_VERIFIED)
-      string(JSON verified GET "${out}" verified)
+      string(JSON verified GET "${out}" verified)  # CMake reads JSON true as ON
       if(NOT verified STREQUAL JSON_VERIFIED)
         message(FATAL_ERROR "verified = ${verified}, expected ${JSON_VERIFIED}")
       endif()
@@ -68,7 +68,7 @@ endfunction()
 
 pg_test(outside_wrap_budget 0
   "${pg_data}/bunny.off --kind outside --max-faces 300 -o ${pg_dir}/bunny.outside.ply --json - -q"
-  KEYS VERIFIED true FILE ${pg_dir}/bunny.outside.ply)
+  KEYS VERIFIED ON FILE ${pg_dir}/bunny.outside.ply)
 pg_test(outside_hull 0 "${pg_data}/bunny.off --kind outside --method hull -o ${pg_dir}/bunny.hull.obj"
   REGEX "verified: +yes" FILE ${pg_dir}/bunny.hull.obj)
 pg_test(general_meshopt 0
@@ -81,3 +81,7 @@ pg_test(missing_input 2 "${pg_dir}/no_such_mesh.ply --kind outside -o ${pg_dir}/
 pg_test(unknown_method 2 "${pg_data}/bunny.off --kind inside --method hull -o ${pg_dir}/bad.ply"
   REGEX "unknown method" NO_FILE ${pg_dir}/bad.ply)
 pg_test(bad_kind 2 "${pg_data}/bunny.off --kind sideways -o ${pg_dir}/bad2.ply" REGEX "kind")
+# Scene mode: one proxy per mesh (open walls and the closed bunny), in parallel, plus the scene.
+pg_test(scene_outside 0
+  "${CMAKE_SOURCE_DIR}/scenes/cornell-bunny.json --kind outside --out-dir ${pg_dir}/cornell -q --threads 2"
+  REGEX "scene with proxies" FILE ${pg_dir}/cornell/scene.json)
