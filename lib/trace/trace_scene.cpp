@@ -27,6 +27,7 @@ struct IgnoreContext {
   RTCIntersectContext base;
   const uint32_t* user_ids;
   uint32_t ignore;
+  bool mask_first;
 };
 
 // Rejects candidate hits on geometry with the ignored user id. instID[0] is the top-level
@@ -46,7 +47,8 @@ void initContext(IgnoreContext& ctx, const TraceScene::Impl& impl, uint32_t igno
   rtcInitIntersectContext(&ctx.base);
   ctx.user_ids = impl.user_ids.data();
   ctx.ignore = ignore;
-  if (ignore != kIgnoreNone) ctx.base.filter = ignoreFilter;
+  ctx.mask_first = impl.ignore == IgnoreStrategy::kMaskThenFilter;
+  if (ignore != kIgnoreNone && !ctx.mask_first) ctx.base.filter = ignoreFilter;
 }
 
 // NaN or inf in org/dir, NaN tnear/tfar or an infinite tnear: Embree's answer would be undefined.
@@ -67,7 +69,7 @@ bool isValid(const Segment& s) {
               "NaN or infinite values cannot be traced", "check the sampling that produced it");
 }
 
-RTCRay toRay(const Segment& s) {
+RTCRay toRay(const Segment& s, uint32_t mask = ~0u) {
   RTCRay r;
   r.org_x = s.org.x;
   r.org_y = s.org.y;
@@ -78,16 +80,53 @@ RTCRay toRay(const Segment& s) {
   r.dir_z = s.dir.z;
   r.time = 0;
   r.tfar = s.tfar;
-  r.mask = ~0u;  // the device supports ray masks; a zero mask would hit nothing
+  r.mask = mask;
   r.id = 0;
   r.flags = 0;
   return r;
 }
 
+// IgnoreStrategy::kMaskThenFilter (see trace_scene.h): every top-level geometry carries the mask
+// bit b = maskBit(its user id). Pass 1 masks out the ignored id's bit: it never enters that
+// geometry (nor the ~1/32 of the others that share b). Only if pass 1 finds nothing, pass 2
+// traces the geometry with bit b alone, the context filter rejecting the ignored id's hits. The
+// union of the two passes is every geometry except the ignored one's. With kFilter (or nothing to
+// ignore) initContext has set the filter (or none) and one plain pass does it.
 bool occludedOne(RTCScene scene, IgnoreContext& ctx, const Segment& s) {
-  RTCRay ray = toRay(s);
+  if (ctx.ignore == kIgnoreNone || !ctx.mask_first) {
+    RTCRay ray = toRay(s);
+    rtcOccluded1(scene, &ctx.base, &ray);
+    return ray.tfar < 0.0f;  // Embree sets tfar = -inf on a hit
+  }
+  const uint32_t bit = maskBit(ctx.ignore);
+  RTCRay ray = toRay(s, ~bit);
   rtcOccluded1(scene, &ctx.base, &ray);
-  return ray.tfar < 0.0f;  // Embree sets tfar = -inf on a hit
+  if (ray.tfar < 0.0f) return true;
+  ray = toRay(s, bit);
+  ctx.base.filter = ignoreFilter;
+  rtcOccluded1(scene, &ctx.base, &ray);
+  ctx.base.filter = nullptr;
+  return ray.tfar < 0.0f;
+}
+
+// Closest hit; with kMaskThenFilter, pass 1 as above, then pass 2 only up to pass 1's distance.
+void intersectOne(RTCScene scene, IgnoreContext& ctx, const Segment& s, RTCRayHit& rh) {
+  const bool two_pass = ctx.ignore != kIgnoreNone && ctx.mask_first;
+  const uint32_t bit = two_pass ? maskBit(ctx.ignore) : 0u;
+  rh.ray = toRay(s, ~bit);
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(scene, &ctx.base, &rh);
+  if (!two_pass) return;
+  RTCRayHit second;
+  second.ray = toRay(s, bit);
+  second.ray.tfar = rh.ray.tfar;  // the segment's tfar, or pass 1's hit distance
+  second.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  second.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  ctx.base.filter = ignoreFilter;
+  rtcIntersect1(scene, &ctx.base, &second);
+  ctx.base.filter = nullptr;
+  if (second.hit.geomID != RTC_INVALID_GEOMETRY_ID) rh = second;
 }
 
 }  // namespace
@@ -134,10 +173,7 @@ Hit TraceScene::intersect(const Segment& s, uint32_t ignore_user_id) const {
   IgnoreContext ctx;
   initContext(ctx, *impl_, ignore_user_id);
   RTCRayHit rh;
-  rh.ray = toRay(s);
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(impl_->scene, &ctx.base, &rh);
+  intersectOne(impl_->scene, ctx, s, rh);
   Hit hit;
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
   hit.hit = true;

@@ -118,9 +118,12 @@ struct TraceSceneBuilder::Impl {
     scene->device = device.handle();
     rtcRetainDevice(scene->device);
     scene->scene = newScene(device, options);
+    scene->ignore = options.ignore;
   }
 
   uint32_t attach(RTCGeometry geom, const TopGeometry& top) {
+    rtcSetGeometryMask(geom, maskBit(top.user_id));
+    rtcCommitGeometry(geom);  // a geometry changed after its commit must be committed again
     uint32_t id = rtcAttachGeometry(scene->scene, geom);
     rtcReleaseGeometry(geom);  // the scene holds the reference now
     device.throwIfError("attaching a geometry");

@@ -10,6 +10,7 @@
 
 #include "brute_force.h"
 #include "test_meshes.h"
+#include "trace/internal/trace_scene_impl.h"  // maskBit, to build colliding ids
 #include "trace/trace_scene.h"
 #include "trace_compare.h"
 #include "util/error.h"
@@ -228,10 +229,19 @@ TEST(TraceScene, BatchEqualsSingleAtAnyThreadCount) {
     occluded += one[i];
   }
   EXPECT_GT(occluded, 1000u);
-  // The batch with an ignored id equals the single form too.
+  // Ignoring the only object hides everything, in either strategy; ignoring another id nothing.
   std::vector<uint8_t> ign(segs.size());
   scene->occluded(segs, ign, 7);
   for (size_t i = 0; i < segs.size(); ++i) ASSERT_EQ(ign[i], 0) << "segment " << i;
+  scene->occluded(segs, ign, 8);
+  EXPECT_EQ(ign, one);
+  TraceSceneOptions mask_first;
+  mask_first.ignore = IgnoreStrategy::kMaskThenFilter;
+  auto scene2 = flatScene(device, mesh, mask_first);
+  scene2->occluded(segs, ign, 7);
+  for (size_t i = 0; i < segs.size(); ++i) ASSERT_EQ(ign[i], 0) << "segment " << i;
+  scene2->occluded(segs, ign, 8);
+  EXPECT_EQ(ign, one);
 }
 
 TEST(TraceScene, CountersCountEveryRay) {
@@ -253,9 +263,25 @@ TEST(TraceScene, CountersCountEveryRay) {
 }
 
 // Self-shadowing support: geometry with the ignored user id is invisible to that query only.
-TEST(TraceScene, IgnoreUserIdHidesOnlyThatGeometry) {
+class IgnoreStrategies : public ::testing::TestWithParam<IgnoreStrategy> {
+ protected:
+  TraceSceneOptions options() const {
+    TraceSceneOptions o;
+    o.ignore = GetParam();
+    return o;
+  }
+};
+INSTANTIATE_TEST_SUITE_P(TraceScene, IgnoreStrategies,
+                         ::testing::Values(IgnoreStrategy::kFilter,
+                                           IgnoreStrategy::kMaskThenFilter),
+                         [](const auto& info) {
+                           return info.param == IgnoreStrategy::kFilter ? "Filter"
+                                                                        : "MaskThenFilter";
+                         });
+
+TEST_P(IgnoreStrategies, IgnoreUserIdHidesOnlyThatGeometry) {
   TraceDevice device;
-  TraceSceneBuilder builder(device);
+  TraceSceneBuilder builder(device, options());
   // Along +x: sphere A (user 1) at x=0, instance B (user 2) of a sphere at x=4, mesh C (user 3)
   // at x=8 sharing user id 1 with A (two pieces of one object).
   builder.addMesh(icosphere(2, {0, 0, 0}, 1), 1);
@@ -295,6 +321,56 @@ TEST(TraceScene, IgnoreUserIdHidesOnlyThatGeometry) {
   Segment from_inside{{0, 0, 0}, 0, {1, 0, 0}, 2.5f};  // ends before B (x >= 3)
   EXPECT_TRUE(scene->occluded(from_inside));
   EXPECT_FALSE(scene->occluded(from_inside, 1));
+}
+
+// Ignoring is exact even for objects that share the ignored object's mask bit (they are only
+// seen by the second, filtered pass): A and B share a bit, C has another one.
+TEST_P(IgnoreStrategies, IgnoreIsExactForObjectsSharingAMaskBit) {
+  const uint32_t a = 5;
+  uint32_t b = a + 1, c = a + 1;
+  while (maskBit(b) != maskBit(a)) ++b;
+  while (maskBit(c) == maskBit(a)) ++c;
+  for (bool instanced : {false, true}) {
+    SCOPED_TRACE(instanced ? "instances" : "flattened meshes");
+    TraceDevice device;
+    TraceSceneBuilder builder(device, options());
+    const TriMesh unit = icosphere(2);
+    const uint32_t proto = builder.addPrototype(unit);
+    auto add = [&](float x, uint32_t user) {
+      if (instanced)
+        builder.addInstance(proto, Affine3f::translation({x, 0, 0}), user);
+      else
+        builder.addMesh(icosphere(2, {x, 0, 0}, 1), user);
+    };
+    add(0, a);  // A at x = 0, B at x = 4, C at x = 8, a second piece of A at x = 12
+    add(4, b);
+    add(8, c);
+    add(12, a);
+    auto scene = builder.build();
+    const Segment from_a{{0, 0, 0}, 0, {1, 0, 0}, 20};
+    EXPECT_TRUE(scene->occluded(from_a, a));
+    Hit h = scene->intersect(from_a, a);
+    ASSERT_TRUE(h.hit);
+    EXPECT_EQ(h.user_id, b);
+    EXPECT_NEAR(h.t, 3.0f, 0.05f);
+    h = scene->intersect(from_a, b);
+    ASSERT_TRUE(h.hit);
+    EXPECT_EQ(h.user_id, a);
+    EXPECT_NEAR(h.t, 1.0f, 0.05f);
+    h = scene->intersect({{4, 0, 0}, 0, {1, 0, 0}, 20}, b);  // from B: C next, not the second A
+    ASSERT_TRUE(h.hit);
+    EXPECT_EQ(h.user_id, c);
+    EXPECT_FALSE(scene->occluded({{0, 0, 0}, 0, {1, 0, 0}, 2.5f}, a));  // only A
+    EXPECT_TRUE(scene->occluded({{2, 0, 0}, 0, {1, 0, 0}, 2.5f}, a));   // reaches B
+    EXPECT_FALSE(scene->occluded({{2, 0, 0}, 0, {1, 0, 0}, 2.5f}, b));
+    EXPECT_FALSE(scene->occluded({{9.5f, 0, 0}, 0, {1, 0, 0}, 5}, a));  // the second piece of A
+    EXPECT_TRUE(scene->occluded({{9.5f, 0, 0}, 0, {1, 0, 0}, 5}, c));
+    h = scene->intersect({{-2, 0, 0}, 0, {1, 0, 0}, 20}, a);  // through A, B, C, A
+    ASSERT_TRUE(h.hit);
+    EXPECT_EQ(h.user_id, b);
+    EXPECT_NEAR(h.t, 5.0f, 0.05f);
+    EXPECT_FALSE(scene->intersect({{9.5f, 0, 0}, 0, {1, 0, 0}, 5}, a).hit);
+  }
 }
 
 TEST(TraceScene, EmptySceneOccludesNothing) {

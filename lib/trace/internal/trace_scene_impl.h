@@ -20,6 +20,13 @@ struct alignas(64) RayCounter {
   }
 };
 
+// The ray-mask bit of a user id (Fibonacci hashing, top 5 bits), so that ids 0, 1, 2, ... and
+// ids in steps of 32 both spread over the 32 bits. Every top-level geometry's mask is the bit of
+// its user id; see trace_scene.cpp for how ignoring uses it.
+inline uint32_t maskBit(uint32_t user_id) {
+  return 1u << ((user_id * 0x9E3779B1u) >> 27);
+}
+
 // Per top-level geometry (a flattened mesh or an instance), indexed by Embree's geometry id.
 struct TopGeometry {
   uint32_t user_id = 0;
@@ -37,6 +44,7 @@ struct TraceScene::Impl {
   std::vector<uint32_t> user_ids;
   Bounds3f bounds;
   uint64_t triangles = 0;
+  IgnoreStrategy ignore = IgnoreStrategy::kFilter;
   // ets_key_per_instance: local() is a native TLS lookup, not a hash of the thread id.
   mutable tbb::enumerable_thread_specific<RayCounter, tbb::cache_aligned_allocator<RayCounter>,
                                           tbb::ets_key_per_instance>
