@@ -189,9 +189,12 @@ BenchScene instanceScene(pv::TraceDevice& device, const pv::TriMesh& mesh, const
   rtcCommitScene(bare_proto);
   s.bare_prototypes.push_back(bare_proto);
   s.bare = rtcNewScene(device.handle());
-  for (const pv::Affine3f& xf : xfs) {
+  for (size_t i = 0; i < xfs.size(); ++i) {
+    const pv::Affine3f& xf = xfs[i];
     RTCGeometry inst = rtcNewGeometry(device.handle(), RTC_GEOMETRY_TYPE_INSTANCE);
     rtcSetGeometryInstancedScene(inst, bare_proto);
+    // For the self-shadowing comparison: instance i answers rays whose mask has bit i % 32.
+    rtcSetGeometryMask(inst, 1u << (i % 32));
     rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, &xf.m[0][0]);
     rtcCommitGeometry(inst);
     rtcAttachGeometry(s.bare, inst);
@@ -233,6 +236,166 @@ pv::TriMesh benchMesh(const std::string& path) {
   std::printf("(loadMesh not available: procedural icosphere instead of %s)\n", path.c_str());
   return pv::test::icosphere(6);
 #endif
+}
+
+// Self-shadowing: segments that leave the surface of instance k towards a random point, traced
+// while ignoring k. Compared: the wrapper's two exact strategies (IgnoreStrategy::kFilter and
+// kMaskThenFilter, on scenes with the same BVH settings); a bare loop with ray masks
+// (bit k % 32 cleared: exact only with at most 32 objects, here it also hides every 32nd other
+// instance); the classic origin offset (tnear = 1e-4 of the diagonal, no ignoring); and neither
+// (the ray finds its own surface at t ~ 0).
+// occluded(segs[i], owner[i]) for all i, single calls in the usual parallel_for.
+void ignoring(const pv::TraceScene& scene, const std::vector<pv::Segment>& segs,
+              const std::vector<uint32_t>& owner, std::vector<uint8_t>& out) {
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, segs.size(), kChunk), [&](const auto& r) {
+    for (size_t i = r.begin(); i != r.end(); ++i) out[i] = scene.occluded(segs[i], owner[i]);
+  });
+}
+
+// The renderer's case: the same segments (leaving dragon k's surface) traced against proxies,
+// here each dragon's bounding box (12 triangles, a crude outside proxy), instanced or flattened,
+// ignoring dragon k's proxy, which contains the segment's start.
+void proxySelfShadowTable(const pv::TriMesh& mesh, const std::vector<pv::Affine3f>& xfs,
+                          const std::vector<pv::Segment>& segs, const std::vector<uint32_t>& owner,
+                          pv::TraceDevice& device, const Options& o) {
+  const pv::Bounds3f b = mesh.bounds();
+  pv::TriMesh box;
+  for (int i = 0; i < 8; ++i)
+    box.vertices.push_back(
+        {(i & 1) ? b.hi.x : b.lo.x, (i & 2) ? b.hi.y : b.lo.y, (i & 4) ? b.hi.z : b.lo.z});
+  box.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                   {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  box.source = "bounding box";
+  std::printf(
+      "\nSelf-shadowing against proxies (each dragon's bounding box), same segments\n\n"
+      "| proxies | kFilter Mrays/s | kMaskThenFilter Mrays/s | CPU-time ratio mask / filter | "
+      "answers differing |\n|---|---:|---:|---:|---:|\n");
+  for (bool instanced : {true, false}) {
+    auto build = [&](pv::IgnoreStrategy strategy) {
+      pv::TraceSceneOptions options;
+      options.ignore = strategy;
+      pv::TraceSceneBuilder builder(device, options);
+      uint32_t proto = builder.addPrototype(box);
+      for (uint32_t i = 0; i < xfs.size(); ++i) {
+        if (instanced) {
+          builder.addInstance(proto, xfs[i], i);
+        } else {
+          pv::TriMesh placed = box;
+          for (pv::Vec3f& v : placed.vertices) v = xfs[i].apply(v);
+          builder.addMesh(placed, i);
+        }
+      }
+      return builder.build();
+    };
+    auto filter_scene = build(pv::IgnoreStrategy::kFilter);
+    auto mask_scene = build(pv::IgnoreStrategy::kMaskThenFilter);
+    std::vector<uint8_t> filter_out(segs.size()), mask_out(segs.size());
+    Rate filter, mask;
+    for (int rep = 0; rep < o.reps; ++rep) {
+      measure(filter, segs.size(), [&] { ignoring(*filter_scene, segs, owner, filter_out); });
+      measure(mask, segs.size(), [&] { ignoring(*mask_scene, segs, owner, mask_out); });
+    }
+    size_t differ = 0;
+    for (size_t i = 0; i < segs.size(); ++i) differ += filter_out[i] != mask_out[i];
+    std::printf("| %zu boxes, %s | %.2f | %.2f | %.0f %% | %zu |\n", xfs.size(),
+                instanced ? "instanced" : "flattened", filter.wall, mask.wall,
+                100 * mask.cpu / filter.cpu, differ);
+  }
+}
+
+void selfShadowTable(BenchScene& s, const pv::TriMesh& mesh, pv::TraceDevice& device,
+                     const Options& o) {
+  const pv::TraceScene& scene = *s.wrapped;
+  const size_t n = std::max<size_t>(1, o.rays / 4);
+  auto probes = makeSegments(scene.bounds(), n, 77);
+  auto targets = makeSegments(scene.bounds(), n, 78);
+  std::vector<pv::Segment> segs(n);
+  std::vector<uint32_t> owner(n, pv::kIgnoreNone);
+  tbb::parallel_for(size_t(0), n, [&](size_t i) {
+    pv::Hit h = scene.intersect(probes[i]);
+    if (!h.hit) return;
+    pv::Vec3f p = probes[i].org + probes[i].dir * h.t;
+    segs[i] = {p, 0.0f, targets[i].org - p, 1.0f};
+    owner[i] = h.user_id;
+  });
+  size_t k = 0;  // keep the probes that hit something
+  for (size_t i = 0; i < n; ++i)
+    if (owner[i] != pv::kIgnoreNone) {
+      segs[k] = segs[i];
+      owner[k++] = owner[i];
+    }
+  segs.resize(k);
+  owner.resize(k);
+  const float offset = 1e-4f * scene.bounds().diagonal();
+  // The same instanced scene, built for the other strategy.
+  pv::TraceSceneOptions two_pass_options;
+  two_pass_options.robust = o.robust;
+  two_pass_options.high_quality = o.high_quality;
+  two_pass_options.ignore = pv::IgnoreStrategy::kMaskThenFilter;
+  pv::TraceSceneBuilder builder(device, two_pass_options);
+  const uint32_t proto = builder.addPrototype(mesh);
+  const auto xfs = gridTransforms(mesh, o.instances);
+  for (uint32_t i = 0; i < xfs.size(); ++i) builder.addInstance(proto, xfs[i], i);
+  auto two_pass_scene = builder.build();
+  std::vector<uint8_t> filter_out(k), two_out(k), mask_out(k), offset_out(k), naive_out(k);
+  Rate filter, two, mask, offs, naive;
+  auto perSegment = [&](auto&& body) {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, k, kChunk), [&](const auto& r) {
+      for (size_t i = r.begin(); i != r.end(); ++i) body(i);
+    });
+  };
+  for (int rep = 0; rep < o.reps; ++rep) {
+    measure(filter, k, [&] { ignoring(scene, segs, owner, filter_out); });
+    measure(two, k, [&] { ignoring(*two_pass_scene, segs, owner, two_out); });
+    measure(mask, k, [&] {
+      tbb::parallel_for(tbb::blocked_range<size_t>(0, k, kChunk), [&](const auto& r) {
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        for (size_t i = r.begin(); i != r.end(); ++i) {
+          const pv::Segment& g = segs[i];
+          RTCRay ray{g.org.x, g.org.y, g.org.z, g.tnear, g.dir.x,
+                     g.dir.y, g.dir.z, 0.0f,    g.tfar,  ~(1u << (owner[i] % 32)),
+                     0,       0};
+          rtcOccluded1(s.bare, &ctx, &ray);
+          mask_out[i] = ray.tfar < 0.0f;
+        }
+      });
+    });
+    measure(offs, k, [&] {
+      perSegment([&](size_t i) {
+        pv::Segment g = segs[i];
+        g.tnear = offset / pv::length(g.dir);
+        offset_out[i] = scene.occluded(g);
+      });
+    });
+    measure(naive, k,
+            [&] { perSegment([&](size_t i) { naive_out[i] = scene.occluded(segs[i]); }); });
+  }
+  auto count = [&](const std::vector<uint8_t>& v) {
+    size_t c = 0;
+    for (uint8_t x : v) c += x;
+    return c;
+  };
+  auto differ = [&](const std::vector<uint8_t>& v) {
+    size_t c = 0;
+    for (size_t i = 0; i < k; ++i) c += v[i] != filter_out[i];
+    return c;
+  };
+  std::printf(
+      "\nSelf-shadowing on %s: %zu segments leaving instance k's surface, 2 threads\n\n"
+      "| method | Mrays/s | CPU-time ratio to kFilter | occluded | answers differing from "
+      "kFilter |\n|---|---:|---:|---:|---:|\n",
+      s.name.c_str(), k);
+  auto row = [&](const char* name, const Rate& r, const std::vector<uint8_t>& v) {
+    std::printf("| %s | %.2f | %.0f %% | %.1f %% | %zu |\n", name, r.wall, 100 * r.cpu / filter.cpu,
+                100.0 * double(count(v)) / double(k), differ(v));
+  };
+  row("ignore_user_id, kFilter (exact)", filter, filter_out);
+  row("ignore_user_id, kMaskThenFilter (exact)", two, two_out);
+  row("ray mask, bit k % 32 (bare Embree; not exact)", mask, mask_out);
+  row("origin offset 1e-4 diag, no ignoring", offs, offset_out);
+  row("no offset, no ignoring", naive, naive_out);
+  proxySelfShadowTable(mesh, xfs, segs, owner, device, o);
 }
 
 int run(Options& o) {
@@ -304,6 +467,7 @@ int run(Options& o) {
       std::fflush(stdout);
     }
   }
+  selfShadowTable(scenes.back(), mesh, device, o);
   for (BenchScene& s : scenes) {
     rtcReleaseScene(s.bare);
     for (RTCScene p : s.bare_prototypes) rtcReleaseScene(p);
