@@ -76,6 +76,9 @@ TriMesh simplifyQem(const TriMesh& input, const GeneralOptions& options) {
   for (const Vec3f& v : welded.vertices) vh.push_back(om.add_vertex(OmMesh::Point(v.x, v.y, v.z)));
   for (const Triangle& t : welded.triangles) om.add_face(vh[t[0]], vh[t[1]], vh[t[2]]);
 
+  // ModNormalFlipping compares face normals before and after a collapse.
+  om.request_face_normals();
+  om.update_face_normals();
   OpenMesh::Decimater::DecimaterT<OmMesh> decimater(om);
   OpenMesh::Decimater::ModQuadricT<OmMesh>::Handle quadric;
   OpenMesh::Decimater::ModNormalFlippingT<OmMesh>::Handle normal_flipping;

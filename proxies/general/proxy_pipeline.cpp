@@ -198,6 +198,14 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
     const bool ok = p_report.closed && p_report.manifold &&
                     p_report.self_intersecting_pairs.value_or(1) == 0 &&
                     containment->verdict == expected;
+    if (built.bounded && options.max_faces > 0)
+      report["budget_attempts"].push_back(
+          {{"max_move_edges", move},
+           {"faces", proxy.numTriangles()},
+           {"closed", p_report.closed},
+           {"manifold", p_report.manifold},
+           {"self_intersecting_pairs", p_report.self_intersecting_pairs.value_or(0)},
+           {"containment", containmentName(containment->verdict)}});
     if (ok || proxy.numTriangles() == built.mesh.numTriangles()) break;
   }
   if (built.bounded && options.max_faces > 0)

@@ -85,17 +85,16 @@ Grid voxelize(const TriMesh& mesh, double h) {
   return g;
 }
 
-// Erosion by a (2r+1)^3 cube: a voxel stays if every voxel within L∞ distance r is inside.
-// Separable: three 1-D min filters.
-void erode(Grid& g, int r) {
+// Erosion (keep = all) or dilation (keep = any) by a (2r+1)^3 cube, as three 1-D filters:
+// erosion keeps a voxel if every voxel within L∞ distance r is inside.
+void morph(Grid& g, int r, bool dilate) {
   for (int axis = 0; axis < 3; ++axis) {
     std::vector<uint8_t> out(g.in.size(), 0);
     for (int k = 0; k < g.n[2]; ++k)
       for (int j = 0; j < g.n[1]; ++j)
         for (int i = 0; i < g.n[0]; ++i) {
-          if (!g.at(i, j, k)) continue;
-          bool keep = true;
-          for (int d = -r; d <= r && keep; ++d) {
+          bool keep = !dilate;
+          for (int d = -r; d <= r && keep != dilate; ++d) {
             int c[3] = {i, j, k};
             c[axis] += d;
             keep = g.at(c[0], c[1], c[2]);
@@ -213,7 +212,11 @@ TriMesh makeErodeProxy(const TriMesh& input, const ErodeOptions& options, Inside
   const double h = options.voxel * diag;
   Grid g = voxelize(input, h);
   const int r = std::max(1, int(std::ceil(options.erosion / options.voxel - 1e-9)));
-  erode(g, r);
+  // Opening: erode by r + 1, dilate by 1. The result is a subset of the r-eroded set without
+  // parts thinner than about 3 voxels, which the budgeted inward collapse would otherwise press
+  // flat (its two sheets meeting = a self-intersection).
+  morph(g, r + 1, false);
+  morph(g, 1, true);
   makeWellComposed(g);
   size_t voxels = 0;
   for (uint8_t v : g.in) voxels += v;
