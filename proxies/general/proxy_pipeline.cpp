@@ -159,6 +159,13 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
   Built built = timer.run("build", [&] { return build(reference, options, method, params); });
   report.update(built.extra);
   report["faces_before_budget"] = built.mesh.numTriangles();
+  // A proxy with more faces than its original saves nothing (a wrapped 2-triangle ground quad
+  // has thousands): without an explicit budget, such a proxy is reduced to the input's count.
+  size_t max_faces = options.max_faces;
+  if (built.bounded && max_faces == 0 && built.mesh.numTriangles() > input.numTriangles()) {
+    max_faces = std::max<size_t>(input.numTriangles(), 12);
+    params["max_faces_auto"] = max_faces;
+  }
 
   const double ref_volume = reference.signedVolume();
   const bool ref_closed = options.kind == ProxyClass::kInside || in_report.closed;
@@ -178,11 +185,10 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
     proxy = built.mesh;
     simplify_stats = {};
     simplify_stats.faces_after = proxy.numTriangles();
-    simplify_stats.budget_reached =
-        options.max_faces == 0 || proxy.numTriangles() <= options.max_faces;
-    if (built.bounded && options.max_faces > 0 && move > 0) {
+    simplify_stats.budget_reached = max_faces == 0 || proxy.numTriangles() <= max_faces;
+    if (built.bounded && max_faces > 0 && move > 0) {
       BoundedSimplifyOptions s;
-      s.max_faces = options.max_faces;
+      s.max_faces = max_faces;
       s.side = options.kind == ProxyClass::kOutside ? BoundSide::kOutside : BoundSide::kInside;
       s.max_move_edges = move;
       proxy =
@@ -198,7 +204,7 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
     const bool ok = p_report.closed && p_report.manifold &&
                     p_report.self_intersecting_pairs.value_or(1) == 0 &&
                     containment->verdict == expected;
-    if (built.bounded && options.max_faces > 0)
+    if (built.bounded && max_faces > 0)
       report["budget_attempts"].push_back(
           {{"max_move_edges", move},
            {"faces", proxy.numTriangles()},
@@ -208,8 +214,7 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
            {"containment", containmentName(containment->verdict)}});
     if (ok || proxy.numTriangles() == built.mesh.numTriangles()) break;
   }
-  if (built.bounded && options.max_faces > 0)
-    report["budget_reached"] = simplify_stats.budget_reached;
+  if (built.bounded && max_faces > 0) report["budget_reached"] = simplify_stats.budget_reached;
 
   const uint64_t si = p_report.self_intersecting_pairs.value_or(0);
   report["checks"] = {{"closed", p_report.closed},
