@@ -180,7 +180,7 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
   MeshReport p_report;
   std::optional<ContainmentResult> containment;
   BoundedSimplifyStats simplify_stats;
-  const double move_limits[] = {1.0, 0.5, 0.25, 0.0};
+  const double move_limits[] = {1.0, 0.5, 0.0};
   for (double move : move_limits) {
     proxy = built.mesh;
     simplify_stats = {};
