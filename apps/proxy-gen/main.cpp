@@ -160,8 +160,10 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   app.add_option("--offset", a.offset, "wrap: offset as a fraction of the diagonal (default 1/600)")
       ->check(CLI::PositiveNumber);
-  app.add_option("--max-faces", a.max_faces,
-                 "Face budget; outside/inside keep their guarantee while reducing (0 = none)");
+  app.add_option(
+      "--max-faces", a.max_faces,
+      "Face budget; outside/inside keep their guarantee while reducing (0 = none, but an "
+      "outside/inside proxy with more faces than the input is reduced to the input's count)");
   app.add_option("--ratio", a.ratio,
                  "general: faces kept as a fraction of the input (default 0.02)")
       ->check(CLI::Range(0.0, 1.0));

@@ -15,6 +15,10 @@
 #include <CGAL/Surface_mesh_simplification/edge_collapse.h>
 #include <boost/optional.hpp>
 
+#include <CGAL/intersections.h>
+
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "proxies/outside/internal/cgal_mesh.h"
@@ -99,6 +103,56 @@ struct AddedVolumeCost {
   }
 };
 
+// Called by CGAL just before a collapse is carried out (not for every queued edge): rejects it
+// when a new face would cross a face of the surrounding 2-ring that shares no vertex with it.
+// The plane constraints keep the new surface on the right side of the old one, but they cannot
+// see a nearby, non-adjacent sheet (a staircase of voxel faces, a fold); intersections farther
+// away are left to the caller's exact check.
+struct LocalIntersectionFilter {
+  boost::optional<Point3> operator()(const Profile& profile,
+                                     boost::optional<Point3> placement) const {
+    if (!placement) return placement;
+    const SurfaceMesh& sm = profile.surface_mesh();
+    const auto v0 = profile.v0(), v1 = profile.v1();
+    std::vector<SurfaceMesh::Face_index> ring;
+    auto collect = [&](SurfaceMesh::Vertex_index u) {
+      for (auto f : CGAL::faces_around_target(sm.halfedge(u), sm)) {
+        if (f == SurfaceMesh::null_face()) continue;
+        bool in_star = false;
+        for (auto w : CGAL::vertices_around_face(sm.halfedge(f), sm))
+          in_star |= (w == v0 || w == v1);
+        if (!in_star) ring.push_back(f);
+      }
+    };
+    for (auto u : profile.link()) collect(u);
+    std::sort(ring.begin(), ring.end());
+    ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+
+    const auto& triangles = profile.triangles();
+    const size_t first_kept =
+        (profile.left_face_exists() ? 1 : 0) + (profile.right_face_exists() ? 1 : 0);
+    for (size_t i = first_kept; i < triangles.size(); ++i) {
+      const auto& t = triangles[i];
+      const cgal::Kernel::Triangle_3 moved(sm.point(t.v0), *placement, sm.point(t.v2));
+      if (moved.is_degenerate()) return boost::none;
+      for (auto f : ring) {
+        std::array<SurfaceMesh::Vertex_index, 3> fv;
+        int k = 0;
+        bool shares = false;
+        for (auto w : CGAL::vertices_around_face(sm.halfedge(f), sm)) {
+          shares |= (w == t.v0 || w == t.v2);
+          fv[k++ % 3] = w;
+        }
+        if (shares) continue;
+        if (CGAL::do_intersect(
+                moved, cgal::Kernel::Triangle_3(sm.point(fv[0]), sm.point(fv[1]), sm.point(fv[2]))))
+          return boost::none;
+      }
+    }
+    return placement;
+  }
+};
+
 struct CountCollapses : SMS::Edge_collapse_visitor_base<SurfaceMesh> {
   size_t* count;
   explicit CountCollapses(size_t* c) : count(c) {}
@@ -138,6 +192,7 @@ TriMesh simplifyBounded(const TriMesh& mesh, const BoundedSimplifyOptions& optio
   SMS::edge_collapse(sm, stop,
                      CGAL::parameters::get_cost(AddedVolumeCost())
                          .get_placement(OutsidePlacement{options.max_move_edges})
+                         .filter(LocalIntersectionFilter())
                          .visitor(visitor));
   sm.collect_garbage();
   TriMesh out = cgal::fromSurfaceMesh(sm, mesh.source);
