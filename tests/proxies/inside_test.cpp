@@ -46,13 +46,26 @@ TEST_P(InsideContainment, ExactCheckProvesContainment) {
   EXPECT_LE(ratio, 1.0);
 }
 
-INSTANTIATE_TEST_SUITE_P(ClosedMeshes, InsideContainment,
-                         testing::Values(Case{"bunny.off", "wrap", 0, 0},
-                                         Case{"bunny.off", "wrap", 0.05, 1.0 / 300},
-                                         Case{"spot_triangulated.obj", "wrap", 0.03, 0},
-                                         Case{"bunny.off", "erode", 0, 0},
-                                         Case{"spot_triangulated.obj", "erode", 0, 0},
-                                         Case{"dragon.drc", "wrap", 0.02, 0}));
+INSTANTIATE_TEST_SUITE_P(
+    ClosedMeshes, InsideContainment,
+    testing::Values(Case{"bunny.off", "wrap", 0, 0}, Case{"bunny.off", "wrap", 0.05, 1.0 / 300},
+                    Case{"spot_triangulated.obj", "wrap", 0.03, 0},
+                    Case{"bunny.off", "erode", 0, 0}, Case{"spot_triangulated.obj", "erode", 0, 0},
+                    Case{"bunny.off", "erode", 0.1, 0}, Case{"dragon.drc", "wrap", 0.02, 0}));
+
+TEST(InsideBudget, ErodeBudgetIsRespected) {
+  // The voxel surface has ~40 k faces; the inward collapse must bring it to the budget without
+  // self-intersections (the 2-ring filter) and keep it inside.
+  ProxyGenOptions o;
+  o.kind = ProxyClass::kInside;
+  o.method = "erode";
+  o.max_faces = 1500;
+  o.hausdorff_samples = 1000;
+  const ProxyGenResult r = generateProxy(mesh("spot_triangulated.obj"), o);
+  EXPECT_TRUE(r.report["budget_reached"].get<bool>()) << r.report.dump(2);
+  EXPECT_LE(r.proxy.numTriangles(), 1500u);
+  EXPECT_TRUE(r.verified);
+}
 
 TEST(InsideBudget, WrapBudgetIsRespected) {
   const TriMesh& input = mesh("bunny.off");
