@@ -212,6 +212,10 @@ uint32_t TraceScene::geometryCount() const {
   return uint32_t(impl_->geometries.size());
 }
 
+IgnoreStrategy TraceScene::ignoreStrategy() const {
+  return impl_->ignore;
+}
+
 uint64_t TraceScene::raysTraced() const {
   uint64_t total = 0;
   for (const RayCounter& c : impl_->counters) total += c.rays.load(std::memory_order_relaxed);

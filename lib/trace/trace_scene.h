@@ -8,17 +8,18 @@
 // invisible to that query, exactly. The Debian Embree 3.13.5 supports both context filters and
 // ray masks (RTC_DEVICE_PROPERTY_{FILTER_FUNCTION,RAY_MASK}_SUPPORTED = 1); two exact strategies
 // (TraceSceneOptions::ignore) use them:
-//  - kFilter (default): an RTCIntersectContext filter rejects A's hits (scenes carry
+//  - kFilter: an RTCIntersectContext filter rejects A's hits (scenes carry
 //    RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION). One traversal, but it walks A's BVH rejecting A's
-//    own hits. Best when A is small, e.g. A's proxy in a proxy scene: measured as fast as or
-//    faster than the alternative there.
+//    own hits.
 //  - kMaskThenFilter: each top-level geometry carries one of 32 mask bits from its user id;
 //    pass 1 traces with A's bit cleared (never entering A, nor the ~1/32 of others sharing it);
 //    only if it finds nothing, pass 2 traces the geometry with that bit alone under the filter.
-//    Best when A is large and most rays are blocked by others: 1.2-1.35x the filter's speed on
-//    segments leaving one of 1000 instanced 100 k-triangle dragons.
-// Ray masks alone are not exact beyond 32 objects. Queries without an ignored id pay nothing;
-// bench_trace prints all of these.
+//    Embree tests masks of instances before entering them, of triangles only in the leaves.
+//  - kAuto (default): kMaskThenFilter if the scene has at least as many instances as flattened
+//    meshes, else kFilter. Measured (bench_trace, segments leaving one of 1000 dragons, 2
+//    threads, CPU time): instanced dragons 1.16x and instanced box proxies 1.09-1.15x the
+//    filter's speed with kMaskThenFilter; flattened box proxies 0.89-0.93x.
+// Ray masks alone are not exact beyond 32 objects. Queries without an ignored id pay nothing.
 //
 // Invalid segments: a NaN or infinite origin or direction, a NaN tnear/tfar or an infinite
 // tnear throw proxyvis::Error (Embree's answer for such rays is undefined). tfar = +inf is a
@@ -103,11 +104,11 @@ class TraceDevice {
   std::unique_ptr<ErrorLog> log_;
 };
 
-enum class IgnoreStrategy { kFilter, kMaskThenFilter };
+enum class IgnoreStrategy { kAuto, kFilter, kMaskThenFilter };
 
 struct TraceSceneOptions {
   // How queries with an ignore_user_id exclude that geometry (see the top of this file).
-  IgnoreStrategy ignore = IgnoreStrategy::kFilter;
+  IgnoreStrategy ignore = IgnoreStrategy::kAuto;
   // RTC_SCENE_FLAG_ROBUST: watertight triangle test and conservative traversal. The default mode
   // lets segments aimed exactly at a shared edge or vertex slip through (measured: 4 % of
   // edge-aimed, 11 % of vertex-aimed segments; robust: 0 % and 0.3 %, tests/trace/
@@ -173,6 +174,8 @@ class TraceScene {
   Bounds3f bounds() const;
   uint64_t triangleCount() const;  // counting every instance's triangles
   uint32_t geometryCount() const;  // top-level geometries: meshes + instances
+  // The strategy queries with an ignore_user_id use (kAuto resolved at build time).
+  IgnoreStrategy ignoreStrategy() const;
 
   // Rays traced since construction or resetCounters() (occlusion and closest-hit, single and
   // batch). Counted in per-thread slots, so counting costs no shared cache line per ray; each

@@ -199,6 +199,13 @@ uint32_t TraceSceneBuilder::addInstance(uint32_t prototype, const Affine3f& tran
 }
 
 std::unique_ptr<TraceScene> TraceSceneBuilder::build() {
+  TraceScene::Impl& scene = *impl_->scene;
+  if (scene.ignore == IgnoreStrategy::kAuto) {
+    size_t instances = 0;
+    for (const TopGeometry& g : scene.geometries) instances += g.prototype != kInvalidId;
+    scene.ignore = 2 * instances >= scene.geometries.size() ? IgnoreStrategy::kMaskThenFilter
+                                                            : IgnoreStrategy::kFilter;
+  }
   rtcCommitScene(impl_->scene->scene);
   impl_->device.throwIfError("building the top-level BVH");
   // The top-level scene retains the prototype scenes its instances use; hand ours over.

@@ -373,6 +373,25 @@ TEST_P(IgnoreStrategies, IgnoreIsExactForObjectsSharingAMaskBit) {
   }
 }
 
+// kAuto picks the two-pass strategy for mostly instanced scenes, the filter for flattened ones.
+TEST(TraceScene, AutoIgnoreStrategyFollowsTheSceneKind) {
+  TraceDevice device;
+  TraceSceneBuilder builder(device);
+  uint32_t p = builder.addPrototype(icosphere(1));
+  builder.addInstance(p, Affine3f::translation({0, 0, 0}), 1);
+  builder.addInstance(p, Affine3f::translation({3, 0, 0}), 2);
+  builder.addMesh(box({5, 0, 0}, {6, 1, 1}), 3);
+  EXPECT_EQ(builder.build()->ignoreStrategy(), IgnoreStrategy::kMaskThenFilter);
+  builder.addMesh(box({5, 0, 0}, {6, 1, 1}), 3);
+  EXPECT_EQ(builder.build()->ignoreStrategy(), IgnoreStrategy::kFilter);
+  TraceSceneOptions forced;
+  forced.ignore = IgnoreStrategy::kFilter;
+  TraceSceneBuilder forced_builder(device, forced);
+  p = forced_builder.addPrototype(icosphere(1));
+  forced_builder.addInstance(p, Affine3f(), 1);
+  EXPECT_EQ(forced_builder.build()->ignoreStrategy(), IgnoreStrategy::kFilter);
+}
+
 TEST(TraceScene, EmptySceneOccludesNothing) {
   TraceDevice device;
   TraceSceneBuilder builder(device);
