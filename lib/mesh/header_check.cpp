@@ -1,6 +1,9 @@
 #include "mesh/internal/header_check.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cstdint>
+#include <cstdlib>
 #include <limits>
 #include <sstream>
 #include <vector>
@@ -47,45 +50,106 @@ uint64_t parseCount(const std::string& token, const std::string& file, const std
   return std::stoull(token);
 }
 
-void checkPly(const std::string& bytes, const std::string& file) {
-  const size_t end = bytes.find("end_header");
-  if (bytes.compare(0, 3, "ply") != 0 || end == std::string::npos)
-    throw Error(file, "not a PLY file", "no 'ply' magic or no 'end_header' line",
-                "check that the file is a PLY mesh");
-  const size_t body_start = bytes.find('\n', end);
-  const uint64_t body = body_start == std::string::npos ? 0 : bytes.size() - body_start - 1;
+// OpenMesh's ASCII PLY reader can spin forever once its stream fails on a token that is not a
+// number (seen in fuzzing: "1\xc81"), so the body of an ASCII file is checked token by token:
+// numbers only ('#' comments allowed in OFF).
+void checkAsciiNumbers(const std::string& bytes, size_t from, const std::string& file,
+                       bool comments) {
+  size_t i = from;
+  size_t line = 1 + size_t(std::count(bytes.begin(), bytes.begin() + long(from), '\n'));
+  while (i < bytes.size()) {
+    const char c = bytes[i];
+    if (c == '\n') ++line;
+    if (std::isspace(static_cast<unsigned char>(c))) {
+      ++i;
+      continue;
+    }
+    if (comments && c == '#') {
+      while (i < bytes.size() && bytes[i] != '\n') ++i;
+      continue;
+    }
+    size_t end = i;
+    while (end < bytes.size() && !std::isspace(static_cast<unsigned char>(bytes[end]))) ++end;
+    const std::string token = bytes.substr(i, end - i);
+    char* parsed_end = nullptr;
+    std::strtod(token.c_str(), &parsed_end);
+    // Plain decimals only: istream >> float (what OpenMesh uses) rejects "nan", "inf" and hex.
+    const bool plain = token.find_first_not_of("0123456789+-.eE") == std::string::npos;
+    if (!plain || token.size() > 64 || parsed_end != token.c_str() + token.size()) {
+      std::string shown = token.substr(0, 20);
+      for (char& ch : shown)
+        if (static_cast<unsigned char>(ch) < 32 || static_cast<unsigned char>(ch) > 126) ch = '?';
+      throw Error(file, "not a number on line " + std::to_string(line) + ": '" + shown + "'",
+                  "the body of an ASCII mesh file holds numbers only", "the file is corrupt");
+    }
+    i = end;
+  }
+}
 
-  std::istringstream header(bytes.substr(0, end));
-  std::string line, format;
+void badHeaderLine(const std::string& file, size_t number, const std::string& line,
+                   const std::string& why) {
+  std::string shown = line.substr(0, 60);
+  for (char& c : shown)
+    if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) c = '?';
+  throw Error(file, "corrupt PLY header line " + std::to_string(number) + " '" + shown + "'", why,
+              "the file is corrupt; re-export it");
+}
+
+// Validates every header line before OpenMesh sees it (OpenMesh's header parser can loop forever
+// on some corrupt headers) and checks the element counts against the file size.
+void checkPly(const std::string& bytes, const std::string& file) {
+  if (bytes.compare(0, 4, "ply\n") != 0 && bytes.compare(0, 5, "ply\r\n") != 0)
+    throw Error(file, "not a PLY file", "the first line is not 'ply'",
+                "check that the file is a PLY mesh");
   std::vector<PlyElement> elements;
-  while (std::getline(header, line)) {
+  std::string format;
+  size_t pos = 0, number = 0;
+  bool ended = false;
+  while (!ended) {
+    const size_t eol = bytes.find('\n', pos);
+    if (eol == std::string::npos || number > 10000)
+      throw Error(file, "PLY header has no 'end_header' line", {},
+                  "the file is truncated or not a PLY mesh");
+    std::string line = bytes.substr(pos, eol - pos);
+    pos = eol + 1;
+    ++number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
     std::istringstream ls(line);
-    std::string key;
+    std::string key, extra;
     ls >> key;
-    if (key == "format") {
-      ls >> format;
+    if (number == 1 || key == "comment" || key == "obj_info") continue;
+    if (key == "end_header") {
+      if (ls >> extra) badHeaderLine(file, number, line, "text after end_header");
+      ended = true;
+    } else if (key == "format") {
+      std::string version;
+      if (!(ls >> format >> version) || version != "1.0" || (ls >> extra))
+        badHeaderLine(file, number, line, "expected 'format <type> 1.0'");
     } else if (key == "element") {
       PlyElement e;
       std::string count;
-      ls >> e.name >> count;
+      if (!(ls >> e.name >> count) || (ls >> extra))
+        badHeaderLine(file, number, line, "expected 'element <name> <count>'");
       e.count = parseCount(count, file, e.name + " elements");
       elements.push_back(e);
     } else if (key == "property") {
-      if (elements.empty())
-        throw Error(file, "PLY property before any element", {}, "the header is corrupt");
-      std::string type;
-      ls >> type;
+      if (elements.empty()) badHeaderLine(file, number, line, "property before any element");
+      std::string type, name;
+      if (!(ls >> type)) badHeaderLine(file, number, line, "property without a type");
       PlyElement& e = elements.back();
       ++e.properties;
       if (type == "list") {
-        std::string count_type;
-        ls >> count_type;
+        std::string count_type, item_type;
+        if (!(ls >> count_type >> item_type) || plyTypeSize(item_type) == 0)
+          badHeaderLine(file, number, line, "expected 'property list <count type> <type> <name>'");
         type = count_type;
       }
-      const int size = plyTypeSize(type);
-      if (size == 0)
-        throw Error(file, "unknown PLY property type '" + type + "'", {}, "the header is corrupt");
-      e.min_binary_bytes += uint64_t(size);
+      if (plyTypeSize(type) == 0) badHeaderLine(file, number, line, "unknown property type");
+      if (!(ls >> name) || (ls >> extra))
+        badHeaderLine(file, number, line, "expected one property name");
+      e.min_binary_bytes += uint64_t(plyTypeSize(type));
+    } else {
+      badHeaderLine(file, number, line, "unknown keyword");
     }
   }
   const bool ascii = format == "ascii";
@@ -93,6 +157,8 @@ void checkPly(const std::string& bytes, const std::string& file) {
     throw Error(file, "unknown PLY format '" + format + "'",
                 "expected ascii, binary_little_endian or binary_big_endian",
                 "the header is corrupt");
+  if (ascii) checkAsciiNumbers(bytes, pos, file, false);
+  const uint64_t body = bytes.size() - pos;
   uint64_t need = 0;
   for (const PlyElement& e : elements) {
     // ASCII: every property takes at least one digit and one separator.
@@ -130,6 +196,8 @@ void checkOff(const std::string& bytes, const std::string& file) {
   if (need > bytes.size() + 1)
     tooMany(file, std::to_string(nv) + " vertices and " + std::to_string(nf) + " faces", nv + nf,
             need, bytes.size());
+  if (bytes.substr(0, bytes.find('\n')).find("BINARY") == std::string::npos)
+    checkAsciiNumbers(bytes, bytes.find(magic) + magic.size(), file, true);
 }
 
 }  // namespace

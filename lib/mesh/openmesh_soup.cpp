@@ -27,17 +27,24 @@ std::mutex& openMeshMutex() {
 }
 
 // Collects OpenMesh's diagnostics (normally printed to std::cerr) so they become the "why" of
-// our Error instead of stray lines on the terminal.
+// our Error instead of stray lines on the terminal, and mutes its progress log ("[OBJWriter] :
+// write file").
 class CapturedOmErr {
  public:
   CapturedOmErr() {
     had_cerr_ = ::omerr().disconnect(std::cerr);
     ::omerr().connect(captured_);
+    log_was_enabled_ = ::omlog().is_enabled();
+    out_was_enabled_ = ::omout().is_enabled();
+    ::omlog().disable();
+    ::omout().disable();
   }
   ~CapturedOmErr() {
     ::omerr().flush();
     ::omerr().disconnect(captured_);
     if (had_cerr_) ::omerr().connect(std::cerr);
+    if (log_was_enabled_) ::omlog().enable();
+    if (out_was_enabled_) ::omout().enable();
   }
   std::string text() {
     ::omerr().flush();
@@ -50,7 +57,7 @@ class CapturedOmErr {
 
  private:
   std::ostringstream captured_;
-  bool had_cerr_ = false;
+  bool had_cerr_ = false, log_was_enabled_ = true, out_was_enabled_ = true;
 };
 
 // BaseImporter that keeps positions and fan-triangulated faces and ignores everything else
@@ -245,6 +252,7 @@ bool writeWithOpenMesh(const TriMesh& mesh, const std::string& ext, std::ostream
   OM::IO::Options options;
   if (binary && ext == "ply") options += OM::IO::Options::Binary;
   std::lock_guard<std::mutex> lock(openMeshMutex());
+  CapturedOmErr captured;
   // 9 significant digits round-trip every float exactly in the ASCII formats.
   return OM::IO::IOManager().write(out, ext, exporter, options, 9);
 }
