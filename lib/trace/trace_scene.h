@@ -112,11 +112,13 @@ struct TraceSceneOptions {
   // RTC_SCENE_FLAG_ROBUST: watertight triangle test and conservative traversal. The default mode
   // lets segments aimed exactly at a shared edge or vertex slip through (measured: 4 % of
   // edge-aimed, 11 % of vertex-aimed segments; robust: 0 % and 0.3 %, tests/trace/
-  // watertight_test.cpp) and costs 10-17 % less (bench_trace --robust). Random segments almost
-  // never come that close, so sampling code may use the default; exact checks should not.
+  // watertight_test.cpp); robust tracing costs 12-19 % more (bench_trace --robust). Random
+  // segments almost never come that close, so sampling code may use the default; exact checks
+  // should not.
   bool robust = false;
   // RTC_BUILD_QUALITY_HIGH (spatial splits) for meshes; MEDIUM otherwise. Building a 100 k
-  // triangle mesh costs tens of milliseconds either way.
+  // triangle mesh costs tens of milliseconds either way; tracing speed measured the same within
+  // noise on the dragon scenes (bench_trace --medium-quality).
   bool high_quality = true;
 };
 
