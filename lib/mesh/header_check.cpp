@@ -30,6 +30,7 @@ struct PlyElement {
   uint64_t count = 0;
   uint64_t min_binary_bytes = 0;  // per record: fixed properties + the count field of lists
   uint64_t properties = 0;
+  std::vector<bool> is_list;  // per property, in order
 };
 
 void tooMany(const std::string& file, const std::string& what, uint64_t count, uint64_t need,
@@ -86,6 +87,13 @@ void checkAsciiNumbers(const std::string& bytes, size_t from, const std::string&
   }
 }
 
+// OpenMesh's ASCII PLY reader also spins when a list count is negative or runs past the end of
+// the file (fuzzing: a face line "-30 1 5"). Walks the records: every list length must be a
+// non-negative integer and every declared value present. Values are already known to be numbers
+// (checkAsciiNumbers).
+void checkAsciiRecords(const std::string& bytes, size_t from,
+                       const std::vector<PlyElement>& elements, const std::string& file);
+
 void badHeaderLine(const std::string& file, size_t number, const std::string& line,
                    const std::string& why) {
   std::string shown = line.substr(0, 60);
@@ -138,6 +146,7 @@ void checkPly(const std::string& bytes, const std::string& file) {
       if (!(ls >> type)) badHeaderLine(file, number, line, "property without a type");
       PlyElement& e = elements.back();
       ++e.properties;
+      e.is_list.push_back(type == "list");
       if (type == "list") {
         std::string count_type, item_type;
         if (!(ls >> count_type >> item_type) || plyTypeSize(item_type) == 0)
@@ -159,6 +168,7 @@ void checkPly(const std::string& bytes, const std::string& file) {
                 "the header is corrupt");
   if (ascii) checkAsciiNumbers(bytes, pos, file, false);
   const uint64_t body = bytes.size() - pos;
+  if (ascii) checkAsciiRecords(bytes, pos, elements, file);
   uint64_t need = 0;
   for (const PlyElement& e : elements) {
     // ASCII: every property takes at least one digit and one separator.
@@ -200,12 +210,101 @@ void checkOff(const std::string& bytes, const std::string& file) {
     checkAsciiNumbers(bytes, bytes.find(magic) + magic.size(), file, true);
 }
 
+void checkAsciiRecords(const std::string& bytes, size_t from,
+                       const std::vector<PlyElement>& elements, const std::string& file) {
+  std::istringstream in(bytes.substr(from));
+  std::string token;
+  auto next = [&](const std::string& element, uint64_t record) {
+    if (!(in >> token))
+      throw Error(file, "file ends inside " + element + " " + std::to_string(record),
+                  "fewer values than the header declares", "the file is truncated");
+    return token;
+  };
+  for (const PlyElement& e : elements) {
+    for (uint64_t r = 0; r < e.count; ++r) {
+      for (bool list : e.is_list) {
+        const std::string t = next(e.name, r);
+        if (!list) continue;
+        if (t.find_first_not_of("0123456789") != std::string::npos || t.size() > 9)
+          throw Error(file, "bad list length '" + t + "' in " + e.name + " " + std::to_string(r),
+                      "expected a non-negative integer", "the file is corrupt");
+        for (long k = std::stol(t); k > 0; --k) next(e.name, r);
+      }
+    }
+  }
+}
+
+bool isPlainNumber(const std::string& t) {
+  if (t.empty() || t.size() > 64 || t.find_first_not_of("0123456789+-.eE") != std::string::npos)
+    return false;
+  char* end = nullptr;
+  std::strtod(t.c_str(), &end);
+  return end == t.c_str() + t.size();
+}
+
+// One OBJ face corner: v, v/t, v//n or v/t/n with non-zero (possibly negative) integers.
+bool isObjCorner(const std::string& t) {
+  // Up to three '/'-separated fields; the first is required, the others may be empty.
+  size_t field = 0, pos = 0;
+  while (true) {
+    const size_t slash = t.find('/', pos);
+    const std::string f =
+        t.substr(pos, slash == std::string::npos ? std::string::npos : slash - pos);
+    const size_t digits = f.size() - (!f.empty() && f[0] == '-');
+    const bool empty_ok = field > 0 && f.empty();
+    const bool integer = digits >= 1 && digits <= 10 && f.back() != '-' &&
+                         f.find_first_not_of("0123456789", f[0] == '-') == std::string::npos &&
+                         f[f[0] == '-'] != '0';
+    if (!integer && !empty_ok) return false;
+    if (slash == std::string::npos) return true;
+    if (++field > 2) return false;
+    pos = slash + 1;
+  }
+}
+
+// OpenMesh's OBJ reader asserts (aborts the process) on some malformed face lines, e.g.
+// "f /0 11 15" (found by fuzzing), so 'v' and 'f' lines are checked before it sees them.
+void checkObj(const std::string& bytes, const std::string& file) {
+  std::istringstream in(bytes);
+  std::string line;
+  size_t number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    std::istringstream ls(line);
+    std::string key, token;
+    ls >> key;
+    if (key != "v" && key != "f") continue;
+    size_t count = 0;
+    while (ls >> token) {
+      const bool ok = key == "v" ? isPlainNumber(token) : isObjCorner(token);
+      if (!ok) {
+        std::string shown = token.substr(0, 20);
+        for (char& ch : shown)
+          if (static_cast<unsigned char>(ch) < 32 || static_cast<unsigned char>(ch) > 126) ch = '?';
+        throw Error(
+            file,
+            "bad " + std::string(key == "v" ? "coordinate" : "face index") + " '" + shown +
+                "' on line " + std::to_string(number),
+            key == "v" ? "expected a decimal number" : "expected v, v/t, v//n or v/t/n (1-based)",
+            "the file is corrupt");
+      }
+      ++count;
+    }
+    if ((key == "v" && (count < 3 || count > 7)) || (key == "f" && count < 3))
+      throw Error(file, "malformed '" + key + "' line " + std::to_string(number),
+                  key == "v" ? "expected 3 coordinates (and optional w or colour)"
+                             : "a face needs at least 3 corners",
+                  "the file is corrupt");
+  }
+}
+
 }  // namespace
 
 void checkDeclaredCounts(const std::string& bytes, const std::string& ext,
                          const std::string& file) {
   if (ext == "ply") checkPly(bytes, file);
   if (ext == "off") checkOff(bytes, file);
+  if (ext == "obj") checkObj(bytes, file);
 }
 
 }  // namespace proxyvis::detail
