@@ -6,6 +6,12 @@
 // 8 GB allocation. Every failure (missing, empty, truncated, corrupt file, unknown extension,
 // NaN/inf coordinates, index out of range, no triangles) throws proxyvis::Error whose message
 // names the file, what is wrong and why.
+//
+// OBJ/PLY/OFF are parsed by OpenMesh's readers into a polygon soup (not an OpenMesh half-edge
+// mesh), so non-manifold faces (ecosys foliage, the teapot's pinched vertex) are kept and the
+// file's vertex order is preserved. The syntax OpenMesh's readers cannot survive (they loop or
+// assert on some corrupt files) is rejected before they run. Thread-safe: OpenMesh file access is
+// serialized internally.
 #include <filesystem>
 
 #include "mesh/tri_mesh.h"

@@ -10,7 +10,8 @@
 namespace proxyvis {
 
 struct ValidationOptions {
-  // Self-intersection test (CGAL); O(n log n) but slow on millions of faces.
+  // Self-intersection test (CGAL); O(n log n) but slow on millions of faces. Pairs of triangles
+  // that touch only at a non-manifold (pinched) vertex are counted too.
   bool self_intersections = false;
 };
 
@@ -18,17 +19,17 @@ struct MeshReport {
   uint64_t vertices = 0, faces = 0;
   uint64_t unreferenced_vertices = 0;
   Bounds3f bounds;
-  uint64_t nonfinite_vertices = 0;  // NaN or inf coordinates
-  uint64_t degenerate_faces = 0;    // repeated index, or zero area after welding exact duplicates
-  uint64_t duplicate_faces = 0;     // same three (welded) vertices as an earlier face
-  uint64_t components = 0;          // sharing a vertex, after welding exactly equal positions
-  uint64_t boundary_edges = 0;      // edges with one face
-  uint64_t non_manifold_edges = 0;  // edges with more than two faces
-  uint64_t non_manifold_vertices = 0;               // vertices whose faces form more than one fan
-  bool closed = false;                              // no boundary and no non-manifold edges
-  bool manifold = false;                            // no non-manifold edges or vertices
-  std::optional<int64_t> genus;                     // closed manifold meshes only
-  std::optional<double> volume;                     // closed meshes only
+  uint64_t nonfinite_vertices = 0;     // NaN or inf coordinates
+  uint64_t degenerate_faces = 0;       // two equal corners after welding (left out of topology)
+  uint64_t duplicate_faces = 0;        // same three (welded) vertices as an earlier face
+  uint64_t components = 0;             // sharing a vertex, after welding exactly equal positions
+  uint64_t boundary_edges = 0;         // edges with one face
+  uint64_t non_manifold_edges = 0;     // edges with more than two faces
+  uint64_t non_manifold_vertices = 0;  // vertices whose faces form more than one fan
+  bool closed = false;                 // no boundary and no non-manifold edges
+  bool manifold = false;               // no non-manifold edges or vertices
+  std::optional<int64_t> genus;        // closed manifold meshes only
+  std::optional<double> volume;        // closed meshes only
   std::optional<uint64_t> self_intersecting_pairs;  // only when requested
 };
 
