@@ -29,10 +29,13 @@ class Rng {
   Rng(uint64_t seed, uint64_t index) { setSequence(seed, index); }
 
   void setSequence(uint64_t seed, uint64_t index) {
+    // Both the increment and the start state depend on the seed and the index: with the
+    // increment keyed on the index alone, stream i of two seeds differed only by a state offset
+    // and their outputs were measurably correlated.
     state_ = 0u;
-    inc_ = (mixBits(index ^ 0xda3e39cb94b95bdbULL) << 1u) | 1u;
+    inc_ = (hashKeys(index, seed ^ 0xda3e39cb94b95bdbULL) << 1u) | 1u;
     nextU32();
-    state_ += mixBits(seed + 0x853c49e6748fea9bULL);
+    state_ += hashKeys(seed + 0x853c49e6748fea9bULL, index);
     nextU32();
   }
 
