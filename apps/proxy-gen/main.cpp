@@ -85,7 +85,7 @@ int runScene(const Args& a, const CommonOptions& common) {
   const size_t n = scene.meshes.size();
   std::vector<json> reports(n);
   std::vector<std::optional<ProxyRef>> refs(n);
-  std::vector<std::string> errors(n);
+  std::vector<std::string> errors(n), skipped(n);
   std::vector<int> codes(n, kExitOk);
   Progress progress("proxy-gen", n, common.quiet);
   tbb::parallel_for(size_t(0), n, [&](size_t i) {
@@ -94,17 +94,32 @@ int runScene(const Args& a, const CommonOptions& common) {
     try {
       ProxyGenOptions o = base;
       o.seed = hashKeys(common.seed, i);  // per-mesh stream: same result at any thread count
-      ProxyGenResult r = generateProxy(loadMesh(mesh.file), o);
-      saveMesh(r.proxy, out);
-      r.report["name"] = mesh.name;
-      r.report["output"] = out.string();
-      ProxyRef ref;
-      ref.kind = a.kind;
-      ref.method = r.report["method"].get<std::string>();
-      ref.file = fs::absolute(out);
-      if (r.verified) ref.verified_class = base.kind;
-      refs[i] = ref;
-      reports[i] = std::move(r.report);
+      const TriMesh input = loadMesh(mesh.file);
+      // A proxy only pays if it has fewer faces than its original; no closed mesh has fewer
+      // than 4, so a smaller original (a ground quad) is skipped without trying.
+      if (input.numTriangles() < 4) {
+        skipped[i] = fmt::format("{} faces: no closed proxy can have fewer", input.numTriangles());
+      } else {
+        ProxyGenResult r = generateProxy(input, o);
+        if (r.proxy.numTriangles() >= input.numTriangles()) {
+          skipped[i] = fmt::format("its {} proxy has {} faces, the original {}: not cheaper",
+                                   a.kind, r.proxy.numTriangles(), input.numTriangles());
+        } else {
+          saveMesh(r.proxy, out);
+          r.report["name"] = mesh.name;
+          r.report["output"] = out.string();
+          ProxyRef ref;
+          ref.kind = a.kind;
+          ref.method = r.report["method"].get<std::string>();
+          ref.file = fs::absolute(out);
+          if (r.verified) ref.verified_class = base.kind;
+          refs[i] = ref;
+          reports[i] = std::move(r.report);
+        }
+      }
+      if (!skipped[i].empty())
+        reports[i] = {
+            {"name", mesh.name}, {"skipped", skipped[i]}, {"faces", input.numTriangles()}};
     } catch (const Error& e) {
       errors[i] = e.what();
       codes[i] = e.exitCode();
@@ -120,6 +135,10 @@ int runScene(const Args& a, const CommonOptions& common) {
     if (!errors[i].empty()) {
       summary += fmt::format("== {}: FAILED: {}\n", scene.meshes[i].name, errors[i]);
       code = std::max(code, codes[i]);
+      continue;
+    }
+    if (!skipped[i].empty()) {
+      summary += fmt::format("== {}: no proxy ({})\n", scene.meshes[i].name, skipped[i]);
       continue;
     }
     summary += fmt::format("== {}\n{}", scene.meshes[i].name, formatProxyReport(reports[i]));

@@ -116,10 +116,23 @@ std::unique_ptr<RenderScene> loadRenderScene(const SceneDesc& desc,
     original_ptrs[m] = &originals[m];
     proxy_ptrs[m] = &originals[m];
     if (chosen[m] >= 0) {
-      proxies[m] = loadMesh(desc.meshes[m].proxies[size_t(chosen[m])].file);
+      const ProxyRef& ref = desc.meshes[m].proxies[size_t(chosen[m])];
+      proxies[m] = loadMesh(ref.file);
+      if (!options.keep_larger_proxies &&
+          proxies[m].numTriangles() >= originals[m].numTriangles()) {
+        scene->warnings_.push_back(fmt::format(
+            "mesh '{}': proxy {} has {} triangles, the original {}: not cheaper, the original "
+            "is used in its place",
+            desc.meshes[m].name, ref.file.filename().string(), proxies[m].numTriangles(),
+            originals[m].numTriangles()));
+        chosen[m] = -1;
+        proxies[m] = TriMesh{};
+        continue;
+      }
       proxy_ptrs[m] = &proxies[m];
     }
   }
+  for (RenderObject& o : objects) o.proxy = chosen[o.mesh];
 
   scene->device_ = std::make_unique<TraceDevice>();
   TraceSceneBuilder builder(*scene->device_, options.trace);

@@ -27,6 +27,10 @@ struct RenderSceneOptions {
   // empty: the first proxy listed. Meshes without a matching proxy use their original.
   std::string proxy_kind;
   bool use_proxies = true;  // false: proxies() holds the originals (no proxy anywhere)
+  // A proxy with at least as many triangles as its original cannot make a ray cheaper, while
+  // the self-shadowing rule makes every ray from that object pay for two traversals: such a
+  // proxy is skipped (the original is its own exact proxy), with a warning. True keeps it.
+  bool keep_larger_proxies = false;
   TraceSceneOptions trace;  // Embree build options for all scenes
   bool quiet = false;       // no warnings on stderr (they are still in warnings())
 };

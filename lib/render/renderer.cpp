@@ -7,6 +7,7 @@
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <chrono>
@@ -65,6 +66,15 @@ struct Scratch {
   std::vector<double> estimates;
 };
 
+// The learning region of a query: screen tile x light x whether the shading point's own object
+// uses a proxy. Points on such an object trace their own original in both V and V' (the
+// self-shadowing rule), so their proxy rays cost more and they must not share a cost model with
+// the points beside them (the ground under the dragon).
+uint32_t regionOf(const RenderScene& scene, const ShadingPoint& sp, uint32_t tile, uint32_t light) {
+  const uint32_t self = scene.objects()[sp.object].proxy >= 0 ? 1u : 0u;
+  return (tile * uint32_t(scene.lights().numLights()) + light) * 2u + self;
+}
+
 // Phase B for one pixel: groups its samples by light (one query per learning region), asks the
 // estimator, accumulates.
 void estimatePixel(const RenderScene& scene, VisibilityEstimator& estimator, const ShadingPoint& sp,
@@ -81,7 +91,7 @@ void estimatePixel(const RenderScene& scene, VisibilityEstimator& estimator, con
     ShadingPointQuery query;
     query.segments = std::span<const Segment>(&ps.segment, 1);
     query.tracer = &tracer;
-    query.region = tile * num_lights + ps.light;
+    query.region = regionOf(scene, sp, tile, ps.light);
     query.point = pixel * num_lights + ps.light;
     double v = 0;
     RayCounts counts;
@@ -128,7 +138,7 @@ void estimatePixel(const RenderScene& scene, VisibilityEstimator& estimator, con
     ShadingPointQuery query;
     query.segments = scratch.segments;
     query.tracer = &tracer;
-    query.region = tile * num_lights + light;
+    query.region = regionOf(scene, sp, tile, light);
     query.point = pixel * num_lights + light;
     query.probes = scratch.probes;
     estimator.estimate(query, rng, scratch.estimates, counts);
@@ -150,7 +160,7 @@ EstimatorSetup estimatorSetupFor(const RenderScene& scene, const RenderSettings&
   EstimatorSetup setup = settings.estimator;
   const render_internal::Tiling tiling(scene.camera().width(), scene.camera().height(),
                                        std::max(1, settings.tile_size));
-  setup.num_regions = uint32_t(tiling.count()) * uint32_t(scene.lights().numLights());
+  setup.num_regions = uint32_t(tiling.count()) * uint32_t(scene.lights().numLights()) * 2u;
   setup.num_points = uint32_t(scene.camera().width()) * uint32_t(scene.camera().height()) *
                      uint32_t(scene.lights().numLights());
   setup.proxy_class = settings.force_general_proxies ? ProxyClass::kGeneral : scene.proxyClass();
@@ -182,6 +192,7 @@ RenderResult render(const RenderScene& scene, const RenderSettings& settings,
   Progress progress("render", total_passes * uint64_t(tiling.count()),
                     settings.quiet || total_passes == 0);
   double sampling_seconds = 0;
+  const double threads = double(tbb::this_task_arena::max_concurrency());
   int taken = 0, pass = 0;
   while (taken < spp_cap &&
          (pass == 0 || !(settings.time_budget > 0) || secondsSince(start) < settings.time_budget)) {
@@ -209,6 +220,12 @@ RenderResult render(const RenderScene& scene, const RenderSettings& settings,
     result.visibility_seconds += secondsSince(b);
     taken += count;
     ++pass;
+    if (!settings.estimator.fixed_costs) {
+      // What every light sample costs outside visibility, in CPU ns per sample (the unit of the
+      // learned ray costs): light sampling plus the primary ray's share so far.
+      const double cpu_seconds = (result.primary_seconds + sampling_seconds) * threads;
+      estimator.setPerSampleCost(1e9 * cpu_seconds / (double(num_pixels) * taken));
+    }
   }
   progress.done();
 

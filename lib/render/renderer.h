@@ -12,8 +12,9 @@
 // (roulette) use passes < k for pass k. TBB over tiles; light samples are keyed on
 // (seed, pixel, pass) and estimator randomness on (seed, pixel, pass, 1): bit-identical output
 // for a seed at any thread count (as long as the estimator's own learning is deterministic).
-// Learning regions are screen tile x light: region = tile_index * num_lights + light; each
-// query also names its (pixel, light) point = pixel * num_lights + light (< num_points).
+// Learning regions are screen tile x light x self: region = (tile_index * num_lights + light) * 2
+// + (1 if the shading point's object uses a proxy, else 0); each query also names its
+// (pixel, light) point = pixel * num_lights + light (< num_points).
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -39,7 +40,7 @@ struct RenderSettings {
   int spp = 16;  // light samples per pixel (upper bound when time_budget > 0; <= 0 = none)
   double time_budget = 0;  // seconds; > 0: render passes until the budget is spent
   uint64_t seed = 0;
-  int tile_size = 16;  // also the learning-region size (regions = tiles x lights)
+  int tile_size = 16;  // also the learning-region size (regions = tiles x lights x 2)
   // Light samples per pixel per pass. 0 = automatic: 1, except for estimators with probe rays
   // (probes are drawn per shading point and call), which get all spp in one pass (16 per pass
   // under a time budget).

@@ -61,6 +61,22 @@ TEST(RenderScene, SelfShadowingTracesOwnOriginal) {
   EXPECT_GT(all.mh, 0u);  // ground points in the proxy's shadow but not the box's
 }
 
+// The box's outside proxy has at least as many triangles as the box: by default it cannot make
+// a ray cheaper, so the renderer skips it (and says so) and the box is its own exact proxy.
+TEST(RenderScene, ProxyNotSmallerThanOriginalIsSkipped) {
+  ScratchDir dir;
+  BoxScene b;
+  b.proxies_json = test::kOutsideProxy;
+  RenderSceneOptions o = test::quiet();
+  o.keep_larger_proxies = false;
+  const auto scene = loadRenderScene(b.write(dir), o);
+  EXPECT_FALSE(scene->usesProxies());
+  ASSERT_EQ(scene->warnings().size(), 1u);
+  EXPECT_NE(scene->warnings()[0].find("not cheaper"), std::string::npos);
+  for (const RenderObject& obj : scene->objects()) EXPECT_EQ(obj.proxy, -1);
+  EXPECT_EQ(scene->proxyTriangles(), scene->originalTriangles());
+}
+
 TEST(RenderScene, SelfShadowingWithRotatedScaledInstances) {
   ScratchDir dir;
   dir.write("inst.txt",
