@@ -30,6 +30,7 @@
 #else
 #include "test_meshes.h"
 #endif
+#include "trace/internal/embree_ray.h"
 #include "trace/trace_scene.h"
 #include "util/app_main.h"
 #include "util/error.h"
@@ -96,20 +97,7 @@ void bareOccluded(RTCScene scene, const std::vector<pv::Segment>& segs, std::vec
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     for (size_t i = r.begin(); i != r.end(); ++i) {
-      const pv::Segment& s = segs[i];
-      RTCRay ray;
-      ray.org_x = s.org.x;
-      ray.org_y = s.org.y;
-      ray.org_z = s.org.z;
-      ray.tnear = s.tnear;
-      ray.dir_x = s.dir.x;
-      ray.dir_y = s.dir.y;
-      ray.dir_z = s.dir.z;
-      ray.time = 0;
-      ray.tfar = s.tfar;
-      ray.mask = ~0u;
-      ray.id = 0;
-      ray.flags = 0;
+      RTCRay ray = pv::toRtcRay(segs[i]);
       rtcOccluded1(scene, &ctx, &ray);
       out[i] = ray.tfar < 0.0f;
     }
@@ -358,10 +346,7 @@ void selfShadowTable(BenchScene& s, const pv::TriMesh& mesh, pv::TraceDevice& de
         RTCIntersectContext ctx;
         rtcInitIntersectContext(&ctx);
         for (size_t i = r.begin(); i != r.end(); ++i) {
-          const pv::Segment& g = segs[i];
-          RTCRay ray{g.org.x, g.org.y, g.org.z, g.tnear, g.dir.x,
-                     g.dir.y, g.dir.z, 0.0f,    g.tfar,  ~(1u << (owner[i] % 32)),
-                     0,       0};
+          RTCRay ray = pv::toRtcRay(segs[i], ~(1u << (owner[i] % 32)));
           rtcOccluded1(s.bare, &ctx, &ray);
           mask_out[i] = ray.tfar < 0.0f;
         }

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <string>
 
+#include "trace/internal/embree_ray.h"
 #include "trace/internal/trace_scene_impl.h"
 #include "util/error.h"
 
@@ -69,23 +70,6 @@ bool isValid(const Segment& s) {
               "NaN or infinite values cannot be traced", "check the sampling that produced it");
 }
 
-RTCRay toRay(const Segment& s, uint32_t mask = ~0u) {
-  RTCRay r;
-  r.org_x = s.org.x;
-  r.org_y = s.org.y;
-  r.org_z = s.org.z;
-  r.tnear = s.tnear;
-  r.dir_x = s.dir.x;
-  r.dir_y = s.dir.y;
-  r.dir_z = s.dir.z;
-  r.time = 0;
-  r.tfar = s.tfar;
-  r.mask = mask;
-  r.id = 0;
-  r.flags = 0;
-  return r;
-}
-
 // IgnoreStrategy::kMaskThenFilter (see trace_scene.h): every top-level geometry carries the mask
 // bit b = maskBit(its user id). Pass 1 masks out the ignored id's bit: it never enters that
 // geometry (nor the ~1/32 of the others that share b). Only if pass 1 finds nothing, pass 2
@@ -94,15 +78,15 @@ RTCRay toRay(const Segment& s, uint32_t mask = ~0u) {
 // ignore) initContext has set the filter (or none) and one plain pass does it.
 bool occludedOne(RTCScene scene, IgnoreContext& ctx, const Segment& s) {
   if (ctx.ignore == kIgnoreNone || !ctx.mask_first) {
-    RTCRay ray = toRay(s);
+    RTCRay ray = toRtcRay(s);
     rtcOccluded1(scene, &ctx.base, &ray);
     return ray.tfar < 0.0f;  // Embree sets tfar = -inf on a hit
   }
   const uint32_t bit = maskBit(ctx.ignore);
-  RTCRay ray = toRay(s, ~bit);
+  RTCRay ray = toRtcRay(s, ~bit);
   rtcOccluded1(scene, &ctx.base, &ray);
   if (ray.tfar < 0.0f) return true;
-  ray = toRay(s, bit);
+  ray = toRtcRay(s, bit);
   ctx.base.filter = ignoreFilter;
   rtcOccluded1(scene, &ctx.base, &ray);
   ctx.base.filter = nullptr;
@@ -113,13 +97,13 @@ bool occludedOne(RTCScene scene, IgnoreContext& ctx, const Segment& s) {
 void intersectOne(RTCScene scene, IgnoreContext& ctx, const Segment& s, RTCRayHit& rh) {
   const bool two_pass = ctx.ignore != kIgnoreNone && ctx.mask_first;
   const uint32_t bit = two_pass ? maskBit(ctx.ignore) : 0u;
-  rh.ray = toRay(s, ~bit);
+  rh.ray = toRtcRay(s, ~bit);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(scene, &ctx.base, &rh);
   if (!two_pass) return;
   RTCRayHit second;
-  second.ray = toRay(s, bit);
+  second.ray = toRtcRay(s, bit);
   second.ray.tfar = rh.ray.tfar;  // the segment's tfar, or pass 1's hit distance
   second.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   second.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;

@@ -60,6 +60,13 @@ struct Segment {
   float tnear = 0;
   Vec3f dir;
   float tfar = 1;
+  // The segment from `a` to `b`: org = a, dir = b - a, t in [0, 1].
+  static Segment between(const Vec3f& a, const Vec3f& b) {
+    Segment s;
+    s.org = a;
+    s.dir = b - a;
+    return s;
+  }
 };
 
 // Passed as ignore_user_id when nothing is to be ignored; a geometry whose user id is kIgnoreNone

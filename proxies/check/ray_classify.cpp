@@ -32,12 +32,7 @@ Segment sphereSegment(const Vec3f& center, float radius, uint64_t seed, uint64_t
   Rng rng(seed, index);
   const Vec3f a = center + radius * uniformOnSphere(rng);
   const Vec3f b = center + radius * uniformOnSphere(rng);
-  Segment s;
-  s.org = a;
-  s.dir = b - a;
-  s.tnear = 0;
-  s.tfar = 1;
-  return s;
+  return Segment::between(a, b);
 }
 
 Sphere enclosingSphere(const Bounds3f& a, const Bounds3f& b) {

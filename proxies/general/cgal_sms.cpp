@@ -1,27 +1,18 @@
 // CGAL edge collapse with Garland-Heckbert plane quadrics (CGAL 5.5
 // GarlandHeckbert_plane_policies).
-#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
-#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
-#include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Count_stop_predicate.h>
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/GarlandHeckbert_plane_policies.h>
 #include <CGAL/Surface_mesh_simplification/edge_collapse.h>
 
 #include "proxies/general/general_proxy.h"
-#include "proxies/outside/internal/cgal_mesh.h"
+#include "proxies/outside/internal/cgal_weld.h"
 
 namespace proxyvis {
 
 TriMesh simplifyCgalSms(const TriMesh& input, const GeneralOptions& options) {
-  namespace PMP = CGAL::Polygon_mesh_processing;
   namespace SMS = CGAL::Surface_mesh_simplification;
   using cgal::SurfaceMesh;
-  cgal::Soup soup = cgal::toSoup(input);
-  PMP::merge_duplicate_points_in_polygon_soup(soup.points, soup.faces);
-  PMP::remove_isolated_points_in_polygon_soup(soup.points, soup.faces);
-  PMP::orient_polygon_soup(soup.points, soup.faces);
-  SurfaceMesh sm;
-  PMP::polygon_soup_to_polygon_mesh(soup.points, soup.faces, sm);
+  SurfaceMesh sm = cgal::toWeldedMesh(input);
 
   const size_t target = generalTargetFaces(input, options);
   // Edges of a closed triangle mesh: 3F/2; the stop predicate counts edges.

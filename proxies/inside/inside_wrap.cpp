@@ -4,10 +4,7 @@
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
-#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
-#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
-#include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 #include <CGAL/Side_of_triangle_mesh.h>
 #include <CGAL/alpha_wrap_3.h>
@@ -18,7 +15,7 @@
 #include <cmath>
 
 #include "proxies/inside/inside_proxy.h"
-#include "proxies/outside/internal/cgal_mesh.h"
+#include "proxies/outside/internal/cgal_weld.h"
 #include "util/error.h"
 
 namespace proxyvis {
@@ -28,20 +25,9 @@ namespace PMP = CGAL::Polygon_mesh_processing;
 using cgal::Kernel;
 using cgal::Point3;
 using cgal::SurfaceMesh;
+using cgal::toWeldedMesh;
 using Side = CGAL::Side_of_triangle_mesh<SurfaceMesh, Kernel>;
 using Tree = Side::AABB_tree;
-
-// Welds equal positions, drops unreferenced points and builds an oriented Surface_mesh.
-// Non-manifold vertices are split by orient_polygon_soup, so the result is always valid.
-SurfaceMesh toWeldedMesh(const TriMesh& input) {
-  cgal::Soup soup = cgal::toSoup(input);
-  PMP::merge_duplicate_points_in_polygon_soup(soup.points, soup.faces);
-  PMP::remove_isolated_points_in_polygon_soup(soup.points, soup.faces);
-  PMP::orient_polygon_soup(soup.points, soup.faces);
-  SurfaceMesh sm;
-  PMP::polygon_soup_to_polygon_mesh(soup.points, soup.faces, sm);
-  return sm;
-}
 
 size_t countBorderHalfedges(const SurfaceMesh& sm) {
   size_t n = 0;

@@ -1,28 +1,11 @@
-# mesh-info end to end: exit codes, the one-line error on stderr, report text and JSON keys.
-#
-# Included from tests/apps/CMakeLists.txt this registers the tests; run with `cmake -P` it is the
-# driver of one test: runs EXE with ARGS, checks EXPECT_CODE and that stdout+stderr match
-# OUTPUT_REGEX.
-if(CMAKE_SCRIPT_MODE_FILE)
-  separate_arguments(args NATIVE_COMMAND "${ARGS}")
-  execute_process(COMMAND "${EXE}" ${args} RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT code EQUAL EXPECT_CODE)
-    message(FATAL_ERROR "exit code ${code}, expected ${EXPECT_CODE}\nstdout:\n${out}\nstderr:\n${err}")
-  endif()
-  if(NOT "${out}${err}" MATCHES "${OUTPUT_REGEX}")
-    message(FATAL_ERROR "output does not match '${OUTPUT_REGEX}'\nstdout:\n${out}\nstderr:\n${err}")
-  endif()
-  return()
-endif()
-
+# mesh-info end to end: exit codes, the one-line error on stderr, report text and JSON keys
+# (support/run_app.cmake checks the exit code and that stdout+stderr match the regex).
 if(NOT TARGET mesh-info)
   return()
 endif()
 function(mesh_info_test name code regex)
   string(JOIN " " args ${ARGN})
-  add_test(NAME app_mesh_info_${name}
-    COMMAND ${CMAKE_COMMAND} -DEXE=$<TARGET_FILE:mesh-info> "-DARGS=${args}"
-      -DEXPECT_CODE=${code} "-DOUTPUT_REGEX=${regex}" -P ${CMAKE_CURRENT_LIST_FILE})
+  proxyvis_app_test(app_mesh_info_${name} mesh-info ${code} "${args}" REGEX "${regex}")
 endfunction()
 set(d ${PROXYVIS_DATA_DIR})
 mesh_info_test(closed_genus 0 "triangles +6966.*closed +yes.*genus +0" ${d}/bunny.off)

@@ -1,40 +1,22 @@
 # proxy-gen end to end: exit codes, messages, JSON keys and written files.
 #
-# Included from tests/apps/CMakeLists.txt this registers the tests; run with `cmake -P` it is the
-# driver of one test: it runs the program, checks the exit code, that stdout+stderr match
-# OUTPUT_REGEX, that stdout (JSON_STDOUT) parses with the documented keys, and that
-# EXPECT_FILE was (or, for a failure, NO_FILE was not) written.
+# Included from tests/apps/CMakeLists.txt this registers the tests; in script mode
+# support/run_app.cmake includes it after its checks (exit code, OUTPUT_REGEX, EXPECT_FILE written
+# or, for a failure, NO_FILE not) to check that stdout is JSON with the documented keys
+# (JSON_KEYS, space-separated) and the expected "verified" value (JSON_VERIFIED).
 if(CMAKE_SCRIPT_MODE_FILE)
-  separate_arguments(args NATIVE_COMMAND "${ARGS}")
-  foreach(f ${EXPECT_FILE} ${NO_FILE})
-    file(REMOVE "${f}")
-  endforeach()
-  execute_process(COMMAND "${EXE}" ${args} RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT code EQUAL EXPECT_CODE)
-    message(FATAL_ERROR "exit code ${code}, expected ${EXPECT_CODE}\nstdout:\n${out}\nstderr:\n${err}")
-  endif()
-  if(OUTPUT_REGEX AND NOT "${out}${err}" MATCHES "${OUTPUT_REGEX}")
-    message(FATAL_ERROR "output does not match '${OUTPUT_REGEX}'\nstdout:\n${out}\nstderr:\n${err}")
-  endif()
-  if(JSON_KEYS)
-    foreach(key ${JSON_KEYS})
-      string(JSON value ERROR_VARIABLE missing GET "${out}" ${key})
-      if(missing)
-        message(FATAL_ERROR "JSON key '${key}' missing: ${missing}\nstdout:\n${out}")
-      endif()
-    endforeach()
-    if(JSON_VERIFIED)
-      string(JSON verified GET "${out}" verified)  # CMake reads JSON true as ON
-      if(NOT verified STREQUAL JSON_VERIFIED)
-        message(FATAL_ERROR "verified = ${verified}, expected ${JSON_VERIFIED}")
-      endif()
+  separate_arguments(keys UNIX_COMMAND "${JSON_KEYS}")
+  foreach(key ${keys})
+    string(JSON value ERROR_VARIABLE missing GET "${out}" ${key})
+    if(missing)
+      message(FATAL_ERROR "JSON key '${key}' missing: ${missing}\nstdout:\n${out}")
     endif()
-  endif()
-  if(EXPECT_FILE AND NOT EXISTS "${EXPECT_FILE}")
-    message(FATAL_ERROR "${EXPECT_FILE} was not written")
-  endif()
-  if(NO_FILE AND EXISTS "${NO_FILE}")
-    message(FATAL_ERROR "${NO_FILE} was written although the run failed")
+  endforeach()
+  if(JSON_VERIFIED)
+    string(JSON verified GET "${out}" verified)  # CMake reads JSON true as ON
+    if(NOT verified STREQUAL JSON_VERIFIED)
+      message(FATAL_ERROR "verified = ${verified}, expected ${JSON_VERIFIED}")
+    endif()
   endif()
   return()
 endif()
@@ -55,15 +37,14 @@ set(pg_keys input kind method parameters faces volume_ratio hausdorff_proxy_to_o
 # pg_test(NAME CODE ARGS [REGEX r] [KEYS] [FILE f] [NO_FILE f] [VERIFIED v])
 function(pg_test name code args)
   cmake_parse_arguments(T "KEYS" "REGEX;FILE;NO_FILE;VERIFIED" "" ${ARGN})
-  set(keys "")
+  set(checks "")
   if(T_KEYS)
-    set(keys "${pg_keys}")
+    string(JOIN " " keys ${pg_keys})
+    set(checks CHECKS ${CMAKE_CURRENT_FUNCTION_LIST_FILE} DEFS "-DJSON_KEYS=${keys}"
+      "-DJSON_VERIFIED=${T_VERIFIED}")
   endif()
-  add_test(NAME proxy_gen_app.${name}
-    COMMAND ${CMAKE_COMMAND} -DEXE=$<TARGET_FILE:proxy-gen> "-DARGS=${args}" -DEXPECT_CODE=${code}
-      "-DOUTPUT_REGEX=${T_REGEX}" "-DJSON_KEYS=${keys}" "-DEXPECT_FILE=${T_FILE}" "-DNO_FILE=${T_NO_FILE}"
-      "-DJSON_VERIFIED=${T_VERIFIED}" -P ${CMAKE_CURRENT_LIST_FILE})
-  set_tests_properties(proxy_gen_app.${name} PROPERTIES TIMEOUT 120)
+  proxyvis_app_test(proxy_gen_app.${name} proxy-gen ${code} "${args}" REGEX "${T_REGEX}"
+    FILES ${T_FILE} NO_FILES ${T_NO_FILE} TIMEOUT 120 ${checks})
 endfunction()
 
 pg_test(outside_wrap_budget 0

@@ -54,6 +54,13 @@ std::string binaryPlyTriangle(const float (&xyz)[9], const int (&idx)[3]) {
 
 class BrokenFiles : public ::testing::Test {
  protected:
+  // Writes `bytes` to `name` in the scratch folder and expects loading it to fail (see
+  // expectLoadError).
+  void expectBroken(const std::string& name, const std::string& bytes,
+                    const std::string& fragment) {
+    writeBytes(dir / name, bytes);
+    expectLoadError(dir / name, fragment);
+  }
   ScratchDir dir{"broken"};
 };
 
@@ -68,8 +75,7 @@ TEST_F(BrokenFiles, DirectoryInsteadOfFile) {
 
 TEST_F(BrokenFiles, EmptyFile) {
   for (const char* name : {"empty.ply", "empty.obj", "empty.off", "empty.drc"}) {
-    writeBytes(dir / name, "");
-    expectLoadError(dir / name, "empty");
+    expectBroken(name, "", "empty");
   }
 }
 
@@ -85,70 +91,53 @@ TEST_F(BrokenFiles, TruncatedBinaryPly) {
   saveMesh(loadMesh(dataFile("bunny.off")), scratch / "bunny.ply");
   const std::string full = readBytes(scratch / "bunny.ply");
   // A quarter of the file: the header's counts no longer fit (caught before reading).
-  writeBytes(dir / "quarter.ply", full.substr(0, full.size() / 4));
-  expectLoadError(dir / "quarter.ply", "truncated");
+  expectBroken("quarter.ply", full.substr(0, full.size() / 4), "truncated");
   // Half: fits the minimum size of the declared records, OpenMesh's reader notices the end.
-  writeBytes(dir / "half.ply", full.substr(0, full.size() / 2));
-  expectLoadError(dir / "half.ply", "end of file");
+  expectBroken("half.ply", full.substr(0, full.size() / 2), "end of file");
   // A few bytes short: only the reader can notice (the last face is incomplete).
-  writeBytes(dir / "short.ply", full.substr(0, full.size() - 5));
-  expectLoadError(dir / "short.ply", "");
+  expectBroken("short.ply", full.substr(0, full.size() - 5), "");
   // Header only.
-  writeBytes(dir / "header.ply", full.substr(0, full.find("end_header") + 11));
-  expectLoadError(dir / "header.ply", "truncated");
+  expectBroken("header.ply", full.substr(0, full.find("end_header") + 11), "truncated");
 }
 
 TEST_F(BrokenFiles, TruncatedAsciiOffAndDraco) {
   const std::string off = readBytes(dataFile("bunny.off"));
-  writeBytes(dir / "short.off", off.substr(0, off.size() / 3));
-  expectLoadError(dir / "short.off", "");
+  expectBroken("short.off", off.substr(0, off.size() / 3), "");
   const std::string drc = readBytes(dataFile("draco/bunny.drc"));
-  writeBytes(dir / "short.drc", drc.substr(0, drc.size() / 2));
-  expectLoadError(dir / "short.drc", "Draco");
+  expectBroken("short.drc", drc.substr(0, drc.size() / 2), "Draco");
 }
 
 TEST_F(BrokenFiles, NanAndInfCoordinates) {
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const float inf = std::numeric_limits<float>::infinity();
-  writeBytes(dir / "nan.ply", binaryPlyTriangle({0, 0, 0, 1, 0, 0, 0, nan, 0}, {0, 1, 2}));
-  expectLoadError(dir / "nan.ply", "NaN");
-  writeBytes(dir / "inf.ply", binaryPlyTriangle({0, 0, 0, inf, 0, 0, 0, 1, 0}, {0, 1, 2}));
-  expectLoadError(dir / "inf.ply", "infinite");
-  writeBytes(dir / "nan.obj", "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n");
-  expectLoadError(dir / "nan.obj", "");
-  writeBytes(dir / "inf.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 inf 0\n3 0 1 2\n");
-  expectLoadError(dir / "inf.off", "");
+  expectBroken("nan.ply", binaryPlyTriangle({0, 0, 0, 1, 0, 0, 0, nan, 0}, {0, 1, 2}), "NaN");
+  expectBroken("inf.ply", binaryPlyTriangle({0, 0, 0, inf, 0, 0, 0, 1, 0}, {0, 1, 2}), "infinite");
+  expectBroken("nan.obj", "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n", "");
+  expectBroken("inf.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 inf 0\n3 0 1 2\n", "");
 }
 
 TEST_F(BrokenFiles, IndexOutOfRange) {
-  writeBytes(dir / "bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
-  expectLoadError(dir / "bad.obj", "out of range");
-  writeBytes(dir / "bad.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n");
-  expectLoadError(dir / "bad.off", "out of range");
-  writeBytes(dir / "neg.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 -1 2\n");
-  expectLoadError(dir / "neg.off", "");
-  writeBytes(dir / "bad.ply", binaryPlyTriangle({0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 1, 1000}));
-  expectLoadError(dir / "bad.ply", "out of range");
-  writeBytes(
-      dir / "ascii.ply",
+  expectBroken("bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", "out of range");
+  expectBroken("bad.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n", "out of range");
+  expectBroken("neg.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 -1 2\n", "");
+  expectBroken("bad.ply", binaryPlyTriangle({0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 1, 1000}),
+               "out of range");
+  expectBroken(
+      "ascii.ply",
       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
       "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
-      "0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n");
-  expectLoadError(dir / "ascii.ply", "out of range");
+      "0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n",
+      "out of range");
 }
 
 TEST_F(BrokenFiles, HugeDeclaredCounts) {
   // 2^31 - 1 vertices claimed in a tiny file: must fail before any allocation.
-  writeBytes(dir / "huge.ply", binaryPlyHeader(2147483647u, 1) + std::string(1000, '\0'));
-  expectLoadError(dir / "huge.ply", "2147483647");
-  writeBytes(dir / "huge_faces.ply", binaryPlyHeader(3, 2000000000u) + std::string(1000, '\0'));
-  expectLoadError(dir / "huge_faces.ply", "2000000000");
-  writeBytes(dir / "over.ply", binaryPlyHeader(4294967296u, 1) + std::string(100, '\0'));
-  expectLoadError(dir / "over.ply", "4294967296");
-  writeBytes(dir / "huge.off", "OFF\n2000000000 1 0\n0 0 0\n");
-  expectLoadError(dir / "huge.off", "2000000000");
-  writeBytes(dir / "neg.off", "OFF\n-5 1 0\n0 0 0\n");
-  expectLoadError(dir / "neg.off", "");
+  expectBroken("huge.ply", binaryPlyHeader(2147483647u, 1) + std::string(1000, '\0'), "2147483647");
+  expectBroken("huge_faces.ply", binaryPlyHeader(3, 2000000000u) + std::string(1000, '\0'),
+               "2000000000");
+  expectBroken("over.ply", binaryPlyHeader(4294967296u, 1) + std::string(100, '\0'), "4294967296");
+  expectBroken("huge.off", "OFF\n2000000000 1 0\n0 0 0\n", "2000000000");
+  expectBroken("neg.off", "OFF\n-5 1 0\n0 0 0\n", "");
 }
 
 TEST_F(BrokenFiles, GarbageBytes) {
@@ -159,18 +148,14 @@ TEST_F(BrokenFiles, GarbageBytes) {
     garbage.push_back(char(x >> 24));
   }
   for (const char* name : {"g.ply", "g.obj", "g.off", "g.drc"}) {
-    writeBytes(dir / name, garbage);
-    expectLoadError(dir / name, "");
+    expectBroken(name, garbage, "");
   }
-  writeBytes(dir / "text.obj", "this is not a mesh\njust words\n");
-  expectLoadError(dir / "text.obj", "no triangles");
+  expectBroken("text.obj", "this is not a mesh\njust words\n", "no triangles");
 }
 
 TEST_F(BrokenFiles, NoTriangles) {
-  writeBytes(dir / "points.off", "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n");
-  expectLoadError(dir / "points.off", "no triangles");
-  writeBytes(dir / "points.obj", "v 0 0 0\nv 1 0 0\n");
-  expectLoadError(dir / "points.obj", "no triangles");
+  expectBroken("points.off", "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n", "no triangles");
+  expectBroken("points.obj", "v 0 0 0\nv 1 0 0\n", "no triangles");
 }
 
 TEST_F(BrokenFiles, SaveToMissingDirectoryIsWriteErrorAndLeavesNothing) {

@@ -9,6 +9,7 @@
 #include "mesh/mesh_io.h"
 #include "proxies/check/pair_check.h"
 #include "tests/proxies/check_shapes.h"
+#include "tests/proxies/pair_check_util.h"
 #ifdef PROXYVIS_HAVE_OUTSIDE
 #include "proxies/outside/outside_proxy.h"
 #endif
@@ -22,12 +23,7 @@ class ClosedMesh : public testing::TestWithParam<const char*> {
     return loadMesh(std::string(PROXYVIS_SHARED_DATA_DIR) + "/meshes/" + GetParam());
   }
   static PairCheckReport check(const TriMesh& original, const TriMesh& proxy) {
-    PairCheckOptions o;
-    o.rays = 200'000;
-    o.seed = 17;
-    o.quiet = true;
-    o.distance_samples = 2000;
-    return checkPair(original, proxy, o);
+    return test::testCheckPair(original, proxy, 17);
   }
 };
 

@@ -7,6 +7,7 @@
 #include "proxies/check/pair_check.h"
 #include "proxies/check/ray_classify.h"
 #include "tests/proxies/check_shapes.h"
+#include "tests/proxies/pair_check_util.h"
 
 namespace proxyvis {
 namespace {
@@ -116,12 +117,7 @@ TEST(RayClassify, SameCountsAtAnyThreadCount) {
 }
 
 PairCheckReport check(const TriMesh& original, const TriMesh& proxy) {
-  PairCheckOptions o;
-  o.rays = 200'000;
-  o.seed = 1;
-  o.quiet = true;
-  o.distance_samples = 2000;
-  return checkPair(original, proxy, o);
+  return test::testCheckPair(original, proxy, 1);
 }
 
 TEST(PairCheck, BoundingBoxIsOutside) {
@@ -149,10 +145,7 @@ TEST(PairCheck, InnerBoxIsInside) {
 
 TEST(PairCheck, ShiftedCopyIsGeneralAndExpectationsFail) {
   const TriMesh s = sphere();
-  PairCheckOptions o;
-  o.rays = 200'000;
-  o.quiet = true;
-  o.distance_samples = 2000;
+  PairCheckOptions o = test::testCheckOptions(0);
   o.expect = ProxyClass::kOutside;
   const PairCheckReport r = checkPair(s, transformed(s, kCenter, 1.0f, {0.1f, 0, 0}, "shift"), o);
   EXPECT_EQ(r.exact.verdict, ContainmentVerdict::kIntersecting);

@@ -1,12 +1,18 @@
 #pragma once
 // Shared by the proxy-gen tests: where the real meshes are (data/ of the repository, or the
-// shared data folder while data/ is being filled) and a cached loader.
+// shared data folder while data/ is being filled), a cached loader, test options and the
+// containment cases of the outside and inside suites.
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <string>
 
 #include "mesh/mesh_io.h"
+#include "proxies/check/containment.h"
+#include "proxies/general/proxy_pipeline.h"
 
 namespace proxyvis::gen_test {
 
@@ -30,6 +36,50 @@ inline const TriMesh& mesh(const std::string& relative) {
   auto it = cache.find(relative);
   if (it == cache.end()) it = cache.emplace(relative, loadMesh(meshPath(relative))).first;
   return it->second;
+}
+
+// Options for generateProxy: `kind`, `method` (empty = the kind's default), a face budget (0 =
+// none) and the Hausdorff samples (fewer than the app's default, for the tests' time).
+inline ProxyGenOptions genOptions(ProxyClass kind, const std::string& method, size_t max_faces,
+                                  uint64_t hausdorff_samples) {
+  ProxyGenOptions o;
+  o.kind = kind;
+  o.method = method;
+  o.max_faces = max_faces;
+  o.hausdorff_samples = hausdorff_samples;
+  return o;
+}
+
+// One case of the outside / inside containment suites: a mesh, a method, a face budget as a
+// fraction of the input's faces (0 = no budget) and the method's size parameter (0 = default).
+struct ContainmentCase {
+  const char* mesh;
+  const char* method;
+  double budget_fraction;
+  double size;
+};
+
+struct ContainmentRun {
+  ProxyGenOptions options;
+  ProxyGenResult result;
+};
+
+// Generates the proxy of `c` (`size` names the option its size sets, e.g. alpha or offset) and
+// checks what every containment case must show: the pipeline verified the proxy, and the exact
+// check, run here independently of the report on what would be written, gives `expected`.
+inline ContainmentRun runContainmentCase(const ContainmentCase& c, ProxyClass kind,
+                                         std::optional<double> ProxyGenOptions::*size,
+                                         ContainmentVerdict expected) {
+  const TriMesh& input = mesh(c.mesh);
+  ContainmentRun run;
+  run.options =
+      genOptions(kind, c.method, size_t(c.budget_fraction * double(input.numTriangles())), 2000);
+  if (c.size > 0) run.options.*size = c.size;
+  run.result = generateProxy(input, run.options);
+  EXPECT_TRUE(run.result.verified) << run.result.report.dump(2);
+  const ContainmentResult check = checkContainment(input, run.result.proxy);
+  EXPECT_EQ(check.verdict, expected) << check.detail;
+  return run;
 }
 
 }  // namespace proxyvis::gen_test

@@ -12,18 +12,15 @@
 namespace proxyvis {
 namespace {
 
+using gen_test::genOptions;
 using gen_test::mesh;
 
 class GeneralMethod : public testing::TestWithParam<const char*> {};
 
 TEST_P(GeneralMethod, MeetsBudgetAndStaysClose) {
   const TriMesh& input = mesh("bunny.off");
-  ProxyGenOptions o;
-  o.kind = ProxyClass::kGeneral;
-  o.method = GetParam();
-  o.max_faces = 700;
-  o.hausdorff_samples = 4000;
-  const ProxyGenResult r = generateProxy(input, o);
+  const ProxyGenResult r =
+      generateProxy(input, genOptions(ProxyClass::kGeneral, GetParam(), 700, 4000));
   EXPECT_LE(r.proxy.numTriangles(), 700u);
   EXPECT_GT(r.proxy.numTriangles(), 350u);
   // 10 % of the input faces: a decent simplifier stays within 2 % of the diagonal.
@@ -57,10 +54,8 @@ TEST(GeneralWeld, SharedPositionsBecomeOneVertex) {
 
 TEST(GeneralReport, HasEveryKeyAndRoundTrips) {
   const TriMesh& input = mesh("bunny.off");
-  ProxyGenOptions o;
-  o.kind = ProxyClass::kGeneral;
+  ProxyGenOptions o = genOptions(ProxyClass::kGeneral, "", 0, 1000);
   o.ratio = 0.05;
-  o.hausdorff_samples = 1000;
   const ProxyGenResult r = generateProxy(input, o);
   const nlohmann::json parsed = nlohmann::json::parse(r.report.dump());
   for (const char* key :

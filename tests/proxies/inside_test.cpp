@@ -14,30 +14,16 @@
 namespace proxyvis {
 namespace {
 
+using gen_test::genOptions;
 using gen_test::mesh;
-
-struct Case {
-  const char* mesh;
-  const char* method;
-  double budget_fraction;  // 0 = no budget
-  double offset;           // 0 = default
-};
+// The size of a case is the wrap's offset (fraction of the diagonal).
+using Case = gen_test::ContainmentCase;
 
 class InsideContainment : public testing::TestWithParam<Case> {};
 
 TEST_P(InsideContainment, ExactCheckProvesContainment) {
-  const Case c = GetParam();
-  const TriMesh& input = mesh(c.mesh);
-  ProxyGenOptions o;
-  o.kind = ProxyClass::kInside;
-  o.method = c.method;
-  if (c.offset > 0) o.offset = c.offset;
-  o.max_faces = size_t(c.budget_fraction * double(input.numTriangles()));
-  o.hausdorff_samples = 2000;
-  const ProxyGenResult r = generateProxy(input, o);
-  EXPECT_TRUE(r.verified) << r.report.dump(2);
-  const ContainmentResult check = checkContainment(input, r.proxy);
-  EXPECT_EQ(check.verdict, ContainmentVerdict::kContained) << check.detail;
+  const auto [o, r] = gen_test::runContainmentCase(
+      GetParam(), ProxyClass::kInside, &ProxyGenOptions::offset, ContainmentVerdict::kContained);
   if (o.max_faces > 0 && r.report["budget_reached"].get<bool>()) {
     EXPECT_LE(r.proxy.numTriangles(), o.max_faces);
   }
@@ -53,31 +39,28 @@ INSTANTIATE_TEST_SUITE_P(
                     Case{"bunny.off", "erode", 0, 0}, Case{"spot_triangulated.obj", "erode", 0, 0},
                     Case{"bunny.off", "erode", 0.1, 0}, Case{"dragon.drc", "wrap", 0.02, 0}));
 
-TEST(InsideBudget, ErodeBudgetIsRespected) {
-  // The voxel surface has ~40 k faces; the inward collapse must bring it to the budget without
-  // self-intersections (the 2-ring filter) and keep it inside.
-  ProxyGenOptions o;
-  o.kind = ProxyClass::kInside;
-  o.method = "erode";
-  o.max_faces = 1500;
-  o.hausdorff_samples = 1000;
-  const ProxyGenResult r = generateProxy(mesh("spot_triangulated.obj"), o);
+struct BudgetCase {
+  const char* mesh;
+  const char* method;
+  size_t max_faces;
+};
+
+class InsideBudget : public testing::TestWithParam<BudgetCase> {};
+
+TEST_P(InsideBudget, IsRespected) {
+  const BudgetCase c = GetParam();
+  const ProxyGenResult r =
+      generateProxy(mesh(c.mesh), genOptions(ProxyClass::kInside, c.method, c.max_faces, 1000));
   EXPECT_TRUE(r.report["budget_reached"].get<bool>()) << r.report.dump(2);
-  EXPECT_LE(r.proxy.numTriangles(), 1500u);
+  EXPECT_LE(r.proxy.numTriangles(), c.max_faces);
   EXPECT_TRUE(r.verified);
 }
 
-TEST(InsideBudget, WrapBudgetIsRespected) {
-  const TriMesh& input = mesh("bunny.off");
-  ProxyGenOptions o;
-  o.kind = ProxyClass::kInside;
-  o.max_faces = 300;
-  o.hausdorff_samples = 1000;
-  const ProxyGenResult r = generateProxy(input, o);
-  EXPECT_TRUE(r.report["budget_reached"].get<bool>());
-  EXPECT_LE(r.proxy.numTriangles(), 300u);
-  EXPECT_TRUE(r.verified);
-}
+// Erode: the voxel surface has ~40 k faces; the inward collapse must bring it to the budget
+// without self-intersections (the 2-ring filter) and keep it inside.
+INSTANTIATE_TEST_SUITE_P(Methods, InsideBudget,
+                         testing::Values(BudgetCase{"spot_triangulated.obj", "erode", 1500},
+                                         BudgetCase{"bunny.off", "wrap", 300}));
 
 TEST(InsideOpenInput, IsAnErrorNamingBoundaryEdges) {
   const TriMesh& input = mesh("bun_zipper.ply");
@@ -104,10 +87,8 @@ TEST(InsideOpenInput, FillHolesMakesBunZipperWork) {
   const TriMesh filled = fillHoles(input, &holes);
   EXPECT_EQ(countBoundaryEdges(filled), 0u);
   EXPECT_GT(holes, 0u);
-  ProxyGenOptions o;
-  o.kind = ProxyClass::kInside;
+  ProxyGenOptions o = genOptions(ProxyClass::kInside, "", 0, 2000);
   o.fill_holes = true;
-  o.hausdorff_samples = 2000;
   const ProxyGenResult r = generateProxy(input, o);
   EXPECT_TRUE(r.verified) << r.report.dump(2);
   EXPECT_EQ(checkContainment(filled, r.proxy).verdict, ContainmentVerdict::kContained);

@@ -16,31 +16,16 @@
 namespace proxyvis {
 namespace {
 
+using gen_test::genOptions;
 using gen_test::mesh;
-
-struct Case {
-  const char* mesh;
-  const char* method;
-  double budget_fraction;  // 0 = no budget
-  double alpha;            // 0 = default
-};
+// The size of a case is the wrap's alpha (fraction of the diagonal).
+using Case = gen_test::ContainmentCase;
 
 class OutsideContainment : public testing::TestWithParam<Case> {};
 
 TEST_P(OutsideContainment, ExactCheckProvesContainment) {
-  const Case c = GetParam();
-  const TriMesh& input = mesh(c.mesh);
-  ProxyGenOptions o;
-  o.kind = ProxyClass::kOutside;
-  o.method = c.method;
-  if (c.alpha > 0) o.alpha = c.alpha;
-  o.max_faces = size_t(c.budget_fraction * double(input.numTriangles()));
-  o.hausdorff_samples = 2000;
-  const ProxyGenResult r = generateProxy(input, o);
-  EXPECT_TRUE(r.verified) << r.report.dump(2);
-  // Independently of the report: the exact verdict on what would be written.
-  const ContainmentResult check = checkContainment(input, r.proxy);
-  EXPECT_EQ(check.verdict, ContainmentVerdict::kContains) << check.detail;
+  const auto [o, r] = gen_test::runContainmentCase(
+      GetParam(), ProxyClass::kOutside, &ProxyGenOptions::alpha, ContainmentVerdict::kContains);
   if (o.max_faces > 0) {
     EXPECT_LE(r.proxy.numTriangles(), o.max_faces);
   }
@@ -73,10 +58,7 @@ TEST(OutsideFoliage, OpenNonManifoldLeavesAreWrapped) {
   // Leaf cards: open, unshared vertices, nothing closed. The wrap needs no closed input and must
   // contain every vertex (checkContainment's definition for an open original).
   const TriMesh& input = mesh("YELLOWFLOWER1.ply");
-  ProxyGenOptions o;
-  o.kind = ProxyClass::kOutside;
-  o.hausdorff_samples = 2000;
-  const ProxyGenResult r = generateProxy(input, o);
+  const ProxyGenResult r = generateProxy(input, genOptions(ProxyClass::kOutside, "", 0, 2000));
   EXPECT_FALSE(r.report["input"]["closed"].get<bool>());
   EXPECT_TRUE(r.verified) << r.report.dump(2);
   EXPECT_EQ(checkContainment(input, r.proxy).verdict, ContainmentVerdict::kContains);

@@ -102,12 +102,7 @@ Segment randomSegment(const Bounds3f& box, uint64_t seed, uint64_t i) {
           box.lo.z + e.z * rng.uniformFloat());
   Vec3f b(box.lo.x + e.x * rng.uniformFloat(), box.lo.y + e.y * rng.uniformFloat(),
           box.lo.z + e.z * rng.uniformFloat());
-  Segment s;
-  s.org = a;
-  s.dir = b - a;
-  s.tnear = 0;
-  s.tfar = 1;
-  return s;
+  return Segment::between(a, b);
 }
 
 Bounds3f grown(const Bounds3f& bounds, float fraction) {

@@ -1,0 +1,40 @@
+# Driver of one app end-to-end test, run as `cmake -P` (proxyvis_app_test registers it).
+#
+# Removes CLEAN_DIR and every EXPECT_FILE / NO_FILE path, runs EXE with ARGS RUNS times (default
+# 1), then checks that the last exit code is EXPECT_CODE, that stdout+stderr match OUTPUT_REGEX
+# (if given), that every EXPECT_FILE was written and that no NO_FILE was. Last, it include()s
+# APP_CHECKS (the app's own .cmake file) for checks of its own, with the output in `out` and
+# `err`.
+separate_arguments(args NATIVE_COMMAND "${ARGS}")
+if(NOT RUNS)
+  set(RUNS 1)
+endif()
+if(CLEAN_DIR)
+  file(REMOVE_RECURSE "${CLEAN_DIR}")
+endif()
+foreach(f IN LISTS EXPECT_FILE NO_FILE)
+  file(REMOVE "${f}")
+endforeach()
+foreach(run RANGE 1 ${RUNS})
+  execute_process(COMMAND "${EXE}" ${args} RESULT_VARIABLE code OUTPUT_VARIABLE out
+    ERROR_VARIABLE err)
+endforeach()
+if(NOT code EQUAL EXPECT_CODE)
+  message(FATAL_ERROR "exit code ${code}, expected ${EXPECT_CODE}\nstdout:\n${out}\nstderr:\n${err}")
+endif()
+if(OUTPUT_REGEX AND NOT "${out}${err}" MATCHES "${OUTPUT_REGEX}")
+  message(FATAL_ERROR "output does not match '${OUTPUT_REGEX}'\nstdout:\n${out}\nstderr:\n${err}")
+endif()
+foreach(f IN LISTS EXPECT_FILE)
+  if(NOT EXISTS "${f}")
+    message(FATAL_ERROR "${f} was not written")
+  endif()
+endforeach()
+foreach(f IN LISTS NO_FILE)
+  if(EXISTS "${f}")
+    message(FATAL_ERROR "${f} was written although the run failed")
+  endif()
+endforeach()
+if(APP_CHECKS)
+  include("${APP_CHECKS}")
+endif()
