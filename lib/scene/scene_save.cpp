@@ -5,6 +5,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "scene/internal/json_text.h"
 #include "scene/scene_desc.h"
 #include "util/atomic_write.h"
 #include "util/error.h"
@@ -12,7 +13,8 @@
 namespace proxyvis {
 
 namespace fs = std::filesystem;
-using nlohmann::json;
+// Ordered: keys are written in the order of scenes/FORMAT.md and the hand-written scenes.
+using json = nlohmann::ordered_json;
 
 namespace {
 
@@ -76,8 +78,9 @@ json sceneToJson(const SceneDesc& scene, const fs::path& dir, const fs::path& in
                {"place", m.place}};
     json proxies = json::array();
     for (const ProxyRef& p : m.proxies) {
-      json jp = {{"kind", p.kind}, {"file", relativePath(p.file, dir)}};
+      json jp = {{"kind", p.kind}};
       if (!p.method.empty()) jp["method"] = p.method;
+      jp["file"] = relativePath(p.file, dir);
       if (p.verified_class) jp["class"] = proxyClassName(*p.verified_class);
       proxies.push_back(jp);
     }
@@ -111,13 +114,18 @@ void saveSceneDesc(const SceneDesc& scene, const fs::path& path) {
     instances_file = dir / (target.stem().string() + ".instances.txt");
     writeTextAtomically(instances_file, instanceLines(scene));
   }
-  writeTextAtomically(target, sceneToJson(scene, dir, instances_file).dump(2) + "\n");
+  writeTextAtomically(
+      target, scene_internal::sceneJsonText(sceneToJson(scene, dir, instances_file)) + "\n");
 }
 
 std::string sceneHash(const SceneDesc& scene) {
   Fnv1a fnv;
   // Paths relative to the scene's directory, so moving a whole scene folder keeps its hash.
-  fnv.add(sceneToJson(scene, scene.path.parent_path(), scene.instances_file).dump());
+  // Hashed with sorted keys and full doubles, as before the file kept its key order, so that
+  // cached references stay valid.
+  fnv.add(nlohmann::json::parse(
+              sceneToJson(scene, scene.path.parent_path(), scene.instances_file).dump())
+              .dump());
   std::vector<fs::path> files;
   for (const SceneMeshDesc& m : scene.meshes) {
     files.push_back(m.file);

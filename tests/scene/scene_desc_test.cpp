@@ -1,6 +1,11 @@
 // Scene file parsing: every field, errors that name the JSON path, round trip, hash.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <fstream>
+#include <string>
+#include <vector>
+
 #include "scene/scene_desc.h"
 #include "scene/transform.h"
 #include "scene_test_util.h"
@@ -235,6 +240,37 @@ TEST_F(FullSceneFixture, SaveThenLoadRoundTrips) {
   EXPECT_EQ(t.instances_file, s.instances_file);
   ASSERT_EQ(t.instances.size(), s.instances.size());
   EXPECT_TRUE(t.instances[1].transform == s.instances[1].transform);
+}
+
+TEST_F(FullSceneFixture, SavedFileReadsLikeAHandWrittenScene) {
+  SceneDesc s = loadSceneDesc(scene_path);
+  s.meshes[0].albedo = {0.8f, 1.0f / 3.0f, 1e-5f};
+  s.meshes[0].transform = rotation({1, 2, 3}, 33);  // 16 numbers with full float digits
+  const auto out = dir.path() / "layout.json";
+  saveSceneDesc(s, out);
+  std::ifstream in(out);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  auto lineWith = [&](const std::string& key) -> std::string {
+    for (const std::string& l : lines)
+      if (l.find(key) != std::string::npos) return l;
+    ADD_FAILURE() << key << " not found";
+    return {};
+  };
+  // Numbers arrays whole on one line, floats in their shortest form.
+  EXPECT_EQ(lineWith("\"eye\""), "    \"eye\": [1, 2, 3],");
+  EXPECT_EQ(lineWith("\"albedo\""), "      \"albedo\": [0.8, 0.33333334, 1e-05],");
+  EXPECT_NE(lineWith("[[-1, 5, -1], [1, 5, -1], [1, 5, 1]]"), "");  // a light triangle's corners
+  const std::string transform = lineWith("\"transform\"");
+  EXPECT_EQ(std::count(transform.begin(), transform.end(), ','), 16) << transform;  // + trailing
+  EXPECT_TRUE(transform.ends_with("0, 0, 0, 1],")) << transform;
+  for (const std::string& l : lines)  // no line holds a lone number
+    EXPECT_FALSE(l.find_first_not_of(" -0123456789.e+,") == std::string::npos) << l;
+  // And the values read back exactly.
+  const SceneDesc t = loadSceneDesc(out);
+  EXPECT_EQ(t.meshes[0].albedo, s.meshes[0].albedo);
+  EXPECT_TRUE(t.meshes[0].transform == s.meshes[0].transform);
+  EXPECT_EQ(t.lights[0].triangles[1][2], s.lights[0].triangles[1][2]);
 }
 
 TEST_F(FullSceneFixture, SaveWritesInMemoryInstancesBesideTheScene) {
