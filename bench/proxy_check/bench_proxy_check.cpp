@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "mesh/mesh_io.h"
+#include "mesh/primitives.h"
 #include "proxies/check/ray_classify.h"
 #include "util/error.h"
 
@@ -23,18 +24,8 @@ using namespace proxyvis;
 namespace {
 
 TriMesh boundingBox(const Bounds3f& b) {
-  const Vec3f e = b.extent() * 0.01f, lo = b.lo - e, hi = b.hi + e;
-  TriMesh m;
-  m.source = "bounding box (12 faces)";
-  for (int i = 0; i < 8; ++i)
-    m.vertices.push_back({i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z});
-  const int q[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
-                       {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-  for (const auto& f : q) {
-    m.triangles.push_back({uint32_t(f[0]), uint32_t(f[1]), uint32_t(f[2])});
-    m.triangles.push_back({uint32_t(f[0]), uint32_t(f[2]), uint32_t(f[3])});
-  }
-  return m;
+  const Vec3f e = b.extent() * 0.01f;
+  return makeBoxMesh(b.lo - e, b.hi + e, "bounding box (12 faces)");
 }
 
 // UV sphere circumscribing the box (its faces stay outside a sphere of radius r cos(pi/n)).
@@ -42,27 +33,7 @@ TriMesh enclosingSphereMesh(const Bounds3f& b, int slices = 45, int stacks = 23)
   const float pi = std::numbers::pi_v<float>;
   const float r =
       0.5f * b.diagonal() / (std::cos(pi / float(slices)) * std::cos(pi / float(stacks)));
-  TriMesh m;
-  m.source = "enclosing sphere";
-  const Vec3f c = b.center();
-  m.vertices.push_back(c + Vec3f(0, 0, r));
-  for (int i = 1; i < stacks; ++i)
-    for (int j = 0; j < slices; ++j) {
-      const float th = pi * float(i) / float(stacks), ph = 2 * pi * float(j) / float(slices);
-      m.vertices.push_back(
-          c + r * Vec3f(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th)));
-    }
-  const uint32_t south = uint32_t(m.vertices.size());
-  m.vertices.push_back(c - Vec3f(0, 0, r));
-  auto v = [&](int i, int j) { return uint32_t(1 + (i - 1) * slices + (j % slices)); };
-  for (int j = 0; j < slices; ++j) m.triangles.push_back({0, v(1, j), v(1, j + 1)});
-  for (int i = 1; i + 1 < stacks; ++i)
-    for (int j = 0; j < slices; ++j) {
-      m.triangles.push_back({v(i, j), v(i + 1, j), v(i + 1, j + 1)});
-      m.triangles.push_back({v(i, j), v(i + 1, j + 1), v(i, j + 1)});
-    }
-  for (int j = 0; j < slices; ++j)
-    m.triangles.push_back({south, v(stacks - 1, j + 1), v(stacks - 1, j)});
+  TriMesh m = makeUvSphere(b.center(), r, slices, stacks);
   m.source = fmt::format("enclosing sphere ({} faces)", m.triangles.size());
   return m;
 }

@@ -4,6 +4,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "mesh/primitives.h"
+
 namespace proxyvis::test {
 namespace fs = std::filesystem;
 
@@ -37,14 +39,7 @@ std::string readBytes(const fs::path& path) {
 }
 
 TriMesh unitCube() {
-  TriMesh m;
-  for (int i = 0; i < 8; ++i)
-    m.vertices.emplace_back(float(i & 1), float((i >> 1) & 1), float(i >> 2));
-  // Corner i = (x, y, z) bits; each face as two triangles, counter-clockwise seen from outside.
-  m.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
-                 {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
-  m.source = "unit cube";
-  return m;
+  return makeBoxMesh({0, 0, 0}, {1, 1, 1}, "unit cube");
 }
 
 }  // namespace proxyvis::test

@@ -4,6 +4,7 @@
 #include <map>
 #include <utility>
 
+#include "mesh/primitives.h"
 #include "util/rng.h"
 
 namespace proxyvis::test {
@@ -47,13 +48,7 @@ TriMesh icosphere(int levels, const Vec3f& center, float radius) {
 }
 
 TriMesh box(const Vec3f& lo, const Vec3f& hi) {
-  TriMesh m;
-  for (int i = 0; i < 8; ++i)
-    m.vertices.push_back({(i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z});
-  m.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
-                 {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
-  m.source = "box";
-  return m;
+  return makeBoxMesh(lo, hi);
 }
 
 TriMesh triangleSoup(uint32_t n, const Vec3f& lo, const Vec3f& hi, float size, uint64_t seed) {
