@@ -6,12 +6,8 @@
 # files) to check that JSON_FILE has every key and JSON_EXACT as its "exact" value.
 if(CMAKE_SCRIPT_MODE_FILE)
   file(READ "${JSON_FILE}" json)
-  foreach(key counts V_avg f_hit f_miss intervals sampled_class exact cost_ratio seed rays seconds)
-    string(JSON value ERROR_VARIABLE missing GET "${json}" ${key})
-    if(missing)
-      message(FATAL_ERROR "JSON key '${key}' missing: ${missing}")
-    endif()
-  endforeach()
+  expect_json_keys("${JSON_FILE}" "${json}" counts V_avg f_hit f_miss intervals sampled_class exact
+    cost_ratio seed rays seconds)
   string(JSON exact GET "${json}" exact)
   if(NOT exact STREQUAL JSON_EXACT)
     message(FATAL_ERROR "exact = ${exact}, expected ${JSON_EXACT}")

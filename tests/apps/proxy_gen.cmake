@@ -6,12 +6,7 @@
 # (JSON_KEYS, space-separated) and the expected "verified" value (JSON_VERIFIED).
 if(CMAKE_SCRIPT_MODE_FILE)
   separate_arguments(keys UNIX_COMMAND "${JSON_KEYS}")
-  foreach(key ${keys})
-    string(JSON value ERROR_VARIABLE missing GET "${out}" ${key})
-    if(missing)
-      message(FATAL_ERROR "JSON key '${key}' missing: ${missing}\nstdout:\n${out}")
-    endif()
-  endforeach()
+  expect_json_keys(stdout "${out}" ${keys})
   if(JSON_VERIFIED)
     string(JSON verified GET "${out}" verified)  # CMake reads JSON true as ON
     if(NOT verified STREQUAL JSON_VERIFIED)

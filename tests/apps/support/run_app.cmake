@@ -4,7 +4,7 @@
 # 1), then checks that the last exit code is EXPECT_CODE, that stdout+stderr match OUTPUT_REGEX
 # (if given), that every EXPECT_FILE was written and that no NO_FILE was. Last, it include()s
 # APP_CHECKS (the app's own .cmake file) for checks of its own, with the output in `out` and
-# `err`.
+# `err` and the helper expect_json_keys.
 separate_arguments(args NATIVE_COMMAND "${ARGS}")
 if(NOT RUNS)
   set(RUNS 1)
@@ -35,6 +35,17 @@ foreach(f IN LISTS NO_FILE)
     message(FATAL_ERROR "${f} was written although the run failed")
   endif()
 endforeach()
+# For APP_CHECKS: fails unless the JSON text `json` has every member named after it; `what` says
+# where the JSON came from.
+function(expect_json_keys what json)
+  foreach(key ${ARGN})
+    string(JSON value ERROR_VARIABLE missing GET "${json}" ${key})
+    if(missing)
+      message(FATAL_ERROR "${what}: JSON key '${key}' missing: ${missing}\n${json}")
+    endif()
+  endforeach()
+endfunction()
+
 if(APP_CHECKS)
   include("${APP_CHECKS}")
 endif()
