@@ -1,6 +1,7 @@
 #include "compare_options.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <sstream>
 
@@ -52,6 +53,10 @@ void addCompareOptions(CLI::App& app, CompareOptions& o) {
   app.add_option("--probes", o.probes, "Probe rays per shading point (paper-optimal, paper-cost)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  app.add_option("--roulette-costs", o.roulette_costs,
+                 "Roulette's ray costs: 'measured' (per region, timing-dependent choices) or "
+                 "'c_p0,c_p1,c_o0,c_o1,c_s' in ns (fixed: bit-reproducible)")
+      ->capture_default_str();
   addCommonOptions(app, o.common);
 }
 
@@ -78,6 +83,35 @@ void CompareOptions::resolve() {
       throw Error({}, "--spp: '" + item + "' is not a positive integer", {},
                   "give a comma-separated list such as 4,16");
     spp_list.push_back(v);
+  }
+  fixed_costs.reset();
+  if (roulette_costs != "measured") {
+    std::vector<double> c;
+    for (const std::string& item : splitList(roulette_costs)) {
+      size_t used = 0;
+      double v = -1;
+      try {
+        v = std::stod(item, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used != item.size() || !(v >= 0) || !std::isfinite(v)) {
+        c.clear();
+        break;
+      }
+      c.push_back(v);
+    }
+    if (c.size() != 5 || !(c[0] > 0 && c[1] > 0 && c[2] > 0 && c[3] > 0))
+      throw Error({}, "--roulette-costs: '" + roulette_costs + "' is not 'measured' or five costs",
+                  "expected c_p|V'=0, c_p|V'=1, c_o|V'=0, c_o|V'=1 (> 0) and c_s (>= 0) in ns",
+                  "e.g. --roulette-costs 40,20,300,25,60 (bench_render prints measured ones)");
+    ClassCosts costs;
+    costs.proxy[0] = c[0];
+    costs.proxy[1] = c[1];
+    costs.original[0] = c[2];
+    costs.original[1] = c[3];
+    costs.per_sample = c[4];
+    fixed_costs = costs;
   }
   std::sort(spp_list.begin(), spp_list.end());
   spp_list.erase(std::unique(spp_list.begin(), spp_list.end()), spp_list.end());

@@ -2,11 +2,13 @@
 // render-compare's settings (the CLI flags) and the pieces of work derived from them.
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
+#include "estimate/roulette.h"
 #include "estimate/visibility_estimator.h"
 #include "util/app_main.h"
 
@@ -24,11 +26,17 @@ struct CompareOptions {
   std::string proxy_kind;     // which proxy of each mesh ("outside", "inside", "general")
   double q_min = 0.05;
   int probes = 16;
+  // Roulette's cost model: "measured" (per region, from timed rays and queries: its choices then
+  // depend on timing and are not bit-reproducible, the estimate stays unbiased) or five numbers
+  // in ns "c_p0,c_p1,c_o0,c_o1,c_s" (fixed: the same seed gives the same image at any thread
+  // count).
+  std::string roulette_costs = "measured";
   CommonOptions common;
 
   // Parsed from the strings above by resolve(); throws Error for bad values.
   std::vector<EstimatorKind> estimator_list;
   std::vector<int> spp_list;
+  std::optional<ClassCosts> fixed_costs;  // from roulette_costs
   void resolve();
   // The reference's samples per pixel given the most any compared render reached (equal-time
   // renders may reach far more than --spp): --reference-spp, else max(1024, 16 × largest),

@@ -22,7 +22,9 @@ nlohmann::json learnedToJson(const LearnedSummary& l) {
           {"error_given_visible", l.error_given_visible},
           {"var_exact", l.var_exact},
           {"cost_proxy", {l.costs.proxy[0], l.costs.proxy[1]}},
-          {"cost_original", {l.costs.original[0], l.costs.original[1]}}};
+          {"cost_original", {l.costs.original[0], l.costs.original[1]}},
+          {"cost_per_sample", l.costs.per_sample},
+          {"predicted_efficiency", l.predicted_efficiency}};
 }
 
 }  // namespace
@@ -37,6 +39,7 @@ CellResult runCell(const RenderScene& scene, const CompareOptions& options, Esti
     settings.estimator.kind = kind;
     settings.estimator.q_min = options.q_min;
     settings.estimator.probes_per_point = options.probes;
+    settings.estimator.fixed_costs = options.fixed_costs;
     settings.spp = time_budget > 0 ? INT_MAX : spp;
     settings.time_budget = time_budget;
     // Seed k of every cell is the same stream key: estimators differ only in what they trace.

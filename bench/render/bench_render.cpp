@@ -193,7 +193,9 @@ int run(int argc, char** argv) {
       "| "
       "c_p | c_o | c_p/c_o |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const std::string& path : scenes) {
-    const auto scene = loadRenderScene(path, RenderSceneOptions{.quiet = true});
+    RenderSceneOptions quiet;
+    quiet.quiet = true;
+    const auto scene = loadRenderScene(path, quiet);
     RenderSettings settings;
     settings.spp = 1;
     settings.quiet = true;

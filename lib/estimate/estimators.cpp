@@ -1,6 +1,7 @@
 // The six runtime estimators of issue #6 over the per-sample templates of sample_estimators.h.
 // Each draws one uniform number per segment from the caller's Rng (exact and culling draw none)
 // and counts every traced ray.
+#include <algorithm>
 #include <string>
 
 #include "estimate/cpu_ticks.h"
@@ -81,7 +82,7 @@ class RouletteEstimator final : public VisibilityEstimator {
  public:
   explicit RouletteEstimator(const EstimatorSetup& setup)
       : learner_(setup.num_regions, setup.num_points,
-                 RegionLearner::Options{setup.proxy_class, setup.q_min, 0.05, setup.fixed_costs}),
+                 RegionLearner::Options{setup.proxy_class, setup.q_min, 0.10, setup.fixed_costs}),
         num_regions_(setup.num_regions) {}
 
   void beginPass(int) override { learner_.beginPass(); }
@@ -95,46 +96,69 @@ class RouletteEstimator final : public VisibilityEstimator {
     const RegionLearner::Plan& plan = learner_.plan(q.region);
     RegionTally& t = learner_.local(q.region);
     t.samples += q.segments.size();
-    // Which rays get timed: every 8th per thread. Never depends on the random numbers, so it
-    // cannot influence an estimate.
-    thread_local uint32_t timing_counter = 0;
+    // Which rays get timed: every explored segment (they are few and are the only samples of
+    // c_o by class in an exact region) and every 8th roulette segment per thread. Never depends
+    // on the random numbers, so it cannot influence an estimate.
+    thread_local uint32_t timing_counter = 0, query_counter = 0;
+    // One query in 16 is timed whole, for the cost of its region's mode (region_learner.h); not
+    // while a region still explores every segment (that is not what exact mode costs later).
+    const bool time_query = learner_.measuresCosts() && (plan.roulette || plan.explore < 1) &&
+                            (query_counter++ & 15) == 0;
+    const uint64_t query_start = time_query ? cpuTicks() : 0;
     for (size_t j = 0; j < q.segments.size(); ++j) {
       const double u = rng.uniformDouble();
-      TimedTracer<SegmentTracer> tt{*q.tracer,
-                                    learner_.measuresCosts() && (timing_counter++ & 7) == 0};
-      bool classed = true, vp = false, traced = false, v = false;
+      if (!plan.roulette && u >= plan.explore) {
+        // Most segments of an exact region: keep the path as short as the exact estimator's.
+        out[j] = exactSample(*q.tracer, q.segments[j], counts);
+        continue;
+      }
+      TimedTracer<SegmentTracer> tt{
+          *q.tracer, learner_.measuresCosts() && (!plan.roulette || (timing_counter++ & 7) == 0)};
+      bool vp = false, traced = false, v = false;
       if (plan.roulette) {
         const RouletteOutcome o = rouletteSample(tt, q.segments[j], plan.q, u, counts);
         out[j] = o.estimate;
         vp = o.proxy_visible;
         traced = o.traced_original;
         v = o.original_visible;
-      } else if (u < plan.explore) {
+        if (tt.timed && !traced && (timing_counter & 63) == 0) {
+          // Keeps c_o | V' current in a roulette region, where q may be 0 or tiny: an original
+          // ray traced only to be timed (its answer is not used, so the estimate is unchanged;
+          // its cost is counted like any other ray).
+          ++counts.original;
+          (void)tt.originalVisible(q.segments[j]);
+          ++t.cost_n_o[vp];
+          t.ticks_o[vp] += std::min(tt.original_ticks, learner_.tickCap());
+        }
+      } else {  // exploring: both rays, the exact answer
         ++counts.proxy;
         vp = tt.proxyVisible(q.segments[j]);
         out[j] = exactSample(tt, q.segments[j], counts);
         traced = true;
         v = out[j] > 0;
-      } else {
-        out[j] = exactSample(*q.tracer, q.segments[j], counts);
-        classed = false;
       }
-      if (!classed) continue;
       ++t.n[vp];
       if (traced) {
         ++t.traced[vp];
         if (v != vp) ++t.err[vp];
       }
       if (tt.timed) {
+        const uint64_t cap = learner_.tickCap();
         ++t.cost_n_p[vp];
-        t.ticks_p[vp] += tt.proxy_ticks;
+        t.ticks_p[vp] += std::min(tt.proxy_ticks, cap);
         if (traced) {
           ++t.cost_n_o[vp];
-          t.ticks_o[vp] += tt.original_ticks;
+          t.ticks_o[vp] += std::min(tt.original_ticks, cap);
         }
       }
     }
     learner_.addEstimates(q.point, out.first(q.segments.size()), t);
+    if (time_query) {
+      const int mode = plan.roulette ? 1 : 0;
+      const uint64_t n = q.segments.size();
+      t.mode_n[mode] += n;
+      t.mode_ticks[mode] += std::min(cpuTicks() - query_start, learner_.tickCap() * n);
+    }
   }
 
  private:

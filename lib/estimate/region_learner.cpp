@@ -15,7 +15,7 @@ namespace {
 // Pseudo-counts for the error-rate estimate: (errors + 1/2) / (samples + 1).
 constexpr double kErrorPriorErrors = 0.5, kErrorPriorSamples = 1.0;
 // Timed rays a region needs before its own cost outweighs the global mean of the class.
-constexpr double kCostShrinkage = 8.0;
+constexpr double kCostShrinkage = 32.0;
 // Variance pairs a region needs before its own V(1-V) estimate replaces the pooled one.
 constexpr double kMinVariancePairs = 16.0;
 constexpr uint32_t kVarianceStride = 4;
@@ -40,6 +40,10 @@ void RegionTally::add(const RegionTally& o) {
     cost_n_o[i] += o.cost_n_o[i];
     ticks_p[i] += o.ticks_p[i];
     ticks_o[i] += o.ticks_o[i];
+  }
+  for (int i = 0; i < 2; ++i) {
+    mode_n[i] += o.mode_n[i];
+    mode_ticks[i] += o.mode_ticks[i];
   }
   v_sum += o.v_sum;
   v_cross += o.v_cross;
@@ -157,16 +161,34 @@ void RegionLearner::beginPass() {
   if (measuresCosts()) {
     pass_start_ns_ = steadyNs();
     pass_start_ticks_ = cpuTicks();
+    // 64 times the costliest class mean, once there is one.
+    double worst_ns = 0;
+    for (int i = 0; i < 2; ++i)
+      worst_ns = std::max({worst_ns, global_costs_.proxy[i], global_costs_.original[i]});
+    if (calib_ticks_ > 0 && worst_ns > 1)
+      tick_cap_ = std::max<uint64_t>(1000, uint64_t(64 * worst_ns / nsPerTick()));
   }
   for (uint32_t r = 0; r < plans_.size(); ++r) {
     Plan& p = plans_[r];
-    if (observations(r) < uint64_t(kMinSamples)) {
+    if (observations(r) < uint64_t(kMinSamples) || (measuresCosts() && passes_ < 2)) {
       p = Plan{false, RouletteQ{1, 1}, 1.0};
       continue;
     }
-    const RegionDecision d =
-        decideRegion(model(r), options_.proxy_class, options_.q_min, options_.margin);
-    p = Plan{d.roulette, d.q, kExploreRate};
+    const RouletteModel m = model(r);
+    const RegionDecision d = decideRegion(m, options_.proxy_class, options_.q_min, options_.margin);
+    bool roulette = d.roulette;
+    double efficiency = d.predicted_efficiency;
+    if (const std::optional<ModeTimes> t = modeTimes(r)) {
+      // Both modes timed here: their measured times replace the per-ray cost model.
+      const double var = rouletteVariance(m, d.q);
+      efficiency = var > 0 ? m.var_exact * t->exact / (var * t->roulette)
+                           : (m.var_exact > 0 ? 1e9 : t->exact / t->roulette);
+      roulette = efficiency >= (p.roulette ? 1.0 : 1.0 + options_.margin);  // hysteresis
+    }
+    if (roulette && measuresCosts() && (passes_ + r) % kExactRefresh == 0) roulette = false;
+    const bool settled =
+        uint64_t(learned_[r].samples) >= kSettledSamples && efficiency < kSettledEfficiency;
+    p = Plan{roulette, d.q, settled ? kSettledExploreRate : kExploreRate};
   }
 }
 
@@ -180,6 +202,15 @@ void RegionLearner::endPass() {
     for (size_t r = 0; r < v.size(); ++r) pass[r].add(v[r]);
     std::fill(v.begin(), v.end(), RegionTally{});
   }
+  // The first pass runs on cold caches and pages (every BVH node touched for the first time):
+  // its ray times overstate whichever scene it traced most, so they are dropped.
+  if (measuresCosts() && passes_ == 0)
+    for (RegionTally& p : pass)
+      for (int i = 0; i < 2; ++i) {
+        p.cost_n_p[i] = p.cost_n_o[i] = p.ticks_p[i] = p.ticks_o[i] = 0;
+        p.mode_n[i] = p.mode_ticks[i] = 0;
+      }
+  ++passes_;
   double sum_p[2] = {0, 0}, n_p[2] = {0, 0}, sum_o[2] = {0, 0}, n_o[2] = {0, 0};
   for (uint32_t r = 0; r < plans_.size(); ++r) {
     const RegionTally& p = pass[r];
@@ -193,6 +224,8 @@ void RegionLearner::endPass() {
       l.ticks_p[i] += double(p.ticks_p[i]);
       l.cost_n_o[i] += double(p.cost_n_o[i]);
       l.ticks_o[i] += double(p.ticks_o[i]);
+      l.mode_n[i] = kModeDecay * l.mode_n[i] + double(p.mode_n[i]);
+      l.mode_ticks[i] = kModeDecay * l.mode_ticks[i] + double(p.mode_ticks[i]);
       sum_p[i] += l.ticks_p[i];
       n_p[i] += l.cost_n_p[i];
       sum_o[i] += l.ticks_o[i];
@@ -217,6 +250,15 @@ void RegionLearner::endPass() {
     global_costs_.proxy[i] = cp[i];
     global_costs_.original[i] = co[i];
   }
+}
+
+std::optional<RegionLearner::ModeTimes> RegionLearner::modeTimes(uint32_t region) const {
+  const Learned& l = learned_[region];
+  if (!measuresCosts() || l.mode_n[0] < kMinModeSegments || l.mode_n[1] < kMinModeSegments)
+    return std::nullopt;
+  const double ns = nsPerTick();
+  return ModeTimes{per_sample_ + ns * l.mode_ticks[0] / l.mode_n[0],
+                   per_sample_ + ns * l.mode_ticks[1] / l.mode_n[1]};
 }
 
 LearnedSummary RegionLearner::summary() const {

@@ -54,7 +54,8 @@ struct RegionTally {
   uint64_t err[2] = {0, 0};                             // of those, V != V'
   uint64_t cost_n_p[2] = {0, 0}, cost_n_o[2] = {0, 0};  // timed rays by class of V'
   uint64_t ticks_p[2] = {0, 0}, ticks_o[2] = {0, 0};
-  int64_t v_sum = 0, v_cross = 0;  // fixed point (kFixedOne)
+  uint64_t mode_n[2] = {0, 0}, mode_ticks[2] = {0, 0};  // timed queries by mode: segments, ticks
+  int64_t v_sum = 0, v_cross = 0;                       // fixed point (kFixedOne)
   uint64_t v_n = 0;
   uint64_t samples = 0;  // every segment estimated, whatever the mode
   void add(const RegionTally& o);
@@ -64,12 +65,29 @@ class RegionLearner {
  public:
   static constexpr int kMinSamples = 64;            // observations before leaving exact
   static constexpr double kExploreRate = 1.0 / 32;  // proxy rays traced in exact mode afterwards
+  // A region that has seen kSettledSamples segments and whose roulette is predicted below
+  // kSettledEfficiency of exact explores at kSettledExploreRate only: where the proxy clearly does
+  // not pay (points on an object with a proxy, which trace their own original either way) the
+  // exploration would otherwise be the estimator's main loss against exact.
+  static constexpr uint64_t kSettledSamples = 4096;
+  static constexpr double kSettledEfficiency = 0.8;
+  static constexpr double kSettledExploreRate = 1.0 / 256;
   static constexpr int64_t kFixedOne = int64_t(1) << 20;
+  // Measured mode costs (measured-cost mode only). The per-ray costs predict what roulette would
+  // cost, but a ray timed alone among rays of the other scene runs on caches that scene warmed,
+  // and the machine's load changes: the decision that counts compares the time per segment of
+  // whole queries in each mode, in the same region, once both were seen (kMinModeSegments timed
+  // segments each, weights decaying by kModeDecay per pass so that old trials expire and a
+  // rejected region tries roulette again later). A roulette region runs exact one pass in
+  // kExactRefresh to keep exact's time current.
+  static constexpr double kMinModeSegments = 64;
+  static constexpr double kModeDecay = 0.98;
+  static constexpr uint32_t kExactRefresh = 8;
 
   struct Options {
     ProxyClass proxy_class = ProxyClass::kGeneral;
     double q_min = 0.05;
-    double margin = 0.05;
+    double margin = 0.10;  // measured costs are noisy: a small predicted gain is often none
     std::optional<ClassCosts> fixed_costs;
   };
   RegionLearner(uint32_t num_regions, uint32_t num_points, const Options& options);
@@ -81,6 +99,15 @@ class RegionLearner {
   };
   const Plan& plan(uint32_t region) const { return plans_[region]; }
   bool measuresCosts() const { return !options_.fixed_costs; }
+  // Largest tick count one timed ray may add (frozen in beginPass): a thread preempted in the
+  // middle of a ray would otherwise add milliseconds to a mean of tens of nanoseconds.
+  uint64_t tickCap() const { return tick_cap_; }
+  // Times of whole queries by mode (ns per segment, shading cost included), once both modes have
+  // enough timed segments in `region`; nullopt before.
+  struct ModeTimes {
+    double exact = 0, roulette = 0;
+  };
+  std::optional<ModeTimes> modeTimes(uint32_t region) const;
 
   // The calling thread's tally of `region` for this pass: estimate() adds to it without atomics;
   // endPass() sums every thread's tallies (integer sums: the order does not matter).
@@ -113,6 +140,7 @@ class RegionLearner {
     double n[2] = {0, 0};
     double err_weighted[2] = {0, 0};  // sum of errors / q of their pass
     double cost_n_p[2] = {0, 0}, cost_n_o[2] = {0, 0}, ticks_p[2] = {0, 0}, ticks_o[2] = {0, 0};
+    double mode_n[2] = {0, 0}, mode_ticks[2] = {0, 0};  // decayed by kModeDecay per pass
     double v_sum = 0, v_cross = 0, v_n = 0;
     double samples = 0;
   };
@@ -132,6 +160,8 @@ class RegionLearner {
   std::vector<PointHistory> points_;
   ClassCosts global_costs_;  // ns when measured (once calibrated)
   double per_sample_ = 0;
+  uint64_t tick_cap_ = uint64_t(1) << 22;
+  uint32_t passes_ = 0;  // passes folded in so far
   // Tick calibration: the pass being timed, and totals over passes.
   int64_t pass_start_ns_ = 0;
   uint64_t pass_start_ticks_ = 0;
