@@ -94,24 +94,55 @@ class RouletteEstimator final : public VisibilityEstimator {
                 RayCounts& counts) override {
     PV_CHECK_MSG(q.region < regions(), "query region out of range of EstimatorSetup::num_regions");
     const RegionLearner::Plan& plan = learner_.plan(q.region);
-    RegionTally& t = learner_.local(q.region);
-    t.samples += q.segments.size();
-    // Which rays get timed: every explored segment (they are few and are the only samples of
-    // c_o by class in an exact region) and every 8th roulette segment per thread. Never depends
-    // on the random numbers, so it cannot influence an estimate.
-    thread_local uint32_t timing_counter = 0, query_counter = 0;
+    // The region's tally is fetched (a thread-local lookup) only when something is recorded: a
+    // settled exact region records its rare explored segments and timed queries only, so its
+    // queries cost what the exact estimator's do.
+    RegionTally* tally = nullptr;
+    auto local = [&]() -> RegionTally& {
+      if (!tally) tally = &learner_.local(q.region);
+      return *tally;
+    };
+    const bool sampled_point =
+        q.point == ShadingPointQuery::kNoPoint || q.point % RegionLearner::kVarianceStride == 0;
+    const bool quiet = (!plan.roulette && plan.settled) || !sampled_point;
+    if (sampled_point)
+      local().samples +=
+          q.segments.size() *
+          (q.point == ShadingPointQuery::kNoPoint ? 1 : RegionLearner::kVarianceStride);
+    // Which rays get timed (estimateRecorded): every explored segment (they are few and are the
+    // only samples of c_o by class in an exact region) and every 8th roulette segment per
+    // thread. Never depends on the random numbers, so it cannot influence an estimate.
+    thread_local uint32_t query_counter = 0;
     // One query in 16 is timed whole, for the cost of its region's mode (region_learner.h); not
     // while a region still explores every segment (that is not what exact mode costs later).
     const bool time_query = learner_.measuresCosts() && (plan.roulette || plan.explore < 1) &&
                             (query_counter++ & 15) == 0;
     const uint64_t query_start = time_query ? cpuTicks() : 0;
-    for (size_t j = 0; j < q.segments.size(); ++j) {
-      const double u = rng.uniformDouble();
-      if (!plan.roulette && u >= plan.explore) {
-        // Most segments of an exact region: keep the path as short as the exact estimator's.
+    // Exact mode explores whole queries: one random number per query, and most queries of an
+    // exact region take the exact estimator's path (exploring never changes the estimate).
+    if (!plan.roulette && plan.explore < 1 && !(rng.uniformFloat() < plan.explore)) {
+      for (size_t j = 0; j < q.segments.size(); ++j)
         out[j] = exactSample(*q.tracer, q.segments[j], counts);
-        continue;
-      }
+    } else {
+      estimateRecorded(q, rng, plan, out, counts, local());
+    }
+    if (!quiet) learner_.addEstimates(q.point, out.first(q.segments.size()), local());
+    if (time_query) {
+      const int mode = plan.roulette ? 1 : 0;
+      const uint64_t n = q.segments.size();
+      RegionTally& t = local();
+      t.mode_n[mode] += n;
+      t.mode_ticks[mode] += std::min(cpuTicks() - query_start, learner_.tickCap() * n);
+    }
+  }
+
+ private:
+  // Roulette or exploring exact: every segment is classed (V') and recorded in `t`.
+  void estimateRecorded(const ShadingPointQuery& q, Rng& rng, const RegionLearner::Plan& plan,
+                        std::span<double> out, RayCounts& counts, RegionTally& t) {
+    thread_local uint32_t timing_counter = 0;
+    for (size_t j = 0; j < q.segments.size(); ++j) {
+      const double u = plan.roulette ? double(rng.uniformFloat()) : 1.0;
       TimedTracer<SegmentTracer> tt{
           *q.tracer, learner_.measuresCosts() && (!plan.roulette || (timing_counter++ & 7) == 0)};
       bool vp = false, traced = false, v = false;
@@ -152,16 +183,8 @@ class RouletteEstimator final : public VisibilityEstimator {
         }
       }
     }
-    learner_.addEstimates(q.point, out.first(q.segments.size()), t);
-    if (time_query) {
-      const int mode = plan.roulette ? 1 : 0;
-      const uint64_t n = q.segments.size();
-      t.mode_n[mode] += n;
-      t.mode_ticks[mode] += std::min(cpuTicks() - query_start, learner_.tickCap() * n);
-    }
   }
 
- private:
   uint32_t regions() const { return num_regions_; }
   RegionLearner learner_;
   uint32_t num_regions_ = 0;

@@ -18,7 +18,6 @@ constexpr double kErrorPriorErrors = 0.5, kErrorPriorSamples = 1.0;
 constexpr double kCostShrinkage = 32.0;
 // Variance pairs a region needs before its own V(1-V) estimate replaces the pooled one.
 constexpr double kMinVariancePairs = 16.0;
-constexpr uint32_t kVarianceStride = 4;
 
 int64_t toFixed(double x) {
   return int64_t(x * double(RegionLearner::kFixedOne));
@@ -80,9 +79,9 @@ void RegionLearner::addEstimates(uint32_t point, std::span<const double> estimat
                                  RegionTally& t) {
   if (estimates.empty()) return;
   if (point != ShadingPointQuery::kNoPoint && point < points_.size()) {
-    // One point in kVarianceStride is enough for a region's mean V(1-V), and the history
-    // update is the learner's largest per-query cost.
-    if (point % kVarianceStride != 0) return;
+    // One point in RegionLearner::kVarianceStride is enough for a region's mean V(1-V), and the
+    // history update is the learner's largest per-query cost.
+    if (point % RegionLearner::kVarianceStride != 0) return;
     PointHistory& h = points_[point];
     if (h.count > 0) {
       const double prev = double(h.sum) / (double(h.count) * double(kFixedOne));
@@ -183,12 +182,26 @@ void RegionLearner::beginPass() {
       const double var = rouletteVariance(m, d.q);
       efficiency = var > 0 ? m.var_exact * t->exact / (var * t->roulette)
                            : (m.var_exact > 0 ? 1e9 : t->exact / t->roulette);
-      roulette = efficiency >= (p.roulette ? 1.0 : 1.0 + options_.margin);  // hysteresis
+      // Both must agree: the model (per-ray costs) and the measured times (with hysteresis).
+      roulette = d.roulette && efficiency >= (p.roulette ? 1.0 : 1.0 + options_.margin);
     }
     if (roulette && measuresCosts() && (passes_ + r) % kExactRefresh == 0) roulette = false;
     const bool settled =
         uint64_t(learned_[r].samples) >= kSettledSamples && efficiency < kSettledEfficiency;
-    p = Plan{roulette, d.q, settled ? kSettledExploreRate : kExploreRate};
+    // Exploration of an undecided exact region thins out as its statistics grow (their error
+    // falls as 1/sqrt(samples), so does the rate needed to keep them current).
+    const double samples = std::max(1.0, learned_[r].samples);
+    // An explored segment costs one proxy ray more; where that ray is dear (a point on an
+    // object with a proxy traces its own original in V' too) the rate is cut so that exploring
+    // costs at most kExploreBudget of exact.
+    const double proxy_ray = m.p_blocked * m.costs.proxy[0] + (1 - m.p_blocked) * m.costs.proxy[1];
+    const double affordable = proxy_ray > 0 ? kExploreBudget * exactCost(m) / proxy_ray : 1.0;
+    const double explore =
+        settled ? kSettledExploreRate
+                : std::clamp(std::min(affordable,
+                                      kExploreRate * std::sqrt(double(kSettledSamples) / samples)),
+                             kSettledExploreRate, kExploreRate);
+    p = Plan{roulette, d.q, explore, settled && !roulette};
   }
 }
 

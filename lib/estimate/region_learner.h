@@ -71,8 +71,12 @@ class RegionLearner {
   // exploration would otherwise be the estimator's main loss against exact.
   static constexpr uint64_t kSettledSamples = 4096;
   static constexpr double kSettledEfficiency = 0.8;
-  static constexpr double kSettledExploreRate = 1.0 / 256;
+  static constexpr double kSettledExploreRate = 1.0 / 1024;
+  static constexpr double kExploreBudget = 0.01;  // of exact's cost, for undecided regions
   static constexpr int64_t kFixedOne = int64_t(1) << 20;
+  // Variance history and sample counts are kept for one point in kVarianceStride (the rest of an
+  // exact region's queries record nothing, so that they cost what exact's do).
+  static constexpr uint32_t kVarianceStride = 4;
   // Measured mode costs (measured-cost mode only). The per-ray costs predict what roulette would
   // cost, but a ray timed alone among rays of the other scene runs on caches that scene warmed,
   // and the machine's load changes: the decision that counts compares the time per segment of
@@ -80,7 +84,7 @@ class RegionLearner {
   // segments each, weights decaying by kModeDecay per pass so that old trials expire and a
   // rejected region tries roulette again later). A roulette region runs exact one pass in
   // kExactRefresh to keep exact's time current.
-  static constexpr double kMinModeSegments = 64;
+  static constexpr double kMinModeSegments = 512;
   static constexpr double kModeDecay = 0.98;
   static constexpr uint32_t kExactRefresh = 8;
 
@@ -96,6 +100,9 @@ class RegionLearner {
     bool roulette = false;
     RouletteQ q;           // roulette mode
     double explore = 1.0;  // exact mode: fraction of segments also traced against the proxy
+    // Exact mode at kSettledExploreRate: only explored segments are recorded (the variance of
+    // exact visibility is no longer learned there; it matters only if the region comes back).
+    bool settled = false;
   };
   const Plan& plan(uint32_t region) const { return plans_[region]; }
   bool measuresCosts() const { return !options_.fixed_costs; }
