@@ -184,7 +184,8 @@ int main(int argc, char** argv) {
       "Face budget; outside/inside keep their guarantee while reducing (0 = none, but an "
       "outside/inside proxy with more faces than the input is reduced to the input's count)");
   app.add_option("--ratio", a.ratio,
-                 "general: faces kept as a fraction of the input (default 0.02)")
+                 "Faces kept as a fraction of the input: general (default 0.02); outside/inside "
+                 "a face budget relative to each mesh (for scenes), used when --max-faces is 0")
       ->check(CLI::Range(0.0, 1.0));
   app.add_option("--erosion", a.erosion,
                  "erode: erosion distance as a fraction of the diagonal (default 1/75)")

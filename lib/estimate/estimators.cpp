@@ -82,7 +82,7 @@ class RouletteEstimator final : public VisibilityEstimator {
  public:
   explicit RouletteEstimator(const EstimatorSetup& setup)
       : learner_(setup.num_regions, setup.num_points,
-                 RegionLearner::Options{setup.proxy_class, setup.q_min, 0.10, setup.fixed_costs}),
+                 RegionLearner::Options{setup.proxy_class, setup.q_min, 0.25, setup.fixed_costs}),
         num_regions_(setup.num_regions) {}
 
   void beginPass(int) override { learner_.beginPass(); }

@@ -183,7 +183,7 @@ void RegionLearner::beginPass() {
       efficiency = var > 0 ? m.var_exact * t->exact / (var * t->roulette)
                            : (m.var_exact > 0 ? 1e9 : t->exact / t->roulette);
       // Both must agree: the model (per-ray costs) and the measured times (with hysteresis).
-      roulette = d.roulette && efficiency >= (p.roulette ? 1.0 : 1.0 + options_.margin);
+      roulette = d.roulette && efficiency >= (p.roulette ? 1.05 : 1.0 + options_.margin);
     }
     if (roulette && measuresCosts() && (passes_ + r) % kExactRefresh == 0) roulette = false;
     const bool settled =

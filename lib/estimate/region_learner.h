@@ -91,7 +91,7 @@ class RegionLearner {
   struct Options {
     ProxyClass proxy_class = ProxyClass::kGeneral;
     double q_min = 0.05;
-    double margin = 0.10;  // measured costs are noisy: a small predicted gain is often none
+    double margin = 0.25;  // measured costs are noisy: a small predicted gain is often none
     std::optional<ClassCosts> fixed_costs;
   };
   RegionLearner(uint32_t num_regions, uint32_t num_points, const Options& options);

@@ -162,6 +162,11 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
   // A proxy with more faces than its original saves nothing (a wrapped 2-triangle ground quad
   // has thousands): without an explicit budget, such a proxy is reduced to the input's count.
   size_t max_faces = options.max_faces;
+  if (built.bounded && max_faces == 0 && options.ratio) {
+    // Outside/inside with --ratio: a budget relative to the input (a scene's meshes differ).
+    max_faces = std::max<size_t>(12, size_t(*options.ratio * double(input.numTriangles())));
+    params["max_faces_from_ratio"] = max_faces;
+  }
   if (built.bounded && max_faces == 0 && built.mesh.numTriangles() > input.numTriangles()) {
     max_faces = std::max<size_t>(input.numTriangles(), 12);
     params["max_faces_auto"] = max_faces;

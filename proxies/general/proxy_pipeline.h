@@ -16,11 +16,13 @@ namespace proxyvis {
 
 struct ProxyGenOptions {
   ProxyClass kind = ProxyClass::kOutside;
-  std::string method;             // empty = the kind's default: wrap, wrap, qem
-  std::optional<double> alpha;    // wrap: fraction of the diagonal (default 1/50)
-  std::optional<double> offset;   // wrap: fraction of the diagonal (default 1/600)
-  size_t max_faces = 0;           // face budget; 0 = none (general: use ratio)
-  std::optional<double> ratio;    // general: fraction of the input faces (default 0.02)
+  std::string method;            // empty = the kind's default: wrap, wrap, qem
+  std::optional<double> alpha;   // wrap: fraction of the diagonal (default 1/50)
+  std::optional<double> offset;  // wrap: fraction of the diagonal (default 1/600)
+  size_t max_faces = 0;          // face budget; 0 = none (general: use ratio)
+  // Fraction of the input faces: general (default 0.02); outside/inside, a face budget of
+  // max(12, ratio x input faces) when max_faces is 0.
+  std::optional<double> ratio;
   std::optional<double> erosion;  // erode: fraction of the diagonal (default 1/75)
   bool fill_holes = false;        // inside: fill the holes of an open input first
   uint64_t seed = 0;              // sampling of the Hausdorff estimates
