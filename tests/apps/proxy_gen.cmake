@@ -22,10 +22,7 @@ endif()
 
 set(pg_dir ${CMAKE_CURRENT_BINARY_DIR}/proxy_gen)
 file(MAKE_DIRECTORY ${pg_dir})
-set(pg_data ${CMAKE_SOURCE_DIR}/data/meshes)
-if(NOT EXISTS ${pg_data}/bunny.off)
-  set(pg_data ${CMAKE_SOURCE_DIR}/../shared/data/meshes)
-endif()
+set(pg_data ${CMAKE_SOURCE_DIR}/data)  # bundled meshes: the tests must not need ../shared
 set(pg_keys input kind method parameters faces volume_ratio hausdorff_proxy_to_original
   hausdorff_original_to_proxy verified seconds)
 
@@ -58,6 +55,12 @@ pg_test(unknown_method 2 "${pg_data}/bunny.off --kind inside --method hull -o ${
   REGEX "unknown method" NO_FILE ${pg_dir}/bad.ply)
 pg_test(bad_kind 2 "${pg_data}/bunny.off --kind sideways -o ${pg_dir}/bad2.ply" REGEX "kind")
 # Scene mode: one proxy per mesh (open walls and the closed bunny), in parallel, plus the scene.
+# The walls (2 and 6 faces) get no proxy: none could have fewer faces than they do.
 pg_test(scene_outside 0
   "${CMAKE_SOURCE_DIR}/scenes/cornell-bunny.json --kind outside --out-dir ${pg_dir}/cornell -q --threads 2"
-  REGEX "scene with proxies" FILE ${pg_dir}/cornell/scene.json)
+  REGEX "red: no proxy \\(2 faces.*== bunny.*verified: +yes.*scene with proxies"
+  FILE ${pg_dir}/cornell/scene.json)
+# --ratio is a relative face budget for an outside proxy too (5 % of the bunny's 6966 faces).
+pg_test(outside_ratio_budget 0
+  "${pg_data}/bunny.off --kind outside --ratio 0.05 -o ${pg_dir}/bunny.ratio.ply"
+  REGEX "\"max_faces_from_ratio\":348.*verified: +yes" FILE ${pg_dir}/bunny.ratio.ply)
