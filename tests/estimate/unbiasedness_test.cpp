@@ -15,6 +15,13 @@
 #include "util/stats.h"
 
 namespace proxyvis {
+// Readable parameter names in test listings.
+void PrintTo(EstimatorKind k, std::ostream* os) {
+  *os << estimatorName(k);
+}
+void PrintTo(ProxyClass c, std::ostream* os) {
+  *os << proxyClassName(c);
+}
 namespace {
 
 constexpr uint64_t kSeed = 4242;

@@ -17,6 +17,9 @@ struct Expected {
   Vec3f lo, hi;      // MANIFEST bounding box (6 significant digits)
   double tolerance;  // absolute, for the box: print precision, or quantization for .drc
 };
+void PrintTo(const Expected& e, std::ostream* os) {
+  *os << e.file;
+}
 
 // Quantization step of dragon.drc: 16 bits over the largest extent (14.0934).
 constexpr double kDragonStep = 14.0934 / 65535.0;

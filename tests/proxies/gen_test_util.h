@@ -58,6 +58,9 @@ struct ContainmentCase {
   double budget_fraction;
   double size;
 };
+inline void PrintTo(const ContainmentCase& c, std::ostream* os) {
+  *os << c.mesh << ' ' << c.method << " budget " << c.budget_fraction << " size " << c.size;
+}
 
 struct ContainmentRun {
   ProxyGenOptions options;

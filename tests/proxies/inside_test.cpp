@@ -44,6 +44,9 @@ struct BudgetCase {
   const char* method;
   size_t max_faces;
 };
+void PrintTo(const BudgetCase& c, std::ostream* os) {
+  *os << c.mesh << ' ' << c.method << " max_faces " << c.max_faces;
+}
 
 class InsideBudget : public testing::TestWithParam<BudgetCase> {};
 

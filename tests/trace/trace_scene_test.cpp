@@ -15,6 +15,14 @@
 #include "trace_compare.h"
 #include "util/error.h"
 
+namespace proxyvis {
+// Readable parameter names in test listings.
+void PrintTo(IgnoreStrategy s, std::ostream* os) {
+  *os << (s == IgnoreStrategy::kAuto     ? "auto"
+          : s == IgnoreStrategy::kFilter ? "filter"
+                                         : "mask-then-filter");
+}
+}  // namespace proxyvis
 namespace proxyvis::test {
 namespace {
 
