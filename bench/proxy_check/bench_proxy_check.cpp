@@ -2,8 +2,9 @@
 // (occlusion, batches of 64 k), at 1 and 2 threads. Prints a table; never fails on speed.
 //
 //   bench_proxy_check [ORIGINAL [PROXY ...]] [--rays N]
-// Without arguments: the dragon against its bounding box and a 2 k-face enclosing sphere
-// (synthetic outside proxies), plus every PROXY given.
+// Without arguments: the bundled dragon (data/dragon.drc) against its bounding box and the proxies
+// proxy-gen makes by default (outside hull and wrap, inside wrap, general QEM at 2 %), plus every
+// PROXY given.
 #include <fmt/core.h>
 #include <tbb/global_control.h>
 
@@ -17,6 +18,7 @@
 #include "mesh/mesh_io.h"
 #include "mesh/primitives.h"
 #include "proxies/check/ray_classify.h"
+#include "proxies/general/proxy_pipeline.h"
 #include "util/error.h"
 
 using namespace proxyvis;
@@ -51,11 +53,25 @@ int main(int argc, char** argv) {
         paths.push_back(argv[i]);
     }
     const std::string original_path =
-        paths.empty() ? std::string(PROXYVIS_SHARED_DATA_DIR) + "/meshes/dragon.ply" : paths[0];
+        paths.empty() ? std::string(PROXYVIS_DATA_DIR) + "/dragon.drc" : paths[0];
     const TriMesh original = loadMesh(original_path);
     std::vector<TriMesh> proxies;
     proxies.push_back(boundingBox(original.bounds()));
     proxies.push_back(enclosingSphereMesh(original.bounds()));
+    if (paths.empty()) {
+      const std::pair<ProxyClass, const char*> made[] = {{ProxyClass::kOutside, "hull"},
+                                                         {ProxyClass::kOutside, "wrap"},
+                                                         {ProxyClass::kInside, "wrap"},
+                                                         {ProxyClass::kGeneral, "qem"}};
+      for (const auto& [kind, method] : made) {
+        ProxyGenOptions o;
+        o.kind = kind;
+        o.method = method;
+        TriMesh p = generateProxy(original, o).proxy;
+        p.source = fmt::format("{} {}", proxyClassName(kind), method);
+        proxies.push_back(std::move(p));
+      }
+    }
     for (size_t i = 1; i < paths.size(); ++i) proxies.push_back(loadMesh(paths[i]));
 
     TraceDevice device;
