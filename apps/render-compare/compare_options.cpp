@@ -53,6 +53,11 @@ void addCompareOptions(CLI::App& app, CompareOptions& o) {
   app.add_option("--probes", o.probes, "Probe rays per shading point (paper-optimal, paper-cost)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  app.add_option("--build", o.build,
+                 "Instances as Embree instances, flattened into one BVH, or auto (flat when the "
+                 "flattened scene has at most 8 M triangles)")
+      ->check(CLI::IsMember({"auto", "flat", "instanced"}))
+      ->capture_default_str();
   app.add_option("--roulette-costs", o.roulette_costs,
                  "Roulette's ray costs: 'measured' (per region, timing-dependent choices) or "
                  "'c_p0,c_p1,c_o0,c_o1,c_s' in ns (fixed: bit-reproducible)")

@@ -31,6 +31,11 @@ struct CompareOptions {
   // in ns "c_p0,c_p1,c_o0,c_o1,c_s" (fixed: the same seed gives the same image at any thread
   // count).
   std::string roulette_costs = "measured";
+  // How instances are traced: "instanced" (one BVH per mesh), "flat" (every instance copied into
+  // one BVH), "auto" (flat when the flattened originals and proxies stay under kAutoFlatTriangles:
+  // DESIGN.md §2b point 2, the fastest exact configuration that fits in memory).
+  std::string build = "auto";
+  static constexpr uint64_t kAutoFlatTriangles = 8'000'000;
   CommonOptions common;
 
   // Parsed from the strings above by resolve(); throws Error for bad values.

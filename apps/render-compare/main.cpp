@@ -73,7 +73,8 @@ void addReferenceNotes(Report& report, const Reference& ref, bool quiet) {
   }
 }
 
-Report makeReport(const CompareOptions& o, const RenderScene& scene, const Reference& ref) {
+Report makeReport(const CompareOptions& o, const RenderScene& scene, const Reference& ref,
+                  bool flat) {
   const SceneDesc& desc = scene.desc();
   Report report;
   report.title = "render-compare: " + desc.path.filename().string();
@@ -101,16 +102,22 @@ Report makeReport(const CompareOptions& o, const RenderScene& scene, const Refer
         "No mesh of this scene has a proxy: every estimator traces the originals, so the "
         "comparison only measures estimator overhead (generate proxies with proxy-gen).");
   // DESIGN.md §2b point 2: the exact baseline should be the fastest exact configuration.
+  report.meta["scene_build"] = flat ? "flat" : "instanced";
   report.notes.push_back(
       desc.instances.empty()
           ? "Exact baseline: every mesh is flattened into one BVH (no instances), the fastest "
             "exact configuration."
-          : "Exact baseline: instanced meshes are traced as Embree instances; the renderer offers "
-            "no flattened configuration, so the flattened exact baseline of DESIGN.md §2b (2) is "
-            "not reported.");
+      : flat ? "Exact baseline: every instance is flattened into one BVH (--build), the fastest "
+               "exact configuration where it fits in memory (DESIGN.md §2b point 2); proxies "
+               "likewise. --build instanced gives the instanced tables."
+             : "Exact baseline: instanced meshes are traced as Embree instances (--build); "
+               "--build flat gives the flattened tables (faster where they fit in memory).");
   report.notes.push_back(
-      "roulette measures its ray costs with the CPU tick counter: its choices (never its "
-      "expectation) depend on timing, so its images are unbiased but not bit-reproducible.");
+      o.fixed_costs
+          ? "roulette uses the fixed costs of --roulette-costs: bit-reproducible."
+          : "roulette measures its ray costs with the CPU tick counter: its choices (never its "
+            "expectation) depend on timing, so its images are unbiased but not bit-reproducible "
+            "(--roulette-costs fixes them).");
   return report;
 }
 
@@ -124,7 +131,16 @@ int runCompare(CompareOptions& o) {
   RenderSceneOptions scene_options;
   scene_options.proxy_kind = o.proxy_kind;
   scene_options.quiet = o.common.quiet;
+  scene_options.flatten_instances = o.build == "flat";
   std::unique_ptr<RenderScene> scene = loadRenderScene(desc, scene_options);
+  if (o.build == "auto" && !desc.instances.empty() &&
+      scene->originalTriangles() + scene->proxyTriangles() <= CompareOptions::kAutoFlatTriangles) {
+    scene.reset();  // one scene's BVHs in memory at a time
+    scene_options.flatten_instances = true;
+    scene_options.quiet = true;  // the warnings were printed with the first build
+    scene = loadRenderScene(desc, scene_options);
+  }
+  const bool flat = scene_options.flatten_instances || desc.instances.empty();
 
   // Cells in table order; the stems name their images.
   std::vector<CellResult> cells;
@@ -150,7 +166,7 @@ int runCompare(CompareOptions& o) {
                  ref.cached ? " [cached]" : "");
   for (CellResult& c : cells) scoreCell(c, ref.radiance);
 
-  Report report = makeReport(o, *scene, ref);
+  Report report = makeReport(o, *scene, ref, flat);
   for (const CellResult& c : cells) report.rows.push_back(c.row);
   fillRelativeEfficiency(report.rows, kEqualSppTable);
   fillRelativeEfficiency(report.rows, kEqualTimeTable);

@@ -42,12 +42,12 @@ int chooseProxy(const SceneMeshDesc& mesh, const RenderSceneOptions& options) {
 // Adds every object to `builder`, taking each object's geometry from meshes[mesh] (originals) or
 // from the chosen proxy. Prototypes are built lazily, once per mesh.
 void addObjects(TraceSceneBuilder& builder, const std::vector<RenderObject>& objects,
-                const std::vector<const TriMesh*>& geometry) {
+                const std::vector<const TriMesh*>& geometry, bool flatten) {
   std::vector<int64_t> prototype(geometry.size(), -1);
   for (uint32_t id = 0; id < objects.size(); ++id) {
     const RenderObject& o = objects[id];
     const TriMesh& mesh = *geometry[o.mesh];
-    if (o.instance < 0) {
+    if (o.instance < 0 || flatten) {
       builder.addMesh(transformed(mesh, o.to_world), id);
     } else {
       if (prototype[o.mesh] < 0) prototype[o.mesh] = builder.addPrototype(mesh);
@@ -136,9 +136,9 @@ std::unique_ptr<RenderScene> loadRenderScene(const SceneDesc& desc,
 
   scene->device_ = std::make_unique<TraceDevice>();
   TraceSceneBuilder builder(*scene->device_, options.trace);
-  addObjects(builder, objects, original_ptrs);
+  addObjects(builder, objects, original_ptrs, options.flatten_instances);
   scene->originals_ = builder.build();
-  addObjects(builder, objects, proxy_ptrs);
+  addObjects(builder, objects, proxy_ptrs, options.flatten_instances);
   scene->proxies_ = builder.build();
   scene->self_.resize(num_meshes);
   for (size_t m = 0; m < num_meshes; ++m) {

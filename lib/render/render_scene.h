@@ -31,6 +31,10 @@ struct RenderSceneOptions {
   // the self-shadowing rule makes every ray from that object pay for two traversals: such a
   // proxy is skipped (the original is its own exact proxy), with a warning. True keeps it.
   bool keep_larger_proxies = false;
+  // Instances copied into one flattened BVH (originals and proxies alike) instead of Embree
+  // instances of one BVH per mesh: faster to trace (DESIGN.md §2b: ecosys 78 ns flattened vs
+  // 140 ns instanced) at the memory of every instance's triangles.
+  bool flatten_instances = false;
   TraceSceneOptions trace;  // Embree build options for all scenes
   bool quiet = false;       // no warnings on stderr (they are still in warnings())
 };

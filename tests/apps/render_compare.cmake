@@ -91,4 +91,11 @@ rc_test(missing_scene 2 "${rc_dir}/no_such_scene.json --out ${rc_dir}/bad ${tiny
 rc_test(unknown_estimator 2 "${rc_dir}/tiny.json --out ${rc_dir}/bad --estimators exact,magic"
   REGEX "magic")
 rc_test(bad_spp 2 "${rc_dir}/tiny.json --out ${rc_dir}/bad --spp 4,x" REGEX "spp")
+rc_test(bad_build 2 "${rc_dir}/tiny.json --out ${rc_dir}/bad --build sideways" REGEX "build")
+rc_test(bad_roulette_costs 2 "${rc_dir}/tiny.json --out ${rc_dir}/bad --roulette-costs 1,2,x"
+  REGEX "roulette-costs")
+# Fixed roulette costs and a flattened build run end to end.
+rc_test(fixed_costs_flat 0
+  "${rc_dir}/tiny.json --out ${rc_dir}/fixed ${tiny} --estimators exact,roulette --roulette-costs 10,10,40,40,20 --build flat --quiet --json -"
+  JSON 6 CLEAN ${rc_dir}/fixed)
 rc_test(unwritable_out 3 "${rc_dir}/tiny.json --out ${rc_dir}/a_file/out ${tiny} --quiet")
