@@ -27,5 +27,14 @@ for scene in dragon-plane foliage; do
     --spp "${SPP:-4,16}" --equal-time "${SECONDS_PER_RENDER:-4}" --seeds "${SEEDS:-3}" \
     ${EXTRA:-}
   echo
+  if [ "$scene" = foliage ]; then
+    # DESIGN.md §2b point 2: both exact baselines; the table above uses --build auto (flat here).
+    echo "## $scene: exact with instanced BVHs (--build instanced), same budget"
+    echo
+    "$bin/render-compare" "$dir/proxies/scene.json" --out "$dir/report-instanced" --quiet \
+      --estimators exact --build instanced --spp "${SPP:-4,16}" \
+      --equal-time "${SECONDS_PER_RENDER:-4}" --seeds "${SEEDS:-3}" ${EXTRA:-}
+    echo
+  fi
   "$bin/bench_oracle_ceiling" "$dir/proxies/scene.json" --passes 16 --spp 64 ${EXTRA:-}
 done
