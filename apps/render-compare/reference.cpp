@@ -32,9 +32,12 @@ uint64_t fnv1a(const std::string& s) {
   return h;
 }
 
-std::string cacheKey(const SceneDesc& desc) {
-  std::string text = fmt::format("v{}|{}|{}x{}|{}", kCacheVersion, sceneHash(desc),
-                                 desc.camera.width, desc.camera.height, kPartials);
+// The build is part of the key: flattened and instanced tracing round differently, and a
+// reference of one build would show the other's renders a small bias.
+std::string cacheKey(const SceneDesc& desc, bool flattened) {
+  std::string text =
+      fmt::format("v{}|{}|{}x{}|{}{}", kCacheVersion, sceneHash(desc), desc.camera.width,
+                  desc.camera.height, kPartials, flattened ? "|flat" : "");
   return fmt::format("{:016x}", fnv1a(text));
 }
 
@@ -73,7 +76,7 @@ Reference loadOrRenderReference(const RenderScene& scene, const CompareOptions& 
   Reference ref;
   ref.partials = std::min(kPartials, spp);
   const int per_partial = (spp + ref.partials - 1) / ref.partials;
-  ref.key = cacheKey(desc);
+  ref.key = cacheKey(desc, scene.instancesFlattened());
   ref.file = options.out / ("reference-" + ref.key + ".exr");
   const fs::path json_file = options.out / ("reference-" + ref.key + ".json");
   if (loadCached(ref, json_file, desc.camera.width, desc.camera.height, spp)) return ref;

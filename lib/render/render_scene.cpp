@@ -136,6 +136,7 @@ std::unique_ptr<RenderScene> loadRenderScene(const SceneDesc& desc,
 
   scene->device_ = std::make_unique<TraceDevice>();
   TraceSceneBuilder builder(*scene->device_, options.trace);
+  scene->instances_flattened_ = options.flatten_instances && !desc.instances.empty();
   addObjects(builder, objects, original_ptrs, options.flatten_instances);
   scene->originals_ = builder.build();
   addObjects(builder, objects, proxy_ptrs, options.flatten_instances);

@@ -69,6 +69,10 @@ class RenderScene {
   // kGeneral too when no object uses a proxy (then proxies() equals originals()).
   ProxyClass proxyClass() const { return proxy_class_; }
   bool usesProxies() const { return uses_proxies_; }
+  // Instances were copied into the flattened BVHs (RenderSceneOptions::flatten_instances) and
+  // the scene has some: float rounding differs from instanced tracing (thin geometry such as
+  // leaf cards self-intersects differently), so results of the two builds are not interchangeable.
+  bool instancesFlattened() const { return instances_flattened_; }
   // Human-readable warnings from loading (class downgrades, missing proxies).
   const std::vector<std::string>& warnings() const { return warnings_; }
 
@@ -91,6 +95,7 @@ class RenderScene {
   std::vector<std::unique_ptr<TraceScene>> self_;
   ProxyClass proxy_class_ = ProxyClass::kGeneral;
   bool uses_proxies_ = false;
+  bool instances_flattened_ = false;
   std::vector<std::string> warnings_;
   float epsilon_ = 1e-4f;
 };
