@@ -93,7 +93,12 @@ class RouletteEstimator final : public VisibilityEstimator {
   void estimate(const ShadingPointQuery& q, Rng& rng, std::span<double> out,
                 RayCounts& counts) override {
     PV_CHECK_MSG(q.region < regions(), "query region out of range of EstimatorSetup::num_regions");
-    const RegionLearner::Plan& plan = learner_.plan(q.region);
+    const RegionLearner::Plan& region_plan = learner_.plan(q.region);
+    // A trial region runs one query in RegionLearner::kAltQueries in its other mode.
+    const bool alt = learner_.alternate(region_plan, q.point);
+    RegionLearner::Plan alt_plan = region_plan;
+    if (alt) alt_plan.roulette = !region_plan.roulette;
+    const RegionLearner::Plan& plan = alt ? alt_plan : region_plan;
     // The region's tally is fetched (a thread-local lookup) only when something is recorded: a
     // settled exact region records its rare explored segments and timed queries only, so its
     // queries cost what the exact estimator's do.
@@ -115,12 +120,16 @@ class RouletteEstimator final : public VisibilityEstimator {
     thread_local uint32_t query_counter = 0;
     // One query in 16 is timed whole, for the cost of its region's mode (region_learner.h); not
     // while a region still explores every segment (that is not what exact mode costs later).
-    const bool time_query = learner_.measuresCosts() && (plan.roulette || plan.explore < 1) &&
-                            (query_counter++ & 15) == 0;
+    const bool time_query =
+        learner_.measuresCosts() && (plan.roulette || plan.explore < 1) &&
+        (alt || (region_plan.trial && (query_counter++ & (RegionLearner::kAltQueries - 1)) == 0));
     const uint64_t query_start = time_query ? cpuTicks() : 0;
     // Exact mode explores whole queries: one random number per query, and most queries of an
     // exact region take the exact estimator's path (exploring never changes the estimate).
-    if (!plan.roulette && plan.explore < 1 && !(rng.uniformFloat() < plan.explore)) {
+    const bool explore = q.point == ShadingPointQuery::kNoPoint
+                             ? rng.uniformFloat() < plan.explore
+                             : learner_.exploresPoint(plan, q.point);
+    if (!plan.roulette && plan.explore < 1 && !explore) {
       for (size_t j = 0; j < q.segments.size(); ++j)
         out[j] = exactSample(*q.tracer, q.segments[j], counts);
     } else {
@@ -171,7 +180,10 @@ class RouletteEstimator final : public VisibilityEstimator {
       ++t.n[vp];
       if (traced) {
         ++t.traced[vp];
-        if (v != vp) ++t.err[vp];
+        if (v != vp) {
+          ++t.err[vp];
+          if (plan.roulette) ++t.err_roulette[vp];
+        }
       }
       if (tt.timed) {
         const uint64_t cap = learner_.tickCap();

@@ -35,6 +35,7 @@ void RegionTally::add(const RegionTally& o) {
     n[i] += o.n[i];
     traced[i] += o.traced[i];
     err[i] += o.err[i];
+    err_roulette[i] += o.err_roulette[i];
     cost_n_p[i] += o.cost_n_p[i];
     cost_n_o[i] += o.cost_n_o[i];
     ticks_p[i] += o.ticks_p[i];
@@ -185,7 +186,7 @@ void RegionLearner::beginPass() {
       // Both must agree: the model (per-ray costs) and the measured times (with hysteresis).
       roulette = d.roulette && efficiency >= (p.roulette ? 1.05 : 1.0 + options_.margin);
     }
-    if (roulette && measuresCosts() && (passes_ + r) % kExactRefresh == 0) roulette = false;
+    const bool trial = measuresCosts() && (roulette || d.roulette);
     const bool settled =
         uint64_t(learned_[r].samples) >= kSettledSamples && efficiency < kSettledEfficiency;
     // Exploration of an undecided exact region thins out as its statistics grow (their error
@@ -201,7 +202,7 @@ void RegionLearner::beginPass() {
                 : std::clamp(std::min(affordable,
                                       kExploreRate * std::sqrt(double(kSettledSamples) / samples)),
                              kSettledExploreRate, kExploreRate);
-    p = Plan{roulette, d.q, explore, settled && !roulette};
+    p = Plan{roulette, d.q, explore, settled && !roulette, trial};
   }
 }
 
@@ -229,10 +230,13 @@ void RegionLearner::endPass() {
     const RegionTally& p = pass[r];
     Learned& l = learned_[r];
     const Plan& plan = plans_[r];
-    const double q[2] = {plan.roulette ? plan.q.q0 : 1.0, plan.roulette ? plan.q.q1 : 1.0};
+    const double q[2] = {plan.q.q0, plan.q.q1};
     for (int i = 0; i < 2; ++i) {
       l.n[i] += double(p.n[i]);
-      if (p.err[i]) l.err_weighted[i] += double(p.err[i]) / q[i];  // traced => q[i] > 0
+      // Errors found by exact tracing count once, those of roulette corrections 1/q_i times
+      // (traced => q_i > 0): Horvitz-Thompson, whatever mix of modes the pass ran.
+      l.err_weighted[i] += double(p.err[i] - p.err_roulette[i]);
+      if (p.err_roulette[i]) l.err_weighted[i] += double(p.err_roulette[i]) / q[i];
       l.cost_n_p[i] += double(p.cost_n_p[i]);
       l.ticks_p[i] += double(p.ticks_p[i]);
       l.cost_n_o[i] += double(p.cost_n_o[i]);

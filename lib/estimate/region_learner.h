@@ -49,9 +49,10 @@ RegionDecision decideRegion(const RouletteModel& m, ProxyClass cls, double q_min
 
 // What a thread observed in one region during the current pass (integers only).
 struct RegionTally {
-  uint64_t n[2] = {0, 0};                               // proxy rays with V' = i
-  uint64_t traced[2] = {0, 0};                          // originals traced after V' = i
-  uint64_t err[2] = {0, 0};                             // of those, V != V'
+  uint64_t n[2] = {0, 0};             // proxy rays with V' = i
+  uint64_t traced[2] = {0, 0};        // originals traced after V' = i
+  uint64_t err[2] = {0, 0};           // of those, V != V' (any mode)
+  uint64_t err_roulette[2] = {0, 0};  // of err, found by roulette corrections (traced with q_i)
   uint64_t cost_n_p[2] = {0, 0}, cost_n_o[2] = {0, 0};  // timed rays by class of V'
   uint64_t ticks_p[2] = {0, 0}, ticks_o[2] = {0, 0};
   uint64_t mode_n[2] = {0, 0}, mode_ticks[2] = {0, 0};  // timed queries by mode: segments, ticks
@@ -80,13 +81,13 @@ class RegionLearner {
   // Measured mode costs (measured-cost mode only). The per-ray costs predict what roulette would
   // cost, but a ray timed alone among rays of the other scene runs on caches that scene warmed,
   // and the machine's load changes: the decision that counts compares the time per segment of
-  // whole queries in each mode, in the same region, once both were seen (kMinModeSegments timed
-  // segments each, weights decaying by kModeDecay per pass so that old trials expire and a
-  // rejected region tries roulette again later). A roulette region runs exact one pass in
-  // kExactRefresh to keep exact's time current.
+  // whole queries in each mode, in the same region and the same passes. A region the model calls
+  // a candidate (or that uses roulette) runs one query in kAltQueries in the other mode
+  // (Plan::trial), interleaved with its own, and both are timed; the comparison needs
+  // kMinModeSegments timed segments of each, weights decaying by kModeDecay per pass.
   static constexpr double kMinModeSegments = 512;
   static constexpr double kModeDecay = 0.98;
-  static constexpr uint32_t kExactRefresh = 8;
+  static constexpr uint32_t kAltQueries = 16;
 
   struct Options {
     ProxyClass proxy_class = ProxyClass::kGeneral;
@@ -103,7 +104,25 @@ class RegionLearner {
     // Exact mode at kSettledExploreRate: only explored segments are recorded (the variance of
     // exact visibility is no longer learned there; it matters only if the region comes back).
     bool settled = false;
+    // Measured costs only: one query in kAltQueries runs the other mode (roulette with q, or
+    // exact), for a same-pass comparison of the two modes' times.
+    bool trial = false;
   };
+  // Whether a query runs the plan's other mode (see Plan::trial). Depends only on the point, the
+  // pass and the region, never on random numbers.
+  bool alternate(const Plan& plan, uint32_t point) const {
+    return plan.trial && (point + passes_) % kAltQueries == 0;
+  }
+  // Whether an exact-mode query of `point` explores this pass, with probability plan.explore
+  // over points: a hash of (point, pass), cheaper than a random number, and exploring never
+  // changes an exact estimate, so it need not be independent of the estimates.
+  bool exploresPoint(const Plan& plan, uint32_t point) const {
+    uint32_t h = (point ^ (passes_ * 0x9e3779b9u)) * 0x85ebca6bu;
+    h ^= h >> 13;
+    h *= 0xc2b2ae35u;
+    h ^= h >> 16;
+    return double(h) < plan.explore * 4294967296.0;
+  }
   const Plan& plan(uint32_t region) const { return plans_[region]; }
   bool measuresCosts() const { return !options_.fixed_costs; }
   // Largest tick count one timed ray may add (frozen in beginPass): a thread preempted in the
