@@ -1,20 +1,23 @@
 #pragma once
 // Per-region learning for the roulette estimator (DESIGN.md §2 "Statistics without probe rays",
-// §2b "decide per region"). A region is a screen tile x light. Each pass, every region runs in
-// one of two modes, frozen in beginPass() from the statistics of earlier passes only (so the
-// choice is independent of the pass's own random numbers and every estimate stays unbiased):
+// §2b "decide per region"). A region is a screen tile x light (x whether the shading point's
+// object has a proxy, in the renderer). Each pass, every region runs in one of two modes, frozen
+// in beginPass() from the statistics of earlier passes only (so the choice is independent of the
+// pass's own random numbers and every estimate stays unbiased):
 //
 //  exact     trace the original for every segment (no added variance). To keep learning, also
-//            trace the proxy first for a fraction `explore` of the segments (all of them until the
-//            region has kMinSamples observations, then kExploreRate): each such segment reveals
-//            its class (V, V') and the cost of both rays. Costs explore * c_p, nothing else.
+//            trace the proxy first for a fraction `explore` of the queries (all of them until the
+//            region has kMinSamples observations, then at most kExploreRate, thinning as the
+//            statistics grow and capped at kExploreBudget of exact's cost): each such segment
+//            reveals its class (V, V') and the cost of both rays. Costs explore * c_p only.
 //  roulette  always trace the proxy, correct with q_i (roulette.h). P(V'=i) comes from every proxy
 //            ray; P(error | V'=i) from the corrections actually traced, each weighted by 1/q_i of
 //            its pass (Horvitz-Thompson), so the rate estimate is unbiased whatever q was used.
 //
 // The decision (decideRegion) compares the predicted efficiency 1/(Var x Cost) of the optimal
-// roulette with exact and uses roulette only when it wins by `margin`; so a region never loses
-// to exact by more than its exploration cost plus estimation error. Error rates are smoothed with
+// roulette with exact and uses roulette only when it wins by `margin`, and, with measured costs,
+// only if the measured times of both modes in the same passes agree (see kAltQueries); so a
+// region loses to exact at most its exploration cost plus estimation error. Error rates are smoothed with
 // half a pseudo-error (Jeffreys-like), so a region that never showed an error is not assumed
 // perfect.
 //
