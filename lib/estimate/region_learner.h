@@ -17,9 +17,9 @@
 // The decision (decideRegion) compares the predicted efficiency 1/(Var x Cost) of the optimal
 // roulette with exact and uses roulette only when it wins by `margin`, and, with measured costs,
 // only if the measured times of both modes in the same passes agree (see kAltQueries); so a
-// region loses to exact at most its exploration cost plus estimation error. Error rates are smoothed with
-// half a pseudo-error (Jeffreys-like), so a region that never showed an error is not assumed
-// perfect.
+// region loses to exact at most its exploration cost plus estimation error. Error rates are
+// smoothed with half a pseudo-error (Jeffreys-like), so a region that never showed an error is not
+// assumed perfect.
 //
 // The variance exact visibility leaves per pixel, mean_p V_p(1-V_p), is learned as
 // E[V~] - E[V~_prev * V~], where V~_prev is the mean of the same point's estimates in earlier

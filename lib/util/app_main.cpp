@@ -15,13 +15,15 @@ namespace proxyvis {
 
 void addCommonOptions(CLI::App& app, CommonOptions& options) {
   app.set_version_flag("--version", std::string("proxyvis ") + PROXYVIS_VERSION);
-  app.add_option("--seed", options.seed, "Random seed; the same seed gives the same result at any thread count")
+  app.add_option("--seed", options.seed,
+                 "Random seed; the same seed gives the same result at any thread count")
       ->capture_default_str();
   app.add_option("--threads", options.threads, "Worker threads (0 = all cores)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   app.add_flag("-q,--quiet", options.quiet, "No progress bars");
-  app.add_option("--json", options.json_path, "Write the report as JSON to this file ('-' = stdout)");
+  app.add_option("--json", options.json_path,
+                 "Write the report as JSON to this file ('-' = stdout)");
   app.footer(
       "Exit codes: 0 success, 1 a check failed, 2 bad input or usage, 3 output cannot be "
       "written.\nOutputs are written to a temporary file and renamed at the end: nothing partial "

@@ -1,12 +1,12 @@
 #include "util/atomic_write.h"
 
+#include <unistd.h>
 #include <atomic>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <sstream>
 #include <system_error>
-#include <unistd.h>
 
 #include "util/error.h"
 

@@ -6,8 +6,8 @@
 namespace proxyvis {
 
 namespace {
-std::string composeMessage(const std::string& file, const std::string& what,
-                           const std::string& why, const std::string& todo) {
+std::string composeMessage(const std::string& file, const std::string& what, const std::string& why,
+                           const std::string& todo) {
   std::string msg = file.empty() ? what : file + ": " + what;
   if (!why.empty()) msg += "; " + why;
   if (!todo.empty()) msg += " (" + todo + ")";

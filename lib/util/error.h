@@ -40,11 +40,11 @@ class CheckFailed : public Error {
 }  // namespace proxyvis
 
 // Broken invariants: always on (cheap), print the expression and abort.
-#define PV_CHECK(expr)                                                       \
-  do {                                                                       \
-    if (!(expr)) ::proxyvis::checkFailed(__FILE__, __LINE__, #expr, {});    \
+#define PV_CHECK(expr)                                                   \
+  do {                                                                   \
+    if (!(expr)) ::proxyvis::checkFailed(__FILE__, __LINE__, #expr, {}); \
   } while (0)
-#define PV_CHECK_MSG(expr, msg)                                              \
-  do {                                                                       \
-    if (!(expr)) ::proxyvis::checkFailed(__FILE__, __LINE__, #expr, (msg));  \
+#define PV_CHECK_MSG(expr, msg)                                             \
+  do {                                                                      \
+    if (!(expr)) ::proxyvis::checkFailed(__FILE__, __LINE__, #expr, (msg)); \
   } while (0)

@@ -1,7 +1,7 @@
 #include "util/progress.h"
 
-#include <cstdio>
 #include <unistd.h>
+#include <cstdio>
 
 namespace proxyvis {
 
@@ -9,7 +9,9 @@ namespace {
 std::atomic<bool> g_quiet{false};
 }
 
-void Progress::setGloballyQuiet(bool quiet) { g_quiet = quiet; }
+void Progress::setGloballyQuiet(bool quiet) {
+  g_quiet = quiet;
+}
 
 Progress::Progress(std::string title, uint64_t total_work, bool quiet)
     : title_(std::move(title)),
@@ -18,7 +20,9 @@ Progress::Progress(std::string title, uint64_t total_work, bool quiet)
       start_(std::chrono::steady_clock::now()),
       last_draw_(start_) {}
 
-Progress::~Progress() { done(); }
+Progress::~Progress() {
+  done();
+}
 
 double Progress::elapsedSeconds() const {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
@@ -52,8 +56,9 @@ void Progress::draw(uint64_t done_work, bool final) {
   bar[kWidth] = 0;
   double t = elapsedSeconds();
   double eta = frac > 0 ? t / frac - t : 0;
-  std::fprintf(stderr, "\r%s [%s] %5.1f%% %6.1fs%s", title_.c_str(), bar, 100 * frac, t,
-               final ? "       \n" : (std::string(" eta ") + std::to_string(int(eta)) + "s").c_str());
+  std::fprintf(
+      stderr, "\r%s [%s] %5.1f%% %6.1fs%s", title_.c_str(), bar, 100 * frac, t,
+      final ? "       \n" : (std::string(" eta ") + std::to_string(int(eta)) + "s").c_str());
   std::fflush(stderr);
 }
 

@@ -20,7 +20,9 @@ constexpr uint64_t mixBits(uint64_t v) {
 constexpr uint64_t hashKeys(uint64_t a, uint64_t b) {
   return mixBits(a * 0x9e3779b97f4a7c15ULL ^ mixBits(b + 0x632be59bd9b4e019ULL));
 }
-constexpr uint64_t hashKeys(uint64_t a, uint64_t b, uint64_t c) { return hashKeys(hashKeys(a, b), c); }
+constexpr uint64_t hashKeys(uint64_t a, uint64_t b, uint64_t c) {
+  return hashKeys(hashKeys(a, b), c);
+}
 
 class Rng {
  public:

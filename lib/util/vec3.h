@@ -23,40 +23,79 @@ struct Vec3 {
   constexpr Vec3 operator*(T s) const { return {x * s, y * s, z * s}; }
   constexpr Vec3 operator/(T s) const { return {x / s, y / s, z / s}; }
   constexpr Vec3 operator*(const Vec3& o) const { return {x * o.x, y * o.y, z * o.z}; }
-  Vec3& operator+=(const Vec3& o) { x += o.x; y += o.y; z += o.z; return *this; }
-  Vec3& operator-=(const Vec3& o) { x -= o.x; y -= o.y; z -= o.z; return *this; }
-  Vec3& operator*=(T s) { x *= s; y *= s; z *= s; return *this; }
+  Vec3& operator+=(const Vec3& o) {
+    x += o.x;
+    y += o.y;
+    z += o.z;
+    return *this;
+  }
+  Vec3& operator-=(const Vec3& o) {
+    x -= o.x;
+    y -= o.y;
+    z -= o.z;
+    return *this;
+  }
+  Vec3& operator*=(T s) {
+    x *= s;
+    y *= s;
+    z *= s;
+    return *this;
+  }
   constexpr bool operator==(const Vec3& o) const { return x == o.x && y == o.y && z == o.z; }
 };
 
 using Vec3f = Vec3<float>;
 using Vec3d = Vec3<double>;
 
-template <typename T> constexpr Vec3<T> operator*(T s, const Vec3<T>& v) { return v * s; }
-template <typename T> constexpr T dot(const Vec3<T>& a, const Vec3<T>& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-template <typename T> constexpr Vec3<T> cross(const Vec3<T>& a, const Vec3<T>& b) {
+template <typename T>
+constexpr Vec3<T> operator*(T s, const Vec3<T>& v) {
+  return v * s;
+}
+template <typename T>
+constexpr T dot(const Vec3<T>& a, const Vec3<T>& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+template <typename T>
+constexpr Vec3<T> cross(const Vec3<T>& a, const Vec3<T>& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-template <typename T> T length(const Vec3<T>& v) { return std::sqrt(dot(v, v)); }
-template <typename T> Vec3<T> normalize(const Vec3<T>& v) { return v / length(v); }
-template <typename T> Vec3<T> min(const Vec3<T>& a, const Vec3<T>& b) {
+template <typename T>
+T length(const Vec3<T>& v) {
+  return std::sqrt(dot(v, v));
+}
+template <typename T>
+Vec3<T> normalize(const Vec3<T>& v) {
+  return v / length(v);
+}
+template <typename T>
+Vec3<T> min(const Vec3<T>& a, const Vec3<T>& b) {
   return {std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z)};
 }
-template <typename T> Vec3<T> max(const Vec3<T>& a, const Vec3<T>& b) {
+template <typename T>
+Vec3<T> max(const Vec3<T>& a, const Vec3<T>& b) {
   return {std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)};
 }
-template <typename T> bool isFinite(const Vec3<T>& v) {
+template <typename T>
+bool isFinite(const Vec3<T>& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
 // Axis-aligned box; empty until a point is added.
 template <typename T>
 struct Bounds3 {
-  Vec3<T> lo{std::numeric_limits<T>::max(), std::numeric_limits<T>::max(), std::numeric_limits<T>::max()};
-  Vec3<T> hi{std::numeric_limits<T>::lowest(), std::numeric_limits<T>::lowest(), std::numeric_limits<T>::lowest()};
+  Vec3<T> lo{std::numeric_limits<T>::max(), std::numeric_limits<T>::max(),
+             std::numeric_limits<T>::max()};
+  Vec3<T> hi{std::numeric_limits<T>::lowest(), std::numeric_limits<T>::lowest(),
+             std::numeric_limits<T>::lowest()};
   bool empty() const { return lo.x > hi.x; }
-  void extend(const Vec3<T>& p) { lo = min(lo, p); hi = max(hi, p); }
-  void extend(const Bounds3& b) { lo = min(lo, b.lo); hi = max(hi, b.hi); }
+  void extend(const Vec3<T>& p) {
+    lo = min(lo, p);
+    hi = max(hi, p);
+  }
+  void extend(const Bounds3& b) {
+    lo = min(lo, b.lo);
+    hi = max(hi, b.hi);
+  }
   Vec3<T> center() const { return (lo + hi) * T(0.5); }
   Vec3<T> extent() const { return hi - lo; }
   T diagonal() const { return empty() ? T(0) : length(hi - lo); }

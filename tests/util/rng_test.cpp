@@ -36,7 +36,6 @@ TEST(Rng, UniformMeanAndVarianceWithinFiveSigma) {
   EXPECT_NEAR(var, 1.0 / 12, 0.002);
 }
 
-
 // Streams with the same index and different seeds (the K seeds of render-compare) must be
 // uncorrelated, not just different: the standard error over seeds assumes independence.
 // For n independent pairs the sample correlation has standard deviation 1/sqrt(n).
@@ -52,7 +51,8 @@ TEST(Rng, SameIndexDifferentSeedsUncorrelated) {
         sa += x, sb += y, sab += x * y, saa += x * x, sbb += y * y;
       }
       const double cov = sab / n - sa / n * sb / n;
-      const double corr = cov / std::sqrt((saa / n - sa / n * sa / n) * (sbb / n - sb / n * sb / n));
+      const double corr =
+          cov / std::sqrt((saa / n - sa / n * sa / n) * (sbb / n - sb / n * sb / n));
       worst = std::max(worst, std::abs(corr));
     }
   }
