@@ -87,7 +87,7 @@ void estimatePixel(const RenderScene& scene, VisibilityEstimator& estimator, con
     const PreparedSample& ps = samples[0];
     if (!(ps.weight.x > 0 || ps.weight.y > 0 || ps.weight.z > 0)) return;
     const SceneTracer tracer(scene, sp.object);
-    Rng rng(seed, hashKeys(pixel, uint64_t(pass), 1));
+    Rng rng = Rng::deferred(seed, pixel, uint64_t(pass), 1);
     ShadingPointQuery query;
     query.segments = std::span<const Segment>(&ps.segment, 1);
     query.tracer = &tracer;
@@ -115,7 +115,7 @@ void estimatePixel(const RenderScene& scene, VisibilityEstimator& estimator, con
     });
 
   const SceneTracer tracer(scene, sp.object);
-  Rng rng(seed, hashKeys(pixel, uint64_t(pass), 1));
+  Rng rng = Rng::deferred(seed, pixel, uint64_t(pass), 1);
   RayCounts counts;
   for (size_t begin = 0; begin < scratch.order.size();) {
     const uint32_t light = samples[scratch.order[begin]].light;

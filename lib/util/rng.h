@@ -29,11 +29,21 @@ class Rng {
   Rng() { setSequence(0, 0); }
   // Stream `index` of generator `seed`; distinct (seed, index) pairs give independent streams.
   Rng(uint64_t seed, uint64_t index) { setSequence(seed, index); }
+  // The stream Rng(seed, hashKeys(a, b, c)), set up on the first draw: a caller that may draw
+  // nothing (the renderer hands every query a stream; exact visibility never draws) pays no
+  // hashing.
+  static Rng deferred(uint64_t seed, uint64_t a, uint64_t b, uint64_t c) {
+    Rng r(Pending{});
+    r.state_ = seed;
+    r.key_[0] = a, r.key_[1] = b, r.key_[2] = c;
+    return r;
+  }
 
   void setSequence(uint64_t seed, uint64_t index) {
     // Both the increment and the start state depend on the seed and the index: with the
     // increment keyed on the index alone, stream i of two seeds differed only by a state offset
     // and their outputs were measurably correlated.
+    pending_ = false;
     state_ = 0u;
     inc_ = (hashKeys(index, seed ^ 0xda3e39cb94b95bdbULL) << 1u) | 1u;
     nextU32();
@@ -42,6 +52,10 @@ class Rng {
   }
 
   uint32_t nextU32() {
+    if (pending_) [[unlikely]] {
+      pending_ = false;
+      setSequence(state_, hashKeys(key_[0], key_[1], key_[2]));
+    }
     uint64_t old = state_;
     state_ = old * 0x5851f42d4c957f2dULL + inc_;
     uint32_t xorshifted = uint32_t(((old >> 18u) ^ old) >> 27u);
@@ -58,7 +72,11 @@ class Rng {
   }
 
  private:
+  struct Pending {};
+  explicit Rng(Pending) : pending_(true) {}
   uint64_t state_ = 0, inc_ = 1;
+  uint64_t key_[3] = {0, 0, 0};  // deferred: hashKeys arguments (state_ holds the seed)
+  bool pending_ = false;
 };
 
 }  // namespace proxyvis

@@ -60,5 +60,16 @@ TEST(Rng, SameIndexDifferentSeedsUncorrelated) {
   EXPECT_LT(worst, 4.5 / std::sqrt(double(n)));
 }
 
+TEST(Rng, DeferredEqualsEagerStream) {
+  Rng eager(7, hashKeys(3, 4, 5));
+  Rng deferred = Rng::deferred(7, 3, 4, 5);
+  for (int i = 0; i < 100; ++i) EXPECT_EQ(eager.nextU32(), deferred.nextU32());
+  Rng other = Rng::deferred(7, 3, 4, 6);  // teeth: another key, another stream
+  Rng again(7, hashKeys(3, 4, 5));
+  int equal = 0;
+  for (int i = 0; i < 100; ++i) equal += other.nextU32() == again.nextU32();
+  EXPECT_LT(equal, 3);
+}
+
 }  // namespace
 }  // namespace proxyvis
