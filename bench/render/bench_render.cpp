@@ -122,6 +122,14 @@ void printGroupTable(const std::string& name, const RenderScene& scene, const Pa
   }
 }
 
+// The file's stem, or its folder's for proxy-gen's DIR/proxies/scene.json.
+std::string sceneName(const std::string& path) {
+  const std::filesystem::path p(path);
+  if (p.stem() == "scene" && p.parent_path().has_parent_path())
+    return p.parent_path().parent_path().filename().string();
+  return p.stem().string();
+}
+
 int run(int argc, char** argv) {
   int spp = 16, repeats = 3;
   std::vector<std::string> scenes;
@@ -180,7 +188,7 @@ int run(int argc, char** argv) {
     fmt::print(
         "| {} | {} | {} | {} | {:.2f} | {:.0f} | {:.1f} | {:.1f} | {:.1f} | {:.2f} | {:.1f} | "
         "{:.1f} | {:.2f} | {:.2f} | {:.3f} |\n",
-        std::filesystem::path(path).stem().string(), pixels, spp, scene->originalTriangles(), load,
+        sceneName(path), pixels, spp, scene->originalTriangles(), load,
         1e9 * best_primary / double(pixels), 1e9 * best_sampling / double(samples), shadow_ns,
         bare_ns, shadow_ns / bare_ns, 1e9 * best_loop / double(segments),
         1e9 * best_proxy / double(segments), best_proxy / best_shadow,
@@ -206,7 +214,7 @@ int run(int argc, char** argv) {
       ps.objects.insert(ps.objects.end(), more.objects.begin(), more.objects.end());
     }
     groupCosts(*scene, ps, false);  // warm-up
-    printGroupTable(std::filesystem::path(path).stem().string(), *scene, ps);
+    printGroupTable(sceneName(path), *scene, ps);
   }
   return 0;
 }
