@@ -180,7 +180,7 @@ int runCompare(CompareOptions& o) {
   // estimators in one table compare.
   float exposure = autoExposure(ref.radiance);
   const std::string reference_png = "reference.png";
-  writeImage(ref.radiance, o.out / reference_png, {exposure, false});
+  writeImage(ref.radiance, o.out / reference_png, {exposure, false, {}});
   HtmlReportLayout layout;
   layout.plots.push_back(mseTimePlot(report.rows));
   auto addTable = [&](std::string_view table, double spp, const std::string& title) {

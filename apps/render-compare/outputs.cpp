@@ -61,8 +61,16 @@ void writeCellImages(const CellImages& images, const fs::path& dir, float exposu
                      const HeatMapRange& error_range, const HeatMapRange& cost_range) {
   const RenderResult& r = images.cell->first;
   writeImage(r.radiance, dir / (images.stem + ".exr"));
-  writeImage(r.radiance, dir / (images.stem + ".png"), {exposure, false});
+  writeImage(r.radiance, dir / (images.stem + ".png"), {exposure, false, {}});
   const int w = r.radiance.width, h = r.radiance.height;
+  // AOVs: mean visibility and the rays per pixel by kind (the cost heat-map's data), 32-bit.
+  Image aov{w, h, 4, std::vector<float>(size_t(w) * h * 4)};
+  for (size_t i = 0; i < size_t(w) * h; ++i) {
+    aov.pixels[i * 4] = r.visibility.pixels[i];
+    for (int c = 0; c < 3; ++c) aov.pixels[i * 4 + 1 + c] = r.cost.pixels[i * 3 + c];
+  }
+  writeImage(aov, dir / (images.stem + "_aov.exr"),
+             {1.0f, true, {"visibility", "rays_proxy", "rays_original", "rays_probe"}});
   writeImage(heatMapImage(images.cell->error_map, w, h, error_range),
              dir / (images.stem + "_error.png"));
   writeImage(heatMapImage(raysPerPixel(r.cost), w, h, cost_range),

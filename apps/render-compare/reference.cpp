@@ -101,7 +101,7 @@ Reference loadOrRenderReference(const RenderScene& scene, const CompareOptions& 
   ref.variance_of_mean = acc.meanVarianceOfMean();
   ref.radiance = Image{desc.camera.width, desc.camera.height, 3, acc.mean()};
 
-  writeImage(ref.radiance, ref.file, {1.0f, /*full_float=*/true});
+  writeImage(ref.radiance, ref.file, {1.0f, /*full_float=*/true, {}});
   nlohmann::json j = {{"key", ref.key},
                       {"scene", desc.path.string()},
                       {"scene_hash", sceneHash(desc)},

@@ -40,6 +40,10 @@ void writeImage(const Image& image, const std::filesystem::path& path,
         image.width, image.height, image.channels,
         ldr ? OIIO::TypeDesc::UINT8
             : (options.full_float || ext != ".exr" ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF));
+    if (!options.channel_names.empty()) {
+      PV_CHECK(int(options.channel_names.size()) == image.channels);
+      spec.channelnames = options.channel_names;
+    }
     bool ok = out->open(named.string(), spec);
     if (ok && ldr) {
       std::vector<uint8_t> bytes(image.pixels.size());

@@ -3,6 +3,8 @@
 // link OIIO). EXR keeps linear float values; PNG is tone-mapped for viewing: value * exposure,
 // clamped to [0, 1], sRGB transfer curve, 8 bits.
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "render/renderer.h"
 
@@ -14,6 +16,8 @@ namespace proxyvis {
 struct ImageWriteOptions {
   float exposure = 1.0f;    // PNG only: scale before clamping
   bool full_float = false;  // EXR: 32-bit float channels instead of half
+  // EXR/TIFF channel names (one per channel); empty: OIIO's defaults (R, G, B, A, ...).
+  std::vector<std::string> channel_names;
 };
 void writeImage(const Image& image, const std::filesystem::path& path,
                 const ImageWriteOptions& options = {});

@@ -74,6 +74,7 @@ rc_test(smoke 0 "${rc_dir}/tiny.json --out ${rc_dir}/smoke ${tiny} --quiet --jso
   JSON 18 CLEAN ${rc_dir}/smoke
   FILES ${rc_dir}/smoke/report.html ${rc_dir}/smoke/report.csv ${rc_dir}/smoke/report.md
         ${rc_dir}/smoke/report.json ${rc_dir}/smoke/roulette_2.exr ${rc_dir}/smoke/roulette_2.png
+        ${rc_dir}/smoke/roulette_2_aov.exr
         ${rc_dir}/smoke/exact_2_error.png ${rc_dir}/smoke/culling_equal-time_cost.png)
 # The second run finds the reference in the cache.
 rc_test(reference_cache 0
