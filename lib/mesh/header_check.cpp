@@ -33,9 +33,9 @@ struct PlyElement {
   std::vector<bool> is_list;  // per property, in order
 };
 
-void tooMany(const std::string& file, const std::string& what, uint64_t count, uint64_t need,
-             uint64_t have) {
-  throw Error(file, "header declares " + std::to_string(count) + " " + what,
+// `declared`: what the header declares, with its counts ("3485 vertices and 6966 faces").
+void tooMany(const std::string& file, const std::string& declared, uint64_t need, uint64_t have) {
+  throw Error(file, "header declares " + declared,
               "that needs at least " + std::to_string(need) + " bytes but the file has " +
                   std::to_string(have),
               "the file is truncated or its header is corrupt");
@@ -174,7 +174,8 @@ void checkPly(const std::string& bytes, const std::string& file) {
     // ASCII: every property takes at least one digit and one separator.
     const uint64_t per_record = ascii ? 2 * e.properties : e.min_binary_bytes;
     need += e.count * per_record;  // counts < 2^31 and per_record is small: no overflow
-    if (need > body + 1) tooMany(file, e.name + " elements", e.count, need, body);
+    if (need > body + 1)
+      tooMany(file, std::to_string(e.count) + " " + e.name + " elements", need, body);
   }
 }
 
@@ -204,8 +205,8 @@ void checkOff(const std::string& bytes, const std::string& file) {
   // ASCII records are at least "x y z\n" (6 bytes) and "3 a b c\n" (8 bytes); binary ones more.
   const uint64_t need = nv * 6 + nf * 8;
   if (need > bytes.size() + 1)
-    tooMany(file, std::to_string(nv) + " vertices and " + std::to_string(nf) + " faces", nv + nf,
-            need, bytes.size());
+    tooMany(file, std::to_string(nv) + " vertices and " + std::to_string(nf) + " faces", need,
+            bytes.size());
   if (bytes.substr(0, bytes.find('\n')).find("BINARY") == std::string::npos)
     checkAsciiNumbers(bytes, bytes.find(magic) + magic.size(), file, true);
 }
