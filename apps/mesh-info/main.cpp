@@ -13,7 +13,8 @@
 
 int main(int argc, char** argv) {
   using namespace proxyvis;
-  CLI::App app{"mesh-info: load meshes (OBJ, PLY, OFF, Draco) and print their validation report"};
+  CLI::App app{"mesh-info: load meshes (OBJ, PLY, OFF, Draco) and print their validation report",
+               "mesh-info"};
   CommonOptions common;
   addCommonOptions(app, common);
   std::vector<std::string> files;

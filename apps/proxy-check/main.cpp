@@ -150,7 +150,7 @@ int main(int argc, char** argv) {
       ->required()
       ->expected(1, 2);
   app.add_option("--rays", o.rays, "Number of segments to sample")
-      ->check(CLI::PositiveNumber)
+      ->check(positiveNumber())
       ->capture_default_str();
   app.add_option("--distribution", o.distribution,
                  "sphere: random lines through a sphere around both meshes; scene: camera hits "

@@ -176,9 +176,9 @@ int main(int argc, char** argv) {
   app.add_option("--out-dir", a.out_dir,
                  "Output directory (scene input): DIR/<mesh>.<kind>.ply, DIR/scene.json");
   app.add_option("--alpha", a.alpha, "wrap: alpha as a fraction of the diagonal (default 1/50)")
-      ->check(CLI::PositiveNumber);
+      ->check(positiveNumber());
   app.add_option("--offset", a.offset, "wrap: offset as a fraction of the diagonal (default 1/600)")
-      ->check(CLI::PositiveNumber);
+      ->check(positiveNumber());
   app.add_option(
       "--max-faces", a.max_faces,
       "Face budget; outside/inside keep their guarantee while reducing (0 = none, but an "
@@ -189,7 +189,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 1.0));
   app.add_option("--erosion", a.erosion,
                  "erode: erosion distance as a fraction of the diagonal (default 1/75)")
-      ->check(CLI::PositiveNumber);
+      ->check(positiveNumber());
   app.add_flag("--fill-holes", a.fill_holes, "inside: fill the holes of an open input first");
   addCommonOptions(app, common);
   return runApp(app, argc, argv, common, [&] {

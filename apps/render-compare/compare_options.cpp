@@ -31,27 +31,27 @@ void addCompareOptions(CLI::App& app, CompareOptions& o) {
       ->capture_default_str();
   app.add_option("--equal-time", o.equal_time,
                  "Seconds per render for the equal-time table (0 = no such table)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(nonNegativeNumber())
       ->capture_default_str();
   app.add_option("--reference-spp", o.reference_spp,
                  "Samples per pixel of the exact reference (0 = max(1024, 16 x largest --spp))")
-      ->check(CLI::NonNegativeNumber)
+      ->check(nonNegativeNumber())
       ->capture_default_str();
   app.add_option("--seeds", o.seeds,
                  "Independent renders per table cell (standard error over them)")
-      ->check(CLI::PositiveNumber)
+      ->check(positiveNumber())
       ->capture_default_str();
   app.add_option("--width", o.width, "Override the scene's image width (0 = keep)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(nonNegativeNumber());
   app.add_option("--height", o.height, "Override the scene's image height (0 = keep)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(nonNegativeNumber());
   app.add_option("--proxy-kind", o.proxy_kind,
                  "Use each mesh's proxy of this kind (outside, inside, general; default: first)");
   app.add_option("--q-min", o.q_min, "Roulette floor where an error class is possible")
       ->check(CLI::Range(1e-6, 1.0))
       ->capture_default_str();
   app.add_option("--probes", o.probes, "Probe rays per shading point (paper-optimal, paper-cost)")
-      ->check(CLI::PositiveNumber)
+      ->check(positiveNumber())
       ->capture_default_str();
   app.add_option("--build", o.build,
                  "Instances as Embree instances, flattened into one BVH, or auto (flat when the "

@@ -240,7 +240,8 @@ int main(int argc, char** argv) {
   CLI::App app{
       "render-compare: render a scene with each visibility estimator at equal samples and at "
       "equal time against a converged exact reference; write MSE tables, images and an HTML "
-      "report"};
+      "report",
+      "render-compare"};
   proxyvis::CompareOptions options;
   proxyvis::addCompareOptions(app, options);
   return proxyvis::runApp(app, argc, argv, options.common,

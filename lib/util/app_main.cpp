@@ -1,5 +1,8 @@
 #include "util/app_main.h"
 
+#include <cmath>
+#include <string>
+
 #include <fmt/core.h>
 #include <tbb/global_control.h>
 #include <tbb/task_arena.h>
@@ -19,7 +22,7 @@ void addCommonOptions(CLI::App& app, CommonOptions& options) {
                  "Random seed; the same seed gives the same result at any thread count")
       ->capture_default_str();
   app.add_option("--threads", options.threads, "Worker threads (0 = all cores)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(nonNegativeNumber())
       ->capture_default_str();
   app.add_flag("-q,--quiet", options.quiet, "No progress bars");
   app.add_option("--json", options.json_path,
@@ -28,6 +31,34 @@ void addCommonOptions(CLI::App& app, CommonOptions& options) {
       "Exit codes: 0 success, 1 a check failed, 2 bad input or usage, 3 output cannot be "
       "written.\nOutputs are written to a temporary file and renamed at the end: nothing partial "
       "is left on failure.");
+}
+
+namespace {
+CLI::Validator numberCheck(bool allow_zero) {
+  return CLI::Validator(
+      [allow_zero](std::string& text) -> std::string {
+        double v = 0;
+        size_t used = 0;
+        try {
+          v = std::stod(text, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        if (used != text.size() || !std::isfinite(v))
+          return "expected a number, got '" + text + "'";
+        if (allow_zero ? v < 0 : v <= 0)
+          return std::string(allow_zero ? "must be >= 0" : "must be > 0") + ", got " + text;
+        return {};
+      },
+      allow_zero ? "NONNEGATIVE" : "POSITIVE");
+}
+}  // namespace
+
+CLI::Validator positiveNumber() {
+  return numberCheck(false);
+}
+CLI::Validator nonNegativeNumber() {
+  return numberCheck(true);
 }
 
 int runApp(CLI::App& app, int argc, char** argv, const CommonOptions& options,
@@ -41,8 +72,9 @@ int runApp(CLI::App& app, int argc, char** argv, const CommonOptions& options,
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    app.exit(e);
-    std::fprintf(stderr, "Run with --help for usage.\n");
+    // One line, like every other error: program, what is wrong, what to do.
+    std::fprintf(stderr, "%s: error: %s (run %s --help for usage)\n", app.get_name().c_str(),
+                 e.what(), app.get_name().c_str());
     return kExitBadInput;
   }
   Progress::setGloballyQuiet(options.quiet);

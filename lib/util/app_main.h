@@ -10,6 +10,11 @@
 
 namespace proxyvis {
 
+// Number checks whose messages read well ("--alpha: must be > 0, got -1"); CLI11's own ones
+// print the range up to the largest double.
+CLI::Validator positiveNumber();
+CLI::Validator nonNegativeNumber();
+
 struct CommonOptions {
   uint64_t seed = 0;
   int threads = 0;  // 0 = all hardware threads
