@@ -64,3 +64,6 @@ pg_test(scene_outside 0
 pg_test(outside_ratio_budget 0
   "${pg_data}/bunny.off --kind outside --ratio 0.05 -o ${pg_dir}/bunny.ratio.ply"
   REGEX "\"max_faces_from_ratio\":348.*verified: +yes" FILE ${pg_dir}/bunny.ratio.ply)
+# Usage errors are one line naming the program, the flag and the rule.
+pg_test(negative_alpha 2 "${pg_data}/bunny.off --kind outside --alpha -1 -o ${pg_dir}/neg.ply"
+  REGEX "proxy-gen: error: --alpha: must be > 0, got -1" NO_FILE ${pg_dir}/neg.ply)
