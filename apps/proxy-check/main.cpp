@@ -103,8 +103,12 @@ int runScene(const Options& o) {
             "original) to uniform light samples; a light sample inside the proxy would void the "
             "outside guarantee (DESIGN.md 2, pitfall 2)";
       } else if (full) {
+        po.generator =
+            instanceSceneSegments(*full, scene, mesh_index, original.bounds(), o.common.seed);
+        po.distribution_name = "scene";
         po.distribution_note =
-            "instanced only: its prototype is checked with the sphere distribution";
+            "camera primary hits on the other objects to uniform light samples, each mapped into "
+            "the object space of one instance of this mesh whose box it crosses";
       }
       // Without --expect, the class the scene claims is what must hold (DESIGN.md §2 pitfall 4).
       if (!po.expect && ref.verified_class) po.expect = ref.verified_class;

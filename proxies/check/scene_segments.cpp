@@ -1,10 +1,14 @@
 #include "proxies/check/scene_segments.h"
 
+#include <algorithm>
 #include <memory>
+#include <optional>
+#include <vector>
 
 #include "mesh/mesh_io.h"
 #include "render/camera.h"
 #include "render/light_sampler.h"
+#include "scene/transform.h"
 #include "util/error.h"
 #include "util/rng.h"
 
@@ -60,6 +64,65 @@ SegmentGenerator sceneSegments(const TraceScene& full, const SceneDesc& scene,
     out.dir = ls.point - p;
     out.tnear = 0;
     out.tfar = 1.0f - 1e-4f;  // stop short of the light itself
+    return true;
+  };
+}
+
+namespace {
+
+bool segmentCrossesBox(const Segment& s, const Bounds3f& b) {
+  float t0 = s.tnear, t1 = s.tfar;
+  for (int a = 0; a < 3; ++a) {
+    const float inv = 1.0f / s.dir[a];
+    float ta = (b.lo[a] - s.org[a]) * inv, tb = (b.hi[a] - s.org[a]) * inv;
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+    if (!(t0 <= t1)) return false;  // also false for NaN (a zero direction on a slab's edge)
+  }
+  return true;
+}
+
+}  // namespace
+
+SegmentGenerator instanceSceneSegments(const TraceScene& full, const SceneDesc& scene,
+                                       uint32_t mesh_index, const Bounds3f& object_bounds,
+                                       uint64_t seed) {
+  struct Placement {
+    Affine3f to_object;
+    Bounds3f world;
+  };
+  auto placements = std::make_shared<std::vector<Placement>>();
+  for (const SceneInstanceDesc& inst : scene.instances) {
+    if (inst.mesh != mesh_index) continue;
+    const std::optional<Affine3f> inv = inverse(inst.transform);
+    if (!inv) throw Error(scene.path.string(), "singular instance transform");
+    Bounds3f world;
+    for (int i = 0; i < 8; ++i)
+      world.extend(inst.transform.apply({(i & 1) ? object_bounds.hi.x : object_bounds.lo.x,
+                                         (i & 2) ? object_bounds.hi.y : object_bounds.lo.y,
+                                         (i & 4) ? object_bounds.hi.z : object_bounds.lo.z}));
+    placements->push_back({*inv, world});
+  }
+  if (placements->empty())
+    throw Error(scene.path.string(), "mesh has no instances",
+                "the instanced scene distribution needs at least one");
+  SegmentGenerator world = sceneSegments(full, scene, mesh_index, seed);
+  return [world, placements, seed](uint64_t index, Segment& out) {
+    Segment s;
+    if (!world(index, s)) return false;
+    uint32_t crossing = 0, chosen = 0;
+    const uint64_t pick = hashKeys(seed ^ 0x5bd1e995u, index);
+    for (uint32_t k = 0; k < placements->size(); ++k) {
+      if (!segmentCrossesBox(s, (*placements)[k].world)) continue;
+      // Reservoir sampling of one crossed instance, uniform among them.
+      ++crossing;
+      if (hashKeys(pick, k) % crossing == 0) chosen = k;
+    }
+    const Affine3f& m = (*placements)[chosen].to_object;
+    out = s;
+    out.org = m.apply(s.org);
+    out.dir = applyLinear(m, s.dir);  // same t range: the map is affine
     return true;
   };
 }

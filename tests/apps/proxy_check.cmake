@@ -64,3 +64,19 @@ pc_test(unwritable_json 3
 pc_test(dump_errors 0
   "${pc_dir}/cube.off ${pc_dir}/inner.off ${q} --dump-errors ${pc_dir}/errors.ply"
   FILE ${pc_dir}/errors.ply)
+
+# Scene mode, scene distribution, a mesh placed only through instances: its segments are mapped
+# into the instances' object space (camera hits on the floor to the light, past the cubes).
+file(WRITE ${pc_dir}/floor.obj "v -5 -1 -5\nv 5 -1 -5\nv 5 -1 5\nv -5 -1 5\nf 1 3 2\nf 1 4 3\n")
+file(WRITE ${pc_dir}/cubes.txt "cube 0 0 0\ncube 2 0 0.5\ncube -2 0 1\n")
+file(WRITE ${pc_dir}/inst_scene.json [=[
+{"camera": {"eye": [0.5, 8, 7], "look_at": [0.5, 0, 0.5], "fov_deg": 50, "resolution": [32, 32]},
+ "lights": [{"type": "quad", "corner": [-1, 6, -1], "edge_u": [3, 0, 0], "edge_v": [0, 0, 3],
+             "radiance": [5, 5, 5]}],
+ "meshes": [{"name": "floor", "file": "floor.obj"},
+            {"name": "cube", "file": "cube.off", "place": false,
+             "proxies": [{"kind": "outside", "file": "around.off", "class": "outside"}]}],
+ "instances": {"file": "cubes.txt"}}
+]=])
+pc_test(scene_instanced 0 "${pc_dir}/inst_scene.json --distribution scene ${q}"
+  REGEX "scene distribution.*HH' +[1-9][0-9]* .*HM' +0 .*sampled class +outside.*exact +contains")
