@@ -93,18 +93,12 @@ void CompareOptions::resolve() {
   if (roulette_costs != "measured") {
     std::vector<double> c;
     for (const std::string& item : splitList(roulette_costs)) {
-      size_t used = 0;
-      double v = -1;
-      try {
-        v = std::stod(item, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used != item.size() || !(v >= 0) || !std::isfinite(v)) {
+      const std::optional<double> v = parseNumber(item);
+      if (!v || *v < 0) {
         c.clear();
         break;
       }
-      c.push_back(v);
+      c.push_back(*v);
     }
     if (c.size() != 5 || !(c[0] > 0 && c[1] > 0 && c[2] > 0 && c[3] > 0))
       throw Error({}, "--roulette-costs: '" + roulette_costs + "' is not 'measured' or five costs",

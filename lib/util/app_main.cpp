@@ -33,19 +33,25 @@ void addCommonOptions(CLI::App& app, CommonOptions& options) {
       "is left on failure.");
 }
 
+std::optional<double> parseNumber(const std::string& text) {
+  double v = 0;
+  size_t used = 0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  if (used != text.size() || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
 namespace {
 CLI::Validator numberCheck(bool allow_zero) {
   return CLI::Validator(
       [allow_zero](std::string& text) -> std::string {
-        double v = 0;
-        size_t used = 0;
-        try {
-          v = std::stod(text, &used);
-        } catch (const std::exception&) {
-          used = 0;
-        }
-        if (used != text.size() || !std::isfinite(v))
-          return "expected a number, got '" + text + "'";
+        const std::optional<double> parsed = parseNumber(text);
+        if (!parsed) return "expected a number, got '" + text + "'";
+        const double v = *parsed;
         if (allow_zero ? v < 0 : v <= 0)
           return std::string(allow_zero ? "must be >= 0" : "must be > 0") + ", got " + text;
         return {};

@@ -6,12 +6,15 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace proxyvis {
 
 // Number checks whose messages read well ("--alpha: must be > 0, got -1"); CLI11's own ones
 // print the range up to the largest double.
+// The whole of `text` as a finite number; nullopt for anything else ("1x", "", "nan").
+std::optional<double> parseNumber(const std::string& text);
 CLI::Validator positiveNumber();
 CLI::Validator nonNegativeNumber();
 
