@@ -19,14 +19,6 @@ TriMesh transformed(const TriMesh& mesh, const Affine3f& a) {
   return out;
 }
 
-Bounds3f transformedBounds(const Bounds3f& b, const Affine3f& a) {
-  Bounds3f out;
-  for (int i = 0; i < 8; ++i)
-    out.extend(
-        a.apply({(i & 1) ? b.hi.x : b.lo.x, (i & 2) ? b.hi.y : b.lo.y, (i & 4) ? b.hi.z : b.lo.z}));
-  return out;
-}
-
 bool overlaps(const Bounds3f& a, const Bounds3f& b) {
   return a.lo.x <= b.hi.x && b.lo.x <= a.hi.x && a.lo.y <= b.hi.y && b.lo.y <= a.hi.y &&
          a.lo.z <= b.hi.z && b.lo.z <= a.hi.z;

@@ -85,6 +85,15 @@ inline Affine3f scaling(const Vec3f& s) {
   return r;
 }
 
+// The box around `b`'s eight corners under `a` (encloses everything `b` held).
+inline Bounds3f transformedBounds(const Bounds3f& b, const Affine3f& a) {
+  Bounds3f out;
+  for (int i = 0; i < 8; ++i)
+    out.extend(
+        a.apply({(i & 1) ? b.hi.x : b.lo.x, (i & 2) ? b.hi.y : b.lo.y, (i & 4) ? b.hi.z : b.lo.z}));
+  return out;
+}
+
 inline bool operator==(const Affine3f& a, const Affine3f& b) {
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 4; ++j)

@@ -97,12 +97,7 @@ SegmentGenerator instanceSceneSegments(const TraceScene& full, const SceneDesc& 
     if (inst.mesh != mesh_index) continue;
     const std::optional<Affine3f> inv = inverse(inst.transform);
     if (!inv) throw Error(scene.path.string(), "singular instance transform");
-    Bounds3f world;
-    for (int i = 0; i < 8; ++i)
-      world.extend(inst.transform.apply({(i & 1) ? object_bounds.hi.x : object_bounds.lo.x,
-                                         (i & 2) ? object_bounds.hi.y : object_bounds.lo.y,
-                                         (i & 4) ? object_bounds.hi.z : object_bounds.lo.z}));
-    placements->push_back({*inv, world});
+    placements->push_back({*inv, transformedBounds(object_bounds, inst.transform)});
   }
   if (placements->empty())
     throw Error(scene.path.string(), "mesh has no instances",
