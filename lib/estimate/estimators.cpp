@@ -78,11 +78,19 @@ class SelectionEstimator final : public VisibilityEstimator {
   int probes_;
 };
 
+// The setup's class, floor and costs; the learner's own default margin.
+RegionLearner::Options learnerOptions(const EstimatorSetup& setup) {
+  RegionLearner::Options o;
+  o.proxy_class = setup.proxy_class;
+  o.q_min = setup.q_min;
+  o.fixed_costs = setup.fixed_costs;
+  return o;
+}
+
 class RouletteEstimator final : public VisibilityEstimator {
  public:
   explicit RouletteEstimator(const EstimatorSetup& setup)
-      : learner_(setup.num_regions, setup.num_points,
-                 RegionLearner::Options{setup.proxy_class, setup.q_min, 0.25, setup.fixed_costs}),
+      : learner_(setup.num_regions, setup.num_points, learnerOptions(setup)),
         num_regions_(setup.num_regions) {}
 
   void beginPass(int) override { learner_.beginPass(); }
@@ -126,10 +134,11 @@ class RouletteEstimator final : public VisibilityEstimator {
     const uint64_t query_start = time_query ? cpuTicks() : 0;
     // Exact mode explores whole queries: one random number per query, and most queries of an
     // exact region take the exact estimator's path (exploring never changes the estimate).
-    const bool explore = q.point == ShadingPointQuery::kNoPoint
-                             ? rng.uniformFloat() < plan.explore
-                             : learner_.exploresPoint(plan, q.point);
-    if (!plan.roulette && plan.explore < 1 && !explore) {
+    auto explores = [&] {
+      return q.point == ShadingPointQuery::kNoPoint ? rng.uniformFloat() < plan.explore
+                                                    : learner_.exploresPoint(plan, q.point);
+    };
+    if (!plan.roulette && plan.explore < 1 && !explores()) {
       for (size_t j = 0; j < q.segments.size(); ++j)
         out[j] = exactSample(*q.tracer, q.segments[j], counts);
     } else {

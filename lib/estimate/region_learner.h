@@ -37,6 +37,7 @@
 
 #include "estimate/roulette.h"
 #include "estimate/visibility_estimator.h"
+#include "util/rng.h"
 
 namespace proxyvis {
 
@@ -120,11 +121,8 @@ class RegionLearner {
   // over points: a hash of (point, pass), cheaper than a random number, and exploring never
   // changes an exact estimate, so it need not be independent of the estimates.
   bool exploresPoint(const Plan& plan, uint32_t point) const {
-    uint32_t h = (point ^ (passes_ * 0x9e3779b9u)) * 0x85ebca6bu;
-    h ^= h >> 13;
-    h *= 0xc2b2ae35u;
-    h ^= h >> 16;
-    return double(h) < plan.explore * 4294967296.0;
+    const uint64_t h = mixBits((uint64_t(passes_) << 32) | point);
+    return double(h >> 11) * 0x1p-53 < plan.explore;
   }
   const Plan& plan(uint32_t region) const { return plans_[region]; }
   bool measuresCosts() const { return !options_.fixed_costs; }
