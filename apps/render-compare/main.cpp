@@ -73,8 +73,7 @@ void addReferenceNotes(Report& report, const Reference& ref, bool quiet) {
   }
 }
 
-Report makeReport(const CompareOptions& o, const RenderScene& scene, const Reference& ref,
-                  bool flat) {
+Report makeReport(const CompareOptions& o, const RenderScene& scene, const Reference& ref) {
   const SceneDesc& desc = scene.desc();
   Report report;
   report.title = "render-compare: " + desc.path.filename().string();
@@ -102,6 +101,7 @@ Report makeReport(const CompareOptions& o, const RenderScene& scene, const Refer
         "No mesh of this scene has a proxy: every estimator traces the originals, so the "
         "comparison only measures estimator overhead (generate proxies with proxy-gen).");
   // DESIGN.md §2b point 2: the exact baseline should be the fastest exact configuration.
+  const bool flat = scene.instancesFlattened() || desc.instances.empty();
   report.meta["scene_build"] = flat ? "flat" : "instanced";
   report.notes.push_back(
       desc.instances.empty()
@@ -132,15 +132,8 @@ int runCompare(CompareOptions& o) {
   scene_options.proxy_kind = o.proxy_kind;
   scene_options.quiet = o.common.quiet;
   scene_options.flatten_instances = o.build == "flat";
+  if (o.build == "auto") scene_options.auto_flatten_triangles = CompareOptions::kAutoFlatTriangles;
   std::unique_ptr<RenderScene> scene = loadRenderScene(desc, scene_options);
-  if (o.build == "auto" && !desc.instances.empty() &&
-      scene->originalTriangles() + scene->proxyTriangles() <= CompareOptions::kAutoFlatTriangles) {
-    scene.reset();  // one scene's BVHs in memory at a time
-    scene_options.flatten_instances = true;
-    scene_options.quiet = true;  // the warnings were printed with the first build
-    scene = loadRenderScene(desc, scene_options);
-  }
-  const bool flat = scene_options.flatten_instances || desc.instances.empty();
 
   // Cells in table order; the stems name their images.
   std::vector<CellResult> cells;
@@ -166,7 +159,7 @@ int runCompare(CompareOptions& o) {
                  ref.cached ? " [cached]" : "");
   for (CellResult& c : cells) scoreCell(c, ref.radiance);
 
-  Report report = makeReport(o, *scene, ref, flat);
+  Report report = makeReport(o, *scene, ref);
   for (const CellResult& c : cells) report.rows.push_back(c.row);
   fillRelativeEfficiency(report.rows, kEqualSppTable);
   fillRelativeEfficiency(report.rows, kEqualTimeTable);

@@ -128,10 +128,16 @@ std::unique_ptr<RenderScene> loadRenderScene(const SceneDesc& desc,
 
   scene->device_ = std::make_unique<TraceDevice>();
   TraceSceneBuilder builder(*scene->device_, options.trace);
-  scene->instances_flattened_ = options.flatten_instances && !desc.instances.empty();
-  addObjects(builder, objects, original_ptrs, options.flatten_instances);
+  uint64_t flat_triangles = 0;
+  for (const RenderObject& o : objects)
+    flat_triangles += original_ptrs[o.mesh]->numTriangles() + proxy_ptrs[o.mesh]->numTriangles();
+  const bool flatten =
+      options.flatten_instances ||
+      (options.auto_flatten_triangles > 0 && flat_triangles <= options.auto_flatten_triangles);
+  scene->instances_flattened_ = flatten && !desc.instances.empty();
+  addObjects(builder, objects, original_ptrs, flatten);
   scene->originals_ = builder.build();
-  addObjects(builder, objects, proxy_ptrs, options.flatten_instances);
+  addObjects(builder, objects, proxy_ptrs, flatten);
   scene->proxies_ = builder.build();
   scene->self_.resize(num_meshes);
   for (size_t m = 0; m < num_meshes; ++m) {

@@ -35,6 +35,9 @@ struct RenderSceneOptions {
   // instances of one BVH per mesh: faster to trace (DESIGN.md §2b: ecosys 78 ns flattened vs
   // 140 ns instanced) at the memory of every instance's triangles.
   bool flatten_instances = false;
+  // Otherwise, flatten when the flattened originals and proxies together have at most this many
+  // triangles (0 = never): the fastest exact configuration that fits in memory.
+  uint64_t auto_flatten_triangles = 0;
   TraceSceneOptions trace;  // Embree build options for all scenes
   bool quiet = false;       // no warnings on stderr (they are still in warnings())
 };
@@ -69,9 +72,10 @@ class RenderScene {
   // kGeneral too when no object uses a proxy (then proxies() equals originals()).
   ProxyClass proxyClass() const { return proxy_class_; }
   bool usesProxies() const { return uses_proxies_; }
-  // Instances were copied into the flattened BVHs (RenderSceneOptions::flatten_instances) and
-  // the scene has some: float rounding differs from instanced tracing (thin geometry such as
-  // leaf cards self-intersects differently), so results of the two builds are not interchangeable.
+  // Instances were copied into the flattened BVHs (RenderSceneOptions::flatten_instances or
+  // auto_flatten_triangles) and the scene has some: float rounding differs from instanced tracing
+  // (thin geometry such as leaf cards self-intersects differently), so results of the two builds
+  // are not interchangeable.
   bool instancesFlattened() const { return instances_flattened_; }
   // Human-readable warnings from loading (class downgrades, missing proxies).
   const std::vector<std::string>& warnings() const { return warnings_; }

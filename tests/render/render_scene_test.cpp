@@ -116,6 +116,14 @@ TEST(RenderScene, FlattenedInstancesTraceLikeInstances) {
   const auto instanced = loadRenderScene(path, o);
   o.flatten_instances = true;
   const auto flat = loadRenderScene(path, o);
+  EXPECT_FALSE(instanced->instancesFlattened());
+  EXPECT_TRUE(flat->instancesFlattened());
+  // auto: flattened when originals + proxies fit the triangle bound, instanced otherwise.
+  RenderSceneOptions a = test::quiet();
+  a.auto_flatten_triangles = flat->originalTriangles() + flat->proxyTriangles();
+  EXPECT_TRUE(loadRenderScene(path, a)->instancesFlattened());
+  a.auto_flatten_triangles -= 1;
+  EXPECT_FALSE(loadRenderScene(path, a)->instancesFlattened());
   EXPECT_EQ(flat->originalTriangles(), instanced->originalTriangles());
   EXPECT_EQ(flat->proxyTriangles(), instanced->proxyTriangles());
   RenderSettings settings;
