@@ -11,7 +11,7 @@ BUILD_DIR=${PROXYVIS_BUILD_DIR:-build}
 JOBS=${PROXYVIS_JOBS:-$(nproc)}
 
 PKGS=(
-  build-essential cmake ninja-build ccache pkg-config git
+  build-essential cmake ninja-build ccache pkg-config git python3
   libcgal-dev libgmp-dev libmpfr-dev libeigen3-dev
   libopenmesh-dev libembree-dev libdraco-dev
   libopenimageio-dev openimageio-tools libopencv-core-dev

@@ -9,6 +9,7 @@
 #include "render/image_io.h"
 #include "util/atomic_write.h"
 #include "util/error.h"
+#include "util/input_file.h"
 #include "util/progress.h"
 #include "util/rng.h"
 

@@ -9,6 +9,7 @@
 #include "mesh/internal/openmesh_soup.h"
 #include "util/atomic_write.h"
 #include "util/error.h"
+#include "util/input_file.h"
 
 namespace proxyvis {
 namespace fs = std::filesystem;

@@ -11,6 +11,7 @@
 #include "scene/transform.h"
 #include "util/atomic_write.h"
 #include "util/error.h"
+#include "util/input_file.h"
 
 namespace proxyvis {
 

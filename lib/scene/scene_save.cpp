@@ -9,6 +9,7 @@
 #include "scene/scene_desc.h"
 #include "util/atomic_write.h"
 #include "util/error.h"
+#include "util/input_file.h"
 
 namespace proxyvis {
 

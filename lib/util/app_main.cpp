@@ -1,5 +1,6 @@
 #include "util/app_main.h"
 
+#include <charconv>
 #include <cmath>
 #include <string>
 
@@ -9,6 +10,7 @@
 
 #include <cstdio>
 #include <exception>
+#include <limits>
 #include <new>
 
 #include "util/error.h"
@@ -20,9 +22,10 @@ void addCommonOptions(CLI::App& app, CommonOptions& options) {
   app.set_version_flag("--version", std::string("proxyvis ") + PROXYVIS_VERSION);
   app.add_option("--seed", options.seed,
                  "Random seed; the same seed gives the same result at any thread count")
+      ->check(integerIn(0, std::numeric_limits<uint64_t>::max()))
       ->capture_default_str();
   app.add_option("--threads", options.threads, "Worker threads (0 = all cores)")
-      ->check(nonNegativeNumber())
+      ->check(integerIn(0, 4096))
       ->capture_default_str();
   app.add_flag("-q,--quiet", options.quiet, "No progress bars");
   app.add_option("--json", options.json_path,
@@ -59,6 +62,35 @@ CLI::Validator numberCheck(bool allow_zero) {
       allow_zero ? "NONNEGATIVE" : "POSITIVE");
 }
 }  // namespace
+
+CLI::Validator numberIn(double lo, double hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& text) -> std::string {
+        const std::optional<double> parsed = parseNumber(text);
+        if (!parsed) return "expected a number, got '" + text + "'";
+        if (*parsed < lo || *parsed > hi)
+          return fmt::format("must be in [{}, {}], got {}", lo, hi, text);
+        return {};
+      },
+      fmt::format("[{}, {}]", lo, hi));
+}
+
+CLI::Validator integerIn(uint64_t lo, uint64_t hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& text) -> std::string {
+        uint64_t v = 0;
+        const char* end = text.data() + text.size();
+        const auto [ptr, ec] = std::from_chars(text.data(), end, v);
+        const bool digits_only =
+            !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+        if (!digits_only || ptr != end)
+          return fmt::format("expected a whole number in [{}, {}], got '{}'", lo, hi, text);
+        if (ec == std::errc::result_out_of_range || v < lo || v > hi)
+          return fmt::format("must be in [{}, {}], got {}", lo, hi, text);
+        return {};
+      },
+      fmt::format("INT in [{}, {}]", lo, hi));
+}
 
 CLI::Validator positiveNumber() {
   return numberCheck(false);

@@ -17,6 +17,11 @@ namespace proxyvis {
 std::optional<double> parseNumber(const std::string& text);
 CLI::Validator positiveNumber();
 CLI::Validator nonNegativeNumber();
+// A number in [lo, hi]; the message names the range ("--alpha: must be in [0.001, 1], got 5").
+CLI::Validator numberIn(double lo, double hi);
+// An integer written as decimal digits only (no sign, exponent or fraction) in [lo, hi]. CLI11
+// alone turns "-1" into 2^64-1 and saturates 2^64 for unsigned options; this runs before it.
+CLI::Validator integerIn(uint64_t lo, uint64_t hi);
 
 struct CommonOptions {
   uint64_t seed = 0;

@@ -5,10 +5,10 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
-#include <sstream>
 #include <system_error>
 
 #include "util/error.h"
+#include "util/input_file.h"
 
 namespace proxyvis {
 
@@ -27,6 +27,9 @@ fs::path temporaryPathFor(const fs::path& target) {
 }  // namespace
 
 void writeAtomically(const fs::path& target, const std::function<void(const fs::path&)>& write) {
+  if (isRegisteredInput(target))
+    throw Error(target.string(), "refusing to overwrite an input of this run", {},
+                "choose another output path");
   fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
   std::error_code ec;
   if (!fs::is_directory(dir, ec))
@@ -59,17 +62,6 @@ void writeTextAtomically(const fs::path& target, const std::string& text) {
     out.close();
     if (!out) throw WriteError(target.string(), "cannot write output", "write failed (disk full?)");
   });
-}
-
-std::string readTextFile(const fs::path& path) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw Error(path.string(), "file not found", {}, "check the path");
-  if (fs::is_directory(path, ec)) throw Error(path.string(), "is a directory, not a file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path.string(), "cannot open file", "permission denied?");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
 }
 
 }  // namespace proxyvis

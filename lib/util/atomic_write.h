@@ -16,7 +16,4 @@ void writeAtomically(const std::filesystem::path& target,
 // Writes `text` to `target` atomically ("-" writes to stdout).
 void writeTextAtomically(const std::filesystem::path& target, const std::string& text);
 
-// Reads a whole file; throws Error naming the file if it is missing or unreadable.
-std::string readTextFile(const std::filesystem::path& path);
-
 }  // namespace proxyvis
