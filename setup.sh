@@ -16,7 +16,7 @@ PKGS=(
   libopenmesh-dev libembree-dev libdraco-dev
   libopenimageio-dev openimageio-tools libopencv-core-dev
   libmeshoptimizer-dev libtbb-dev
-  libcli11-dev libfmt-dev nlohmann-json3-dev
+  libcli11-dev libfmt-dev nlohmann-json3-dev libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev
 )
 
