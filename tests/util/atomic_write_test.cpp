@@ -1,4 +1,5 @@
 #include "util/atomic_write.h"
+#include "util/input_file.h"
 
 #include <gtest/gtest.h>
 
