@@ -1,4 +1,5 @@
 # Driver of one bad-input case, run as `cmake -P` (bad_input_test in CMakeLists.txt registers it).
+cmake_minimum_required(VERSION 3.20)  # NEW policies: "@CORPUS@" below is a literal, not a reference
 function(expand var)
   string(REPLACE "@CORPUS@" "${CORPUS}" v "${${var}}")
   string(REPLACE "@OUT@" "${OUT}" v "${v}")
