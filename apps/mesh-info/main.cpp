@@ -1,7 +1,9 @@
 // mesh-info FILE... [--self-intersections] [--json OUT]: loads each mesh and prints its
 // validation report (vertices, faces, bounds, closedness, manifoldness, genus, volume, ...).
 // With --save OUT (one input) it also converts: this is how data/dragon.drc was made.
+// With --expect-sha256 HEX (one input) the file's content hash is checked before it is loaded.
 #include <CLI/CLI.hpp>
+#include <cctype>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
@@ -10,6 +12,32 @@
 #include "util/app_main.h"
 #include "util/atomic_write.h"
 #include "util/error.h"
+#include "util/sha256.h"
+
+namespace {
+
+// --expect-sha256: 64 hex digits, either case.
+const CLI::Validator sha256Digits(
+    [](const std::string& text) -> std::string {
+      if (text.size() == 64 &&
+          text.find_first_not_of("0123456789abcdefABCDEF") == std::string::npos)
+        return {};
+      return "expected 64 hex digits (as sha256sum prints them), got '" + text + "'";
+    },
+    "SHA256");
+
+// An explicit hash check, before anything is parsed: a mesh format cannot tell a corrupted file
+// from a different mesh (Draco decodes most flipped bytes without complaint).
+void checkExpectedSha256(const std::string& file, std::string expected) {
+  for (char& c : expected) c = char(std::tolower(static_cast<unsigned char>(c)));
+  const std::string actual = proxyvis::sha256OfFile(file);
+  if (actual != expected)
+    throw proxyvis::Error(file, "content does not match --expect-sha256",
+                          "its sha256 is " + actual + ", expected " + expected,
+                          "the file is corrupt or not the one meant; restore a good copy");
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace proxyvis;
@@ -33,10 +61,20 @@ int main(int argc, char** argv) {
                  "with --save *.drc: encoder speed 0 (smallest) .. 10 (sequential connectivity)")
       ->check(CLI::Range(0, 10));
   app.add_flag("!--ascii", save.binary, "with --save *.ply: write ASCII instead of binary");
+  std::string expect_sha256;
+  app.add_option("--expect-sha256", expect_sha256,
+                 "refuse the (single) input unless its SHA-256 is this (64 hex digits)")
+      ->check(sha256Digits);
   return runApp(app, argc, argv, common, [&] {
     if (!save_path.empty() && files.size() != 1)
       throw Error({}, "--save needs exactly one input mesh",
                   std::to_string(files.size()) + " given");
+    if (!expect_sha256.empty()) {
+      if (files.size() != 1)
+        throw Error({}, "--expect-sha256 needs exactly one input mesh",
+                    std::to_string(files.size()) + " given");
+      checkExpectedSha256(files[0], expect_sha256);
+    }
     nlohmann::json all = nlohmann::json::array();
     for (const std::string& file : files) {
       const TriMesh mesh = loadMesh(file);

@@ -1,38 +1,174 @@
 #include "mesh/internal/draco_io.h"
 
+#include <draco/attributes/attribute_quantization_transform.h>
 #include <draco/compression/decode.h>
 #include <draco/compression/encode.h>
 #include <draco/mesh/mesh.h>
 
+#include <fmt/format.h>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "mesh/internal/printable.h"
 #include "util/error.h"
 
 namespace proxyvis::detail {
+namespace {
+
+// Little-endian base-128 varint as Draco writes counts (at most 5 bytes for 32 bits).
+bool readVarint(const std::string& bytes, size_t& pos, uint64_t& value) {
+  value = 0;
+  for (int shift = 0; shift < 35 && pos < bytes.size(); shift += 7) {
+    const auto byte = static_cast<unsigned char>(bytes[pos++]);
+    value |= uint64_t(byte & 0x7f) << shift;
+    if ((byte & 0x80) == 0) return true;
+  }
+  return false;
+}
+
+// A decoder fed corrupt connectivity can still return a mesh; one whose face count differs from
+// what the header declares is refused.
+void checkFaceCount(const std::string& bytes, uint32_t decoded, const std::string& file) {
+  const int64_t declared = declaredDracoFaceCount(bytes);
+  if (declared >= 0 && uint64_t(declared) != decoded)
+    throw Error(file, "Draco mesh decodes to " + std::to_string(decoded) + " faces",
+                "its header declares " + std::to_string(declared), "the file is corrupt");
+}
+
+// Quantized positions are integers in [0, 2^bits - 1] over the box [origin, origin + range]: a
+// value outside, or an origin or range that is not a finite float box, means corrupt data (Draco
+// decodes it without complaint: single byte flips gave coordinates of -1.7e38).
+void checkQuantization(const draco::PointAttribute& quantized,
+                       const draco::AttributeQuantizationTransform& q, const std::string& file) {
+  const int bits = q.quantization_bits();
+  const int n = quantized.num_components();
+  bool box_ok = bits >= 1 && bits <= 30 && std::isfinite(q.range()) && q.range() >= 0 &&
+                int(q.min_values().size()) == n;
+  for (int c = 0; box_ok && c < n; ++c)
+    box_ok = std::isfinite(q.min_value(c)) && std::isfinite(q.min_value(c) + q.range());
+  if (!box_ok)
+    throw Error(file, "corrupt Draco position quantization",
+                fmt::format("{} bits over a range of {:g} from ({:g}, {:g}, {:g}) is not a finite "
+                            "box",
+                            bits, q.range(), q.min_values().size() > 0 ? q.min_value(0) : 0.f,
+                            q.min_values().size() > 1 ? q.min_value(1) : 0.f,
+                            q.min_values().size() > 2 ? q.min_value(2) : 0.f),
+                "the file is corrupt");
+  const int64_t max_value = (int64_t(1) << bits) - 1;
+  int32_t v[4] = {0, 0, 0, 0};
+  for (draco::AttributeValueIndex i(0); i < uint32_t(quantized.size()); ++i) {
+    bool ok = n <= 4 && quantized.ConvertValue<int32_t>(i, n, v);
+    for (int c = 0; ok && c < n; ++c) ok = v[c] >= 0 && v[c] <= max_value;
+    if (!ok)
+      throw Error(file, "Draco position " + std::to_string(i.value()) + " is out of its range",
+                  "quantized values must lie in 0.." + std::to_string(max_value) + " (" +
+                      std::to_string(bits) + " bits)",
+                  "the file is corrupt");
+  }
+}
+
+// The dequantized positions must keep the spread of the quantized ones: an origin corrupted to
+// -1.7e38 (one flipped exponent byte) turns thousands of distinct quantized values into one float,
+// which no encoder writes (it takes the origin from the data, at the data's scale). An axis whose
+// quantized values span 2 or more steps but dequantize to a single value is refused.
+void checkAxesKeepTheirSpread(const draco::PointAttribute& quantized,
+                              const draco::PointAttribute& dequantized, const std::string& file) {
+  const int n = std::min<int>(quantized.num_components(), 3);
+  int32_t q_lo[3], q_hi[3];
+  float f_lo[3], f_hi[3];
+  for (int c = 0; c < n; ++c) {
+    q_lo[c] = std::numeric_limits<int32_t>::max();
+    q_hi[c] = std::numeric_limits<int32_t>::min();
+    f_lo[c] = std::numeric_limits<float>::infinity();
+    f_hi[c] = -std::numeric_limits<float>::infinity();
+  }
+  for (draco::AttributeValueIndex i(0); i < uint32_t(quantized.size()); ++i) {
+    int32_t q[3] = {0, 0, 0};
+    float f[3] = {0, 0, 0};
+    quantized.ConvertValue<int32_t>(i, int8_t(n), q);
+    dequantized.ConvertValue<float>(i, int8_t(n), f);
+    for (int c = 0; c < n; ++c) {
+      q_lo[c] = std::min(q_lo[c], q[c]);
+      q_hi[c] = std::max(q_hi[c], q[c]);
+      f_lo[c] = std::min(f_lo[c], f[c]);
+      f_hi[c] = std::max(f_hi[c], f[c]);
+    }
+  }
+  for (int c = 0; c < n; ++c) {
+    if (quantized.size() > 0 && int64_t(q_hi[c]) - q_lo[c] >= 2 && !(f_hi[c] > f_lo[c]))
+      throw Error(file, "corrupt Draco position quantization",
+                  fmt::format("quantized values spanning {} steps on axis {} all decode to {:g} "
+                              "(the origin is not at the scale of the data)",
+                              int64_t(q_hi[c]) - q_lo[c], "xyz"[c], f_lo[c]),
+                  "the file is corrupt");
+  }
+}
+
+}  // namespace
+
+int64_t declaredDracoFaceCount(const std::string& bytes) {
+  // "DRACO", version major, minor, encoder type, method, 16-bit flags.
+  if (bytes.size() < 11 || bytes.compare(0, 5, "DRACO") != 0 || bytes[5] != 2 || bytes[6] != 2)
+    return -1;
+  const int method = bytes[8];
+  const unsigned flags =
+      static_cast<unsigned char>(bytes[9]) | (unsigned(static_cast<unsigned char>(bytes[10])) << 8);
+  if (flags & 0x8000) return -1;  // metadata comes first and is not parsed here
+  size_t pos = 11;
+  uint64_t value = 0;
+  if (method == 0) return readVarint(bytes, pos, value) ? int64_t(value) : -1;  // sequential
+  if (method != 1) return -1;
+  ++pos;  // edgebreaker: traversal decoder type, then vertex count and face count
+  if (!readVarint(bytes, pos, value) || !readVarint(bytes, pos, value)) return -1;
+  return int64_t(value);
+}
 
 void decodeDraco(const std::string& bytes, const std::string& file, TriMesh& out) {
   draco::DecoderBuffer buffer;
   buffer.Init(bytes.data(), bytes.size());
   auto type = draco::Decoder::GetEncodedGeometryType(&buffer);
   if (!type.ok())
-    throw Error(file, "not a Draco file", "Draco: " + type.status().error_msg_string(),
+    throw Error(file, "not a Draco file",
+                "Draco: " + printableExcerpt(type.status().error_msg_string(), 120),
                 "check that the file is a .drc mesh");
   if (type.value() != draco::TRIANGULAR_MESH)
     throw Error(file, "Draco file holds a point cloud, not a triangle mesh", {},
                 "encode a mesh (draco_encoder with a mesh input)");
+  // Positions are decoded to their quantized integers and dequantized here, so the integers can
+  // be checked against the quantization range first (Draco itself does not).
   draco::Decoder decoder;
+  decoder.SetSkipAttributeTransform(draco::GeometryAttribute::POSITION);
   auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
   if (!decoded.ok())
     throw Error(file, "cannot decode the Draco mesh",
-                "Draco: " + decoded.status().error_msg_string(),
+                "Draco: " + printableExcerpt(decoded.status().error_msg_string(), 120),
                 "the file is truncated or corrupt");
   const draco::Mesh& mesh = *decoded.value();
   const draco::PointAttribute* pos = mesh.GetNamedAttribute(draco::GeometryAttribute::POSITION);
   if (pos == nullptr || pos->num_components() < 3)
     throw Error(file, "Draco mesh has no 3D POSITION attribute", {}, "re-encode it with positions");
+  const uint32_t num_points = mesh.num_points();
+  checkFaceCount(bytes, mesh.num_faces(), file);
 
-  out.vertices.resize(mesh.num_points());
-  for (draco::PointIndex p(0); p < mesh.num_points(); ++p) {
+  // `values` holds the float positions; `pos` maps points to value indices (the same in both).
+  const draco::PointAttribute* values = pos;
+  draco::PointAttribute dequantized;
+  draco::AttributeQuantizationTransform quantization;
+  if (quantization.InitFromAttribute(*pos)) {
+    checkQuantization(*pos, quantization, file);
+    dequantized.Init(draco::GeometryAttribute::POSITION, pos->num_components(), draco::DT_FLOAT32,
+                     false, pos->size());
+    if (!quantization.InverseTransformAttribute(*pos, &dequantized))
+      throw Error(file, "cannot dequantize the Draco positions", "corrupt quantization data",
+                  "the file is corrupt");
+    checkAxesKeepTheirSpread(*pos, dequantized, file);
+    values = &dequantized;
+  }
+  out.vertices.resize(num_points);
+  for (draco::PointIndex p(0); p < num_points; ++p) {
     float xyz[3] = {0, 0, 0};
-    if (!pos->ConvertValue<float, 3>(pos->mapped_index(p), xyz))
+    if (!values->ConvertValue<float, 3>(pos->mapped_index(p), xyz))
       throw Error(file, "cannot read Draco positions", "unsupported position data type",
                   "re-encode it with float positions");
     out.vertices[p.value()] = Vec3f(xyz[0], xyz[1], xyz[2]);
@@ -42,10 +178,10 @@ void decodeDraco(const std::string& bytes, const std::string& file, TriMesh& out
     const draco::Mesh::Face& face = mesh.face(f);
     for (int k = 0; k < 3; ++k) {
       const uint32_t i = face[k].value();
-      if (i >= mesh.num_points())
+      if (i >= num_points)
         throw Error(file, "vertex index out of range",
                     "face " + std::to_string(f.value()) + " references point " + std::to_string(i) +
-                        " of " + std::to_string(mesh.num_points()),
+                        " of " + std::to_string(num_points),
                     "the file is corrupt");
       out.triangles[f.value()][size_t(k)] = i;
     }
@@ -81,7 +217,8 @@ std::string encodeDraco(const TriMesh& mesh, int quantization_bits, int speed,
   draco::EncoderBuffer buffer;
   const draco::Status status = encoder.EncodeMeshToBuffer(dm, &buffer);
   if (!status.ok())
-    throw WriteError(file, "Draco cannot encode the mesh", "Draco: " + status.error_msg_string(),
+    throw WriteError(file, "Draco cannot encode the mesh",
+                     "Draco: " + printableExcerpt(status.error_msg_string(), 120),
                      "try another quantization or format");
   return std::string(buffer.data(), buffer.size());
 }

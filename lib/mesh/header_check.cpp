@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <limits>
 #include <sstream>
 #include <vector>
 
+#include "mesh/internal/printable.h"
 #include "util/error.h"
 
 namespace proxyvis::detail {
@@ -43,12 +45,38 @@ void tooMany(const std::string& file, const std::string& declared, uint64_t need
 
 uint64_t parseCount(const std::string& token, const std::string& file, const std::string& what) {
   if (token.empty() || token.find_first_not_of("0123456789") != std::string::npos)
-    throw Error(file, "bad " + what + " count '" + token + "' in the header",
+    throw Error(file,
+                "bad " + printableExcerpt(what, 40) + " count '" + printableExcerpt(token, 20) +
+                    "' in the header",
                 "expected a non-negative integer", "the file is corrupt");
   if (token.size() > 12 || std::stoull(token) > kMaxCount)
-    throw Error(file, "header declares " + token + " " + what,
+    throw Error(file, "header declares " + token + " " + printableExcerpt(what, 40),
                 "more than 2^31-1 elements cannot be loaded", "the file is corrupt or too large");
   return std::stoull(token);
+}
+
+// A number token of an ASCII mesh: a plain decimal (istream >> float, what OpenMesh uses, rejects
+// "nan", "inf" and hex) within float range. OpenMesh reads values beyond float range (1e39) as a
+// failed stream: its OFF and PLY readers then use uninitialised values and its OBJ reader drops
+// the vertex, shifting every later index. Throws Error naming the file and the line.
+void checkNumberToken(const std::string& token, const std::string& file, size_t line,
+                      const std::string& what) {
+  char* parsed_end = nullptr;
+  const double value = std::strtod(token.c_str(), &parsed_end);
+  const bool plain = !token.empty() && token.size() <= 64 &&
+                     token.find_first_not_of("0123456789+-.eE") == std::string::npos &&
+                     parsed_end == token.c_str() + token.size();
+  if (!plain)
+    throw Error(
+        file,
+        "not a number on line " + std::to_string(line) + ": '" + printableExcerpt(token, 20) + "'",
+        "the " + what + " of an ASCII mesh file holds decimal numbers only", "the file is corrupt");
+  if (!std::isfinite(value) || std::fabs(value) > double(std::numeric_limits<float>::max()))
+    throw Error(file,
+                "number beyond float range on line " + std::to_string(line) + ": '" +
+                    printableExcerpt(token, 20) + "'",
+                "positions are 32-bit floats (at most 3.4e38 in magnitude)",
+                "the file is corrupt or was written with wrong units; fix or re-export it");
 }
 
 // OpenMesh's ASCII PLY reader can spin forever once its stream fails on a token that is not a
@@ -71,18 +99,7 @@ void checkAsciiNumbers(const std::string& bytes, size_t from, const std::string&
     }
     size_t end = i;
     while (end < bytes.size() && !std::isspace(static_cast<unsigned char>(bytes[end]))) ++end;
-    const std::string token = bytes.substr(i, end - i);
-    char* parsed_end = nullptr;
-    std::strtod(token.c_str(), &parsed_end);
-    // Plain decimals only: istream >> float (what OpenMesh uses) rejects "nan", "inf" and hex.
-    const bool plain = token.find_first_not_of("0123456789+-.eE") == std::string::npos;
-    if (!plain || token.size() > 64 || parsed_end != token.c_str() + token.size()) {
-      std::string shown = token.substr(0, 20);
-      for (char& ch : shown)
-        if (static_cast<unsigned char>(ch) < 32 || static_cast<unsigned char>(ch) > 126) ch = '?';
-      throw Error(file, "not a number on line " + std::to_string(line) + ": '" + shown + "'",
-                  "the body of an ASCII mesh file holds numbers only", "the file is corrupt");
-    }
+    checkNumberToken(bytes.substr(i, end - i), file, line, "body");
     i = end;
   }
 }
@@ -96,11 +113,10 @@ void checkAsciiRecords(const std::string& bytes, size_t from,
 
 void badHeaderLine(const std::string& file, size_t number, const std::string& line,
                    const std::string& why) {
-  std::string shown = line.substr(0, 60);
-  for (char& c : shown)
-    if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) c = '?';
-  throw Error(file, "corrupt PLY header line " + std::to_string(number) + " '" + shown + "'", why,
-              "the file is corrupt; re-export it");
+  throw Error(
+      file,
+      "corrupt PLY header line " + std::to_string(number) + " '" + printableExcerpt(line, 60) + "'",
+      why, "the file is corrupt; re-export it");
 }
 
 // Validates every header line before OpenMesh sees it (OpenMesh's header parser can loop forever
@@ -163,7 +179,7 @@ void checkPly(const std::string& bytes, const std::string& file) {
   }
   const bool ascii = format == "ascii";
   if (!ascii && format != "binary_little_endian" && format != "binary_big_endian")
-    throw Error(file, "unknown PLY format '" + format + "'",
+    throw Error(file, "unknown PLY format '" + printableExcerpt(format, 30) + "'",
                 "expected ascii, binary_little_endian or binary_big_endian",
                 "the header is corrupt");
   if (ascii) checkAsciiNumbers(bytes, pos, file, false);
@@ -171,11 +187,20 @@ void checkPly(const std::string& bytes, const std::string& file) {
   if (ascii) checkAsciiRecords(bytes, pos, elements, file);
   uint64_t need = 0;
   for (const PlyElement& e : elements) {
+    // Records of no bytes: the file size cannot bound their number, and OpenMesh would reserve
+    // all of them (2^31 vertices: 12 GB for positions nobody declared).
+    if (e.count > 0 && e.properties == 0)
+      throw Error(file,
+                  "header declares " + std::to_string(e.count) + " '" +
+                      printableExcerpt(e.name, 30) + "' elements with no properties",
+                  "an element without properties holds no data",
+                  "the header is corrupt; re-export the file");
     // ASCII: every property takes at least one digit and one separator.
     const uint64_t per_record = ascii ? 2 * e.properties : e.min_binary_bytes;
     need += e.count * per_record;  // counts < 2^31 and per_record is small: no overflow
     if (need > body + 1)
-      tooMany(file, std::to_string(e.count) + " " + e.name + " elements", need, body);
+      tooMany(file, std::to_string(e.count) + " " + printableExcerpt(e.name, 30) + " elements",
+              need, body);
   }
 }
 
@@ -217,8 +242,9 @@ void checkAsciiRecords(const std::string& bytes, size_t from,
   std::string token;
   auto next = [&](const std::string& element, uint64_t record) {
     if (!(in >> token))
-      throw Error(file, "file ends inside " + element + " " + std::to_string(record),
-                  "fewer values than the header declares", "the file is truncated");
+      throw Error(
+          file, "file ends inside " + printableExcerpt(element, 30) + " " + std::to_string(record),
+          "fewer values than the header declares", "the file is truncated");
     return token;
   };
   for (const PlyElement& e : elements) {
@@ -227,20 +253,14 @@ void checkAsciiRecords(const std::string& bytes, size_t from,
         const std::string t = next(e.name, r);
         if (!list) continue;
         if (t.find_first_not_of("0123456789") != std::string::npos || t.size() > 9)
-          throw Error(file, "bad list length '" + t + "' in " + e.name + " " + std::to_string(r),
+          throw Error(file,
+                      "bad list length '" + printableExcerpt(t, 20) + "' in " +
+                          printableExcerpt(e.name, 30) + " " + std::to_string(r),
                       "expected a non-negative integer", "the file is corrupt");
         for (long k = std::stol(t); k > 0; --k) next(e.name, r);
       }
     }
   }
-}
-
-bool isPlainNumber(const std::string& t) {
-  if (t.empty() || t.size() > 64 || t.find_first_not_of("0123456789+-.eE") != std::string::npos)
-    return false;
-  char* end = nullptr;
-  std::strtod(t.c_str(), &end);
-  return end == t.c_str() + t.size();
 }
 
 // One OBJ face corner: v, v/t, v//n or v/t/n with non-zero (possibly negative) integers.
@@ -277,17 +297,13 @@ void checkObj(const std::string& bytes, const std::string& file) {
     if (key != "v" && key != "f") continue;
     size_t count = 0;
     while (ls >> token) {
-      const bool ok = key == "v" ? isPlainNumber(token) : isObjCorner(token);
-      if (!ok) {
-        std::string shown = token.substr(0, 20);
-        for (char& ch : shown)
-          if (static_cast<unsigned char>(ch) < 32 || static_cast<unsigned char>(ch) > 126) ch = '?';
-        throw Error(
-            file,
-            "bad " + std::string(key == "v" ? "coordinate" : "face index") + " '" + shown +
-                "' on line " + std::to_string(number),
-            key == "v" ? "expected a decimal number" : "expected v, v/t, v//n or v/t/n (1-based)",
-            "the file is corrupt");
+      if (key == "v") {
+        checkNumberToken(token, file, number, "coordinates");
+      } else if (!isObjCorner(token)) {
+        throw Error(file,
+                    "bad face index '" + printableExcerpt(token, 20) + "' on line " +
+                        std::to_string(number),
+                    "expected v, v/t, v//n or v/t/n (1-based)", "the file is corrupt");
       }
       ++count;
     }

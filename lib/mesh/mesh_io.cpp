@@ -3,10 +3,13 @@
 #include <algorithm>
 #include <cctype>
 #include <fstream>
+#include <sstream>
+#include <system_error>
 
 #include "mesh/internal/draco_io.h"
 #include "mesh/internal/header_check.h"
 #include "mesh/internal/openmesh_soup.h"
+#include "mesh/internal/sha256_sidecar.h"
 #include "util/atomic_write.h"
 #include "util/error.h"
 #include "util/input_file.h"
@@ -66,6 +69,7 @@ TriMesh loadMesh(const fs::path& path) {
   if (format.empty() && fs::is_regular_file(path, ec)) throw unknownExtension(path);
   const std::string bytes = readTextFile(path);  // missing, directory, unreadable -> Error
   if (format.empty()) throw unknownExtension(path);
+  detail::verifySidecar(path, bytes);
   if (bytes.empty())
     throw Error(file, "empty file", "0 bytes", "the file was not written completely; re-export it");
 
@@ -85,19 +89,33 @@ void saveMesh(const TriMesh& mesh, const fs::path& path, const SaveOptions& opti
   const std::string file = path.string();
   const std::string format = formatOf(path);
   if (format.empty()) throw unknownExtension(path);
+  std::string bytes;
+  if (format == "drc") {
+    bytes = detail::encodeDraco(mesh, options.draco_quantization, options.draco_speed, file);
+  } else {
+    std::ostringstream encoded(std::ios::out | std::ios::binary);
+    if (!detail::writeWithOpenMesh(mesh, format, encoded, options.binary))
+      throw WriteError(file, "cannot write output", "OpenMesh's " + format + " writer failed");
+    bytes = std::move(encoded).str();
+  }
   writeAtomically(path, [&](const fs::path& tmp) {
     std::ofstream out(tmp, std::ios::binary);
     if (!out) throw WriteError(file, "cannot write output", "cannot create '" + tmp.string() + "'");
-    if (format == "drc") {
-      const std::string bytes =
-          detail::encodeDraco(mesh, options.draco_quantization, options.draco_speed, file);
-      out.write(bytes.data(), std::streamsize(bytes.size()));
-    } else if (!detail::writeWithOpenMesh(mesh, format, out, options.binary)) {
-      throw WriteError(file, "cannot write output", "OpenMesh's " + format + " writer failed");
-    }
+    out.write(bytes.data(), std::streamsize(bytes.size()));
     out.close();
     if (!out) throw WriteError(file, "cannot write output", "write failed (disk full?)");
   });
+  // The sidecar follows the mesh. Should it fail, the mesh goes too: a mesh beside a missing or
+  // stale sidecar is a partial output (and a stale one would make loadMesh refuse it).
+  try {
+    detail::writeSidecar(path, bytes);
+  } catch (...) {
+    std::error_code ec;
+    fs::remove(path, ec);
+    const fs::path sidecar = detail::sidecarPathOf(path);
+    if (!isRegisteredInput(sidecar)) fs::remove(sidecar, ec);
+    throw;
+  }
 }
 
 }  // namespace proxyvis

@@ -3,9 +3,14 @@
 // the Draco library. The format is chosen by the extension (case-insensitive).
 //
 // Loading never trusts a header: a PLY claiming 2^31 vertices in a 1 KB file is an Error, not an
-// 8 GB allocation. Every failure (missing, empty, truncated, corrupt file, unknown extension,
-// NaN/inf coordinates, index out of range, no triangles) throws proxyvis::Error whose message
-// names the file, what is wrong and why.
+// 8 GB allocation. Only regular files are read (never a FIFO or device). Every failure (missing,
+// empty, truncated, corrupt file, unknown extension, NaN/inf or beyond-float coordinates, index
+// out of range, no triangles) throws proxyvis::Error whose message names the file, what is wrong
+// and why (and the line, for text formats).
+//
+// Integrity: saveMesh writes "<file>.sha256" (sha256sum format) after the mesh; loadMesh verifies
+// it when present and refuses a file whose content does not match. Files without a sidecar load
+// as before. docs/mesh-formats.md describes what each format can and cannot detect.
 //
 // OBJ/PLY/OFF are parsed by OpenMesh's readers into a polygon soup (not an OpenMesh half-edge
 // mesh), so non-manifold faces (ecosys foliage, the teapot's pinched vertex) are kept and the
@@ -27,8 +32,9 @@ struct SaveOptions {
 // Loads a triangle mesh; polygons are fan-triangulated. Vertex order is kept.
 TriMesh loadMesh(const std::filesystem::path& path);
 
-// Saves atomically (temporary file + rename). Throws WriteError when the file cannot be written,
-// Error for an unknown extension.
+// Saves atomically (temporary file + rename), then its "<file>.sha256" sidecar the same way.
+// Throws WriteError when either cannot be written (and leaves neither), Error for an unknown
+// extension.
 void saveMesh(const TriMesh& mesh, const std::filesystem::path& path,
               const SaveOptions& options = {});
 

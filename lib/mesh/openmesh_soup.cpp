@@ -7,6 +7,7 @@
 #include <mutex>
 #include <sstream>
 
+#include "mesh/internal/printable.h"
 #include "util/error.h"
 
 namespace proxyvis::detail {
@@ -46,13 +47,15 @@ class CapturedOmErr {
     if (log_was_enabled_) ::omlog().enable();
     if (out_was_enabled_) ::omout().enable();
   }
+  // One line of printable text: OpenMesh quotes what it read (property names, keywords), which
+  // in a corrupt file can be any bytes.
   std::string text() {
     ::omerr().flush();
     std::string s = captured_.str();
     for (char& c : s)
       if (c == '\n' || c == '\r') c = ' ';
     while (!s.empty() && s.back() == ' ') s.pop_back();
-    return s;
+    return printableExcerpt(s, 200);
   }
 
  private:

@@ -37,4 +37,9 @@ uint64_t countSelfIntersectingPairs(const TriMesh& mesh) {
   return pairs.size();
 }
 
+bool areCollinear(const Vec3f& a, const Vec3f& b, const Vec3f& c) {
+  using Point = CGAL::Exact_predicates_inexact_constructions_kernel::Point_3;
+  return CGAL::collinear(Point(a.x, a.y, a.z), Point(b.x, b.y, b.z), Point(c.x, c.y, c.z));
+}
+
 }  // namespace proxyvis::detail

@@ -122,10 +122,16 @@ MeshReport validateMesh(const TriMesh& mesh, const ValidationOptions& options) {
       continue;
     }
     const Triangle w{weld[t[0]], weld[t[1]], weld[t[2]]};
-    if (w[0] == w[1] || w[1] == w[2] || w[0] == w[2])
+    if (w[0] == w[1] || w[1] == w[2] || w[0] == w[2]) {
       ++r.degenerate_faces;
-    else
-      tris.push_back(w);
+      continue;
+    }
+    // Three distinct but collinear corners: no area, no normal, but its edges still join its
+    // neighbours, so it stays in the topology (a sliver does not open a closed mesh).
+    const Vec3f &a = mesh.vertices[t[0]], &b = mesh.vertices[t[1]], &c = mesh.vertices[t[2]];
+    if (isFinite(a) && isFinite(b) && isFinite(c) && detail::areCollinear(a, b, c))
+      ++r.degenerate_faces;
+    tris.push_back(w);
   }
 
   std::vector<Triangle> sorted_tris = tris;

@@ -19,8 +19,10 @@ struct MeshReport {
   uint64_t vertices = 0, faces = 0;
   uint64_t unreferenced_vertices = 0;
   Bounds3f bounds;
-  uint64_t nonfinite_vertices = 0;     // NaN or inf coordinates
-  uint64_t degenerate_faces = 0;       // two equal corners after welding (left out of topology)
+  uint64_t nonfinite_vertices = 0;  // NaN or inf coordinates
+  // Zero-area triangles: two equal corners after welding (left out of topology), or three
+  // distinct collinear corners (kept in the topology: their edges join their neighbours).
+  uint64_t degenerate_faces = 0;
   uint64_t duplicate_faces = 0;        // same three (welded) vertices as an earlier face
   uint64_t components = 0;             // sharing a vertex, after welding exactly equal positions
   uint64_t boundary_edges = 0;         // edges with one face

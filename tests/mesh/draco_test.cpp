@@ -6,9 +6,11 @@
 #include <map>
 #include <set>
 
+#include "mesh/internal/draco_io.h"
 #include "mesh/mesh_io.h"
 #include "mesh/validation.h"
 #include "mesh_test_util.h"
+#include "util/error.h"
 
 namespace proxyvis::test {
 namespace {
@@ -173,6 +175,50 @@ TEST(DracoRoundTrip, DragonStaysClosedAtSixteenBits) {
   EXPECT_TRUE(r.closed);
   EXPECT_TRUE(r.manifold);
   EXPECT_EQ(r.genus, 1);
+}
+
+// Single flipped bytes of the bundled dragon that Draco decodes without complaint. What can be
+// validated after decoding is: quantized values within their bits, a finite quantization box, and
+// an origin at the scale of the data (one flip made every y -1.7e38, and proxy-gen crashed on it).
+// Flips of the entropy-coded values themselves decode to another valid mesh: only the .sha256
+// sidecar notices those (sidecar_test.cpp).
+TEST(DracoCorruption, QuantizationFlipsAreRefused) {
+  ScratchDir dir("draco_flips");
+  const std::string original = readBytes(dataFile("dragon.drc"));
+  const struct {
+    size_t from_end;
+    const char* fragment;
+  } flips[] = {
+      {10, "spanning"},             // origin y -> -1.7e38: all y collapse to one value
+      {19, "is out of its range"},  // a quantized value beyond 16 bits
+      {2, "is not a finite box"},   // negative range
+  };
+  for (const auto& flip : flips) {
+    std::string bytes = original;
+    bytes[bytes.size() - flip.from_end] = char(bytes[bytes.size() - flip.from_end] ^ 0xff);
+    const auto path = dir / ("flip" + std::to_string(flip.from_end) + ".drc");
+    writeBytes(path, bytes);
+    try {
+      const TriMesh m = loadMesh(path);
+      ADD_FAILURE() << path << " loaded, bounds y " << m.bounds().lo.y;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(flip.fragment), std::string::npos) << e.what();
+      EXPECT_EQ(e.file(), path.string());
+    }
+  }
+}
+
+TEST(DracoCorruption, HeaderFaceCountIsReadForCurrentFiles) {
+  EXPECT_EQ(detail::declaredDracoFaceCount(readBytes(dataFile("dragon.drc"))), 100000);
+  // Format 1.1 (the reference bunny) is not parsed: nothing to compare.
+  EXPECT_EQ(detail::declaredDracoFaceCount(readBytes(dataFile("draco/bunny.drc"))), -1);
+  // Sequential connectivity (speed 10) declares its count too.
+  ScratchDir dir("draco_header");
+  saveMesh(unitCube(), dir / "seq.drc", {.draco_speed = 10});
+  EXPECT_EQ(detail::declaredDracoFaceCount(readBytes(dir / "seq.drc")), 12);
+  saveMesh(unitCube(), dir / "eb.drc", {.draco_speed = 5});
+  EXPECT_EQ(detail::declaredDracoFaceCount(readBytes(dir / "eb.drc")), 12);
+  EXPECT_EQ(detail::declaredDracoFaceCount("DRACO"), -1);
 }
 
 }  // namespace

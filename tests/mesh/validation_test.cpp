@@ -2,6 +2,7 @@
 // and against hand-made meshes whose answers are known in closed form.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <regex>
@@ -215,6 +216,35 @@ TEST(Validate, EmptyMesh) {
   EXPECT_FALSE(r.closed);
   EXPECT_TRUE(r.bounds.empty());
   EXPECT_TRUE(toJson(r).at("bounds").is_null());
+}
+
+// Zero-area triangles are degenerate whether two corners coincide or three distinct corners lie
+// on a line. The robustness run's file: a closed "tetrahedron" on four collinear points read
+// "degenerate triangles 0".
+TEST(Validate, CollinearTrianglesAreDegenerate) {
+  TriMesh line;
+  for (int i = 0; i < 4; ++i) line.vertices.emplace_back(float(i), 0.0f, 0.0f);
+  line.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  const MeshReport r = validateMesh(line);
+  EXPECT_EQ(r.degenerate_faces, 4u);
+  EXPECT_TRUE(r.closed);  // the edges still pair up: topology keeps collinear triangles
+  ASSERT_TRUE(r.volume.has_value());
+  EXPECT_EQ(*r.volume, 0.0);
+
+  // Off the axes: 1, 2 and 4 times (0.125, 0.25, 0.5) lie on a line; moving the last corner by
+  // one float step leaves the line (decided exactly, not within a tolerance).
+  TriMesh m;
+  m.vertices = {{0.125f, 0.25f, 0.5f}, {0.25f, 0.5f, 1.0f}, {0.5f, 1.0f, 2.0f}};
+  m.triangles = {{0, 1, 2}};
+  EXPECT_EQ(validateMesh(m).degenerate_faces, 1u);
+  m.vertices[2].z = std::nextafter(2.0f, 3.0f);
+  EXPECT_EQ(validateMesh(m).degenerate_faces, 0u);
+  // A thin but real sliver is not degenerate; a repeated corner is.
+  m.vertices = {{0, 0, 0}, {1, 0, 0}, {0.5f, 1e-6f, 0}};
+  m.triangles = {{0, 1, 2}};
+  EXPECT_EQ(validateMesh(m).degenerate_faces, 0u);
+  m.triangles = {{0, 1, 1}};
+  EXPECT_EQ(validateMesh(m).degenerate_faces, 1u);
 }
 
 }  // namespace

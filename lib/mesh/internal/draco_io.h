@@ -1,5 +1,6 @@
 #pragma once
 // Draco .drc decoding and encoding through the Draco library.
+#include <cstdint>
 #include <string>
 
 #include "mesh/tri_mesh.h"
@@ -9,6 +10,11 @@ namespace proxyvis::detail {
 // Decodes a Draco triangle mesh: one vertex per decoded point (decoder order), POSITION only.
 // Throws Error naming `file` for point clouds, corrupt data or a missing POSITION attribute.
 void decodeDraco(const std::string& bytes, const std::string& file, TriMesh& out);
+
+// The face count a Draco file's connectivity header declares, read for the format version Draco
+// 1.5 writes (2.2) without metadata; -1 for anything else (older versions, metadata first).
+// decodeDraco refuses a mesh that decodes to another count.
+int64_t declaredDracoFaceCount(const std::string& bytes);
 
 // Encodes positions and triangles; quantization_bits 0 keeps float positions losslessly.
 // Throws WriteError naming `file` if Draco refuses the mesh.

@@ -12,4 +12,9 @@ namespace proxyvis::detail {
 // two triangles that touch only at such a pinched vertex count as one intersecting pair.
 uint64_t countSelfIntersectingPairs(const TriMesh& mesh);
 
+// True if the three points lie on one line (a zero-area triangle), decided exactly (CGAL's
+// filtered predicate), so neither a slightly bent sliver counts nor a rounding error hides one.
+// All coordinates must be finite.
+bool areCollinear(const Vec3f& a, const Vec3f& b, const Vec3f& c);
+
 }  // namespace proxyvis::detail
