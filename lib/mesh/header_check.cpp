@@ -27,12 +27,67 @@ int plyTypeSize(const std::string& t) {
   return 0;
 }
 
+struct PlyProperty {
+  std::string name;
+  std::string type;        // scalar type, or the item type of a list
+  std::string count_type;  // lists only
+  bool list = false;
+};
+
 struct PlyElement {
   std::string name;
   uint64_t count = 0;
   uint64_t min_binary_bytes = 0;  // per record: fixed properties + the count field of lists
   uint64_t properties = 0;
-  std::vector<bool> is_list;  // per property, in order
+  std::vector<PlyProperty> props;  // in order
+};
+
+// Range of a PLY integer type; false for float types.
+bool plyIntegerRange(const std::string& t, int64_t& lo, int64_t& hi) {
+  const int size = plyTypeSize(t);
+  if (size == 0 || t == "float" || t == "float32" || t == "double" || t == "float64") return false;
+  const bool is_unsigned = t[0] == 'u';
+  const int bits = 8 * size;
+  lo = is_unsigned ? 0 : -(int64_t(1) << (bits - 1));
+  hi = is_unsigned ? (int64_t(1) << bits) - 1 : (int64_t(1) << (bits - 1)) - 1;
+  return true;
+}
+
+// An integer token within [lo, hi]: OpenMesh reads integers with operator>>, which takes "1.5"
+// or "1e5" as 1 and leaves the rest for the next field (shifting every value after it), and
+// fails the stream on values beyond the type (after which it uses uninitialised values).
+bool isIntegerIn(const std::string& t, int64_t lo, int64_t hi) {
+  const size_t sign = (!t.empty() && (t[0] == '-' || t[0] == '+')) ? 1 : 0;
+  if (t.size() <= sign || t.size() - sign > 12 ||
+      t.find_first_not_of("0123456789", sign) != std::string::npos)
+    return false;
+  const int64_t v = std::stoll(t);
+  return v >= lo && v <= hi;
+}
+
+// Whitespace-separated tokens of `bytes` from `from` on, with their line numbers.
+class Tokens {
+ public:
+  Tokens(const std::string& bytes, size_t from)
+      : bytes_(bytes),
+        pos_(from),
+        line_(1 + size_t(std::count(bytes.begin(), bytes.begin() + long(from), '\n'))) {}
+  // The next token, or false at the end.
+  bool next(std::string& token) {
+    while (pos_ < bytes_.size() && std::isspace(static_cast<unsigned char>(bytes_[pos_])))
+      line_ += bytes_[pos_++] == '\n';
+    if (pos_ >= bytes_.size()) return false;
+    const size_t begin = pos_;
+    while (pos_ < bytes_.size() && !std::isspace(static_cast<unsigned char>(bytes_[pos_]))) ++pos_;
+    token.assign(bytes_, begin, pos_ - begin);
+    return true;
+  }
+  size_t line() const { return line_; }
+
+ private:
+  const std::string& bytes_;
+  size_t pos_;
+  size_t line_;
 };
 
 // `declared`: what the header declares, with its counts ("3485 vertices and 6966 faces").
@@ -110,6 +165,8 @@ void checkAsciiNumbers(const std::string& bytes, size_t from, const std::string&
 // (checkAsciiNumbers).
 void checkAsciiRecords(const std::string& bytes, size_t from,
                        const std::vector<PlyElement>& elements, const std::string& file);
+void checkOffFaceLines(const std::string& bytes, size_t from, uint64_t vertices, uint64_t faces,
+                       const std::string& file);
 
 void badHeaderLine(const std::string& file, size_t number, const std::string& line,
                    const std::string& why) {
@@ -162,16 +219,22 @@ void checkPly(const std::string& bytes, const std::string& file) {
       if (!(ls >> type)) badHeaderLine(file, number, line, "property without a type");
       PlyElement& e = elements.back();
       ++e.properties;
-      e.is_list.push_back(type == "list");
-      if (type == "list") {
-        std::string count_type, item_type;
-        if (!(ls >> count_type >> item_type) || plyTypeSize(item_type) == 0)
+      PlyProperty p;
+      p.list = type == "list";
+      if (p.list) {
+        std::string item_type;
+        if (!(ls >> p.count_type >> item_type) || plyTypeSize(item_type) == 0)
           badHeaderLine(file, number, line, "expected 'property list <count type> <type> <name>'");
-        type = count_type;
+        p.type = item_type;
+        type = p.count_type;
+      } else {
+        p.type = type;
       }
       if (plyTypeSize(type) == 0) badHeaderLine(file, number, line, "unknown property type");
       if (!(ls >> name) || (ls >> extra))
         badHeaderLine(file, number, line, "expected one property name");
+      p.name = name;
+      e.props.push_back(p);
       e.min_binary_bytes += uint64_t(plyTypeSize(type));
     } else {
       badHeaderLine(file, number, line, "unknown keyword");
@@ -232,34 +295,78 @@ void checkOff(const std::string& bytes, const std::string& file) {
   if (need > bytes.size() + 1)
     tooMany(file, std::to_string(nv) + " vertices and " + std::to_string(nf) + " faces", need,
             bytes.size());
-  if (bytes.substr(0, bytes.find('\n')).find("BINARY") == std::string::npos)
+  if (bytes.substr(0, bytes.find('\n')).find("BINARY") == std::string::npos) {
     checkAsciiNumbers(bytes, bytes.find(magic) + magic.size(), file, true);
+    // Vertex records start on the line after the counts (the third count, edges, ends it).
+    const std::streamoff counts_end = in.tellg();
+    const size_t eol = counts_end < 0 ? std::string::npos : bytes.find('\n', size_t(counts_end));
+    if (eol != std::string::npos) checkOffFaceLines(bytes, eol + 1, nv, nf, file);
+  }
 }
 
 void checkAsciiRecords(const std::string& bytes, size_t from,
                        const std::vector<PlyElement>& elements, const std::string& file) {
-  std::istringstream in(bytes.substr(from));
+  Tokens tokens(bytes, from);
   std::string token;
-  auto next = [&](const std::string& element, uint64_t record) {
-    if (!(in >> token))
-      throw Error(
-          file, "file ends inside " + printableExcerpt(element, 30) + " " + std::to_string(record),
-          "fewer values than the header declares", "the file is truncated");
+  auto next = [&](const PlyElement& e, uint64_t record) {
+    if (!tokens.next(token))
+      throw Error(file,
+                  "file ends inside " + printableExcerpt(e.name, 30) + " " + std::to_string(record),
+                  "fewer values than the header declares", "the file is truncated");
     return token;
+  };
+  auto notInteger = [&](const PlyElement& e, const PlyProperty& p, const std::string& type) {
+    return Error(file,
+                 "'" + printableExcerpt(token, 20) + "' on line " + std::to_string(tokens.line()) +
+                     " is not a valid " + type + " (" + printableExcerpt(p.name, 30) + " of " +
+                     printableExcerpt(e.name, 30) + ")",
+                 "the header declares that property as an integer type", "the file is corrupt");
   };
   for (const PlyElement& e : elements) {
     for (uint64_t r = 0; r < e.count; ++r) {
-      for (bool list : e.is_list) {
-        const std::string t = next(e.name, r);
-        if (!list) continue;
-        if (t.find_first_not_of("0123456789") != std::string::npos || t.size() > 9)
-          throw Error(file,
-                      "bad list length '" + printableExcerpt(t, 20) + "' in " +
-                          printableExcerpt(e.name, 30) + " " + std::to_string(r),
-                      "expected a non-negative integer", "the file is corrupt");
-        for (long k = std::stol(t); k > 0; --k) next(e.name, r);
+      for (const PlyProperty& p : e.props) {
+        int64_t lo = 0, hi = 0;
+        if (p.list) {
+          plyIntegerRange(p.count_type, lo, hi);
+          if (!isIntegerIn(next(e, r), std::max<int64_t>(lo, 0), std::min<int64_t>(hi, 1 << 20)))
+            throw notInteger(e, p, "list length");
+        }
+        const int64_t items = p.list ? std::stoll(token) : 1;
+        const bool integer = plyIntegerRange(p.type, lo, hi);
+        for (int64_t k = 0; k < items; ++k)
+          if (!isIntegerIn(next(e, r), lo, hi) && integer)
+            throw notInteger(e, p, p.type + " value");
       }
     }
+  }
+}
+
+// OFF face records ("k i1 .. ik [colour]", one per line as every writer puts them) are read by
+// OpenMesh with operator>> into int, like PLY integers (see isIntegerIn): a count or index that
+// is not an integer is refused here with its line. `from` is the start of the first vertex line.
+void checkOffFaceLines(const std::string& bytes, size_t from, uint64_t vertices, uint64_t faces,
+                       const std::string& file) {
+  size_t line = 1 + size_t(std::count(bytes.begin(), bytes.begin() + long(from), '\n'));
+  uint64_t records = 0;
+  for (size_t pos = from; pos < bytes.size() && records < vertices + faces; ++line) {
+    size_t eol = bytes.find('\n', pos);
+    if (eol == std::string::npos) eol = bytes.size();
+    std::istringstream ls(bytes.substr(pos, eol - pos));
+    pos = eol + 1;
+    std::string token;
+    if (!(ls >> token) || token[0] == '#') continue;  // blank or comment line
+    if (records++ < vertices) continue;
+    auto notInteger = [&](const std::string& what) {
+      return Error(file,
+                   "face " + what + " '" + printableExcerpt(token, 20) + "' on line " +
+                       std::to_string(line) + " is not an integer",
+                   "a face line is 'count index index ...' with integers", "the file is corrupt");
+    };
+    if (!isIntegerIn(token, 0, 1 << 20)) throw notInteger("vertex count");
+    for (long k = std::stol(token); k > 0; --k)
+      if (!(ls >> token) || !isIntegerIn(token, std::numeric_limits<int32_t>::min(),
+                                         std::numeric_limits<int32_t>::max()))
+        throw notInteger("index");
   }
 }
 
@@ -316,6 +423,14 @@ void checkObj(const std::string& bytes, const std::string& file) {
 }
 
 }  // namespace
+
+void blankOffComments(std::string& bytes) {
+  if (bytes.substr(0, bytes.find('\n')).find("BINARY") != std::string::npos) return;
+  for (size_t i = 0; i < bytes.size(); ++i) {
+    if (bytes[i] != '#') continue;
+    while (i < bytes.size() && bytes[i] != '\n') bytes[i++] = ' ';
+  }
+}
 
 void checkDeclaredCounts(const std::string& bytes, const std::string& ext,
                          const std::string& file) {

@@ -67,7 +67,7 @@ TriMesh loadMesh(const fs::path& path) {
   const std::string format = formatOf(path);
   std::error_code ec;
   if (format.empty() && fs::is_regular_file(path, ec)) throw unknownExtension(path);
-  const std::string bytes = readTextFile(path);  // missing, directory, unreadable -> Error
+  std::string bytes = readTextFile(path);  // missing, directory, unreadable -> Error
   if (format.empty()) throw unknownExtension(path);
   detail::verifySidecar(path, bytes);
   if (bytes.empty())
@@ -79,6 +79,7 @@ TriMesh loadMesh(const fs::path& path) {
     detail::decodeDraco(bytes, file, mesh);
   } else {
     detail::checkDeclaredCounts(bytes, format, file);
+    if (format == "off") detail::blankOffComments(bytes);
     detail::readWithOpenMesh(bytes, format, file, mesh);
   }
   checkLoaded(mesh, file);

@@ -206,6 +206,29 @@ TEST_F(BrokenFiles, NonNumbersInTextFormatsNameTheLine) {
                "not a number on line 2: 'x'");
 }
 
+// Integers are read with operator>>: "1.5" or "1e5" became index 1 and shifted the rest, a count
+// "3.5" or an index beyond int failed the stream and OpenMesh went on with uninitialised values.
+TEST_F(BrokenFiles, NonIntegerCountsAndIndicesNameTheLine) {
+  const std::string off = "OFF\n3 1 0\n0 0 0\n1 0 0\n# comment\n\n0 1 0\n";
+  expectBroken("frac_index.off", off + "3 0 1 1.5\n", "face index '1.5' on line 8");
+  expectBroken("frac_count.off", off + "3.5 0 1 2\n", "face vertex count '3.5' on line 8");
+  expectBroken("big_index.off", off + "3 0 1 3000000000\n", "'3000000000' on line 8");
+  const std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0\n1 0 0\n0 1 0\n";
+  expectBroken("exp_index.ply", ply + "3 0 1 1e5\n", "'1e5' on line 13 is not a valid int value");
+  expectBroken("big_index.ply", ply + "3 0 1 3000000000\n", "'3000000000' on line 13");
+  expectBroken("frac_length.ply", ply + "3.0 0 1 2\n", "is not a valid list length");
+  expectBroken("neg_uchar.ply", ply + "300 0 1 2\n", "'300' on line 13");
+  // Colours after the indices of an OFF face may be decimals.
+  // Comments inside the body are OFF too (OpenMesh skipped them only in the header).
+  writeBytes(dir / "colour.off", off + "3 0 1 2 0.5 0.25 1\n");
+  const TriMesh coloured = loadMesh(dir / "colour.off");
+  EXPECT_EQ(coloured.triangles, (std::vector<Triangle>{{0, 1, 2}}));
+  EXPECT_EQ(coloured.vertices[2], Vec3f(0, 1, 0));
+}
+
 // Binary formats have no lines: a non-finite value names the vertex.
 TEST_F(BrokenFiles, NonFiniteBinaryCoordinateNamesTheVertex) {
   std::string ply =

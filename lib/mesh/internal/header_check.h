@@ -12,4 +12,9 @@ namespace proxyvis::detail {
 // more elements than the file could hold, or malformed syntax. `ext` is "ply", "off" or "obj".
 void checkDeclaredCounts(const std::string& bytes, const std::string& ext, const std::string& file);
 
+// Replaces '#' comments of an ASCII OFF file by spaces (line numbers stay). OFF allows comments
+// anywhere, OpenMesh's reader skips them only in the header: in the body "#" failed its stream
+// and it went on with uninitialised values. Binary OFF is left alone.
+void blankOffComments(std::string& bytes);
+
 }  // namespace proxyvis::detail
