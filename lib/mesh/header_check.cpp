@@ -165,8 +165,8 @@ void checkAsciiNumbers(const std::string& bytes, size_t from, const std::string&
 // (checkAsciiNumbers).
 void checkAsciiRecords(const std::string& bytes, size_t from,
                        const std::vector<PlyElement>& elements, const std::string& file);
-void checkOffFaceLines(const std::string& bytes, size_t from, uint64_t vertices, uint64_t faces,
-                       const std::string& file);
+void checkOffRecordLines(const std::string& bytes, size_t from, uint64_t vertices, uint64_t faces,
+                         size_t min_vertex_values, const std::string& file);
 
 void badHeaderLine(const std::string& file, size_t number, const std::string& line,
                    const std::string& why) {
@@ -300,7 +300,12 @@ void checkOff(const std::string& bytes, const std::string& file) {
     // Vertex records start on the line after the counts (the third count, edges, ends it).
     const std::streamoff counts_end = in.tellg();
     const size_t eol = counts_end < 0 ? std::string::npos : bytes.find('\n', size_t(counts_end));
-    if (eol != std::string::npos) checkOffFaceLines(bytes, eol + 1, nv, nf, file);
+    // Positions, then normals (N), then texture coordinates (ST) come first on a vertex line.
+    const size_t prefix_end = magic.size() - 3;
+    const size_t min_values = 3 +
+                              (magic.substr(0, prefix_end).find('N') != std::string::npos ? 3 : 0) +
+                              (magic.substr(0, prefix_end).find("ST") != std::string::npos ? 2 : 0);
+    if (eol != std::string::npos) checkOffRecordLines(bytes, eol + 1, nv, nf, min_values, file);
   }
 }
 
@@ -341,11 +346,13 @@ void checkAsciiRecords(const std::string& bytes, size_t from,
   }
 }
 
-// OFF face records ("k i1 .. ik [colour]", one per line as every writer puts them) are read by
-// OpenMesh with operator>> into int, like PLY integers (see isIntegerIn): a count or index that
-// is not an integer is refused here with its line. `from` is the start of the first vertex line.
-void checkOffFaceLines(const std::string& bytes, size_t from, uint64_t vertices, uint64_t faces,
-                       const std::string& file) {
+// OpenMesh reads an ASCII OFF record by record, one line each: a vertex line with fewer values
+// than it expects leaves the rest uninitialised, and face records ("k i1 .. ik [colour]") are
+// read with operator>> into int like PLY integers (see isIntegerIn). So every vertex line must
+// hold `min_vertex_values` numbers and every face line a count and that many integer indices;
+// failures name the line. `from` is the start of the first vertex line.
+void checkOffRecordLines(const std::string& bytes, size_t from, uint64_t vertices, uint64_t faces,
+                         size_t min_vertex_values, const std::string& file) {
   size_t line = 1 + size_t(std::count(bytes.begin(), bytes.begin() + long(from), '\n'));
   uint64_t records = 0;
   for (size_t pos = from; pos < bytes.size() && records < vertices + faces; ++line) {
@@ -355,7 +362,18 @@ void checkOffFaceLines(const std::string& bytes, size_t from, uint64_t vertices,
     pos = eol + 1;
     std::string token;
     if (!(ls >> token) || token[0] == '#') continue;  // blank or comment line
-    if (records++ < vertices) continue;
+    if (records++ < vertices) {
+      size_t values = 1;
+      while (ls >> token && token[0] != '#') ++values;
+      if (values < min_vertex_values)
+        throw Error(
+            file,
+            "vertex line " + std::to_string(line) + " has " + std::to_string(values) + " values",
+            "an OFF vertex is one line of at least " + std::to_string(min_vertex_values) +
+                " numbers",
+            "the file is corrupt");
+      continue;
+    }
     auto notInteger = [&](const std::string& what) {
       return Error(file,
                    "face " + what + " '" + printableExcerpt(token, 20) + "' on line " +
@@ -368,6 +386,13 @@ void checkOffFaceLines(const std::string& bytes, size_t from, uint64_t vertices,
                                          std::numeric_limits<int32_t>::max()))
         throw notInteger("index");
   }
+  if (records < vertices + faces)
+    throw Error(file,
+                "file ends after " + std::to_string(records) + " of " +
+                    std::to_string(vertices + faces) + " vertex and face lines",
+                "the header declares " + std::to_string(vertices) + " vertices and " +
+                    std::to_string(faces) + " faces, one per line",
+                "the file is truncated or corrupt");
 }
 
 // One OBJ face corner: v, v/t, v//n or v/t/n with non-zero (possibly negative) integers.

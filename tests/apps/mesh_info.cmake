@@ -16,3 +16,15 @@ mesh_info_test(json_stdout 0 "\"genus\": 0.*\"volume\"" --json - --quiet ${d}/sp
 mesh_info_test(missing_file 2 "^[^\n]*mesh-info: error: [^\n]*nope\\.ply: file not found[^\n]*\n$" ${d}/nope.ply)
 mesh_info_test(unknown_extension 2 "README\\.md: unknown mesh file extension" ${d}/README.md)
 mesh_info_test(no_arguments 2 "required")
+# Four collinear points closed up like a tetrahedron: every triangle has zero area.
+set(collinear ${CMAKE_CURRENT_BINARY_DIR}/collinear_tetrahedron.off)
+file(WRITE ${collinear} "OFF\n4 4 0\n0 0 0\n1 0 0\n2 0 0\n3 0 0\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n")
+mesh_info_test(collinear_degenerate 0 "triangles +4\n.*degenerate triangles +4\n" ${collinear})
+# --expect-sha256 with the right hash (either case) loads; --save leaves a sha256sum sidecar.
+file(SHA256 ${collinear} collinear_sha256)
+string(TOUPPER ${collinear_sha256} collinear_sha256_upper)
+mesh_info_test(expect_sha256_match 0 "triangles +4" --expect-sha256 ${collinear_sha256_upper}
+  ${collinear})
+proxyvis_app_test(app_mesh_info_save_writes_sidecar mesh-info 0
+  "--quiet --save ${CMAKE_CURRENT_BINARY_DIR}/saved_bunny.ply ${d}/bunny.off"
+  FILES ${CMAKE_CURRENT_BINARY_DIR}/saved_bunny.ply ${CMAKE_CURRENT_BINARY_DIR}/saved_bunny.ply.sha256)

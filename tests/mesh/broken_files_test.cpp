@@ -222,6 +222,13 @@ TEST_F(BrokenFiles, NonIntegerCountsAndIndicesNameTheLine) {
   expectBroken("frac_length.ply", ply + "3.0 0 1 2\n", "is not a valid list length");
   expectBroken("neg_uchar.ply", ply + "300 0 1 2\n", "'300' on line 13");
   // Colours after the indices of an OFF face may be decimals.
+  // OpenMesh reads an OFF vertex from one line: a short line left coordinates uninitialised.
+  expectBroken("split_vertex.off", "OFF\n3 1 0\n0 0 0\n1\n0 0\n0 1 0\n3 0 1 2\n",
+               "vertex line 4 has 1 values");
+  expectBroken("joined_vertices.off", "OFF\n3 1 0\n0 0 0\n1 0 0 0 1 0\n3 0 1 2\n",
+               "file ends after 3 of 4 vertex and face lines");
+  expectBroken("comment_vertex.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 # 1 0\n3 0 1 2\n",
+               "vertex line 5 has 1 values");
   // Comments inside the body are OFF too (OpenMesh skipped them only in the header).
   writeBytes(dir / "colour.off", off + "3 0 1 2 0.5 0.25 1\n");
   const TriMesh coloured = loadMesh(dir / "colour.off");

@@ -1,0 +1,84 @@
+"""Mesh files the loaders must refuse (lib/mesh): lying headers, numbers OpenMesh misreads,
+corrupted Draco files, sidecars that do not match or are not files, bytes that must not reach
+the terminal. Everything is written into the "loaders" folder of the corpus."""
+import hashlib
+import os
+import pathlib
+import struct
+
+PLY_ASCII_HEADER = (
+    "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+    "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+)
+
+
+def flipped(data: bytes, from_end: int) -> bytes:
+    """`data` with the byte `from_end` bytes before its end inverted."""
+    b = bytearray(data)
+    b[len(b) - from_end] ^= 0xFF
+    return bytes(b)
+
+
+def build(out: pathlib.Path, data: pathlib.Path) -> None:
+    d = out / "loaders"
+    d.mkdir()
+
+    # 127 bytes declaring 2^31-1 vertices with no properties: OpenMesh reserved 12 GB for them.
+    (d / "no_properties.ply").write_bytes(
+        b"ply\nformat binary_little_endian 1.0\nelement vertex 2147483647\nelement face 1\n"
+        b"property list uchar int vertex_indices\nend_header\n")
+
+    # Beyond float range: OpenMesh's stream failed and it used uninitialised values (OFF, PLY)
+    # or dropped the vertex so that the face used the next one (OBJ).
+    (d / "coord_1e39.off").write_text("OFF\n3 1 0\n0 0 0\n1e39 0 0\n0 1 0\n3 0 1 2\n")
+    (d / "coord_1e39.obj").write_text(
+        "v 0 0 0\nv 1e39 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 3 4\n")
+    (d / "coord_1e39.ply").write_text(PLY_ASCII_HEADER + "0 0 0\n1e39 0 0\n0 1 0\n3 0 1 2\n")
+    (d / "coord_nan.off").write_text("OFF\n3 1 0\n0 0 0\nnan 0 0\n0 1 0\n3 0 1 2\n")
+    (d / "coord_nan.obj").write_text("v 0 0 0\nv 1 0 0\nv 0 nan 0\nf 1 2 3\n")
+    binary = PLY_ASCII_HEADER.replace("ascii", "binary_little_endian").encode()
+    binary += struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, float("nan"), 0)
+    binary += struct.pack("<B3i", 3, 0, 1, 2)
+    (d / "coord_nan_binary.ply").write_bytes(binary)
+    # A bad vertex line must not shift the later vertices (the face would change silently).
+    (d / "bad_vertex_line.obj").write_text(
+        "v 0 0 0\nv 1 x 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 3 4\n")
+    # Integers OpenMesh reads with operator>>: "1.5" split in two, "3.5" failed the stream.
+    (d / "fraction_index.off").write_text("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 1.5\n")
+    (d / "fraction_count.off").write_text("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3.5 0 1 2\n")
+    (d / "exponent_index.ply").write_text(PLY_ASCII_HEADER + "0 0 0\n1 0 0\n0 1 0\n3 0 1 1e5\n")
+
+    # Bytes that must not be echoed: an element name and a token with control and high bytes.
+    (d / "binary_name.ply").write_bytes(
+        b"ply\nformat ascii 1.0\nelement v\x01\xfe\x1b[31m 3\nproperty float x\nend_header\n")
+    (d / "binary_token.obj").write_bytes(b"v 0 0 0\nv 1 \x1b]0;x\x07 0\nv 0 1 0\nf 1 2 3\n")
+
+    # Single flipped bytes of the bundled dragon that Draco decoded without complaint: origin y
+    # becomes -1.7e38 (every y the same; proxy-gen crashed), a quantized value beyond 16 bits, a
+    # negative quantization range.
+    dragon = (data / "dragon.drc").read_bytes()
+    (d / "dragon_origin_flip.drc").write_bytes(flipped(dragon, 10))
+    (d / "dragon_value_flip.drc").write_bytes(flipped(dragon, 19))
+    (d / "dragon_range_flip.drc").write_bytes(flipped(dragon, 2))
+    # A flip that decodes to another valid dragon (volume 155.7 -> 432.7): only a sidecar can
+    # tell, so this copy carries the original's.
+    (d / "dragon_sidecar.drc").write_bytes(flipped(dragon, 3))
+    (d / "dragon_sidecar.drc.sha256").write_text(
+        hashlib.sha256(dragon).hexdigest() + "  dragon_sidecar.drc\n")
+    # The same flip without a sidecar loads (nothing in the format can tell): see docs.
+
+    # Sidecars that are not sha256sum lines, or not files at all.
+    cube = ("OFF\n8 12 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n0 0 1\n1 0 1\n0 1 1\n1 1 1\n"
+            "3 0 2 3\n3 0 3 1\n3 4 5 7\n3 4 7 6\n3 0 1 5\n3 0 5 4\n3 2 6 7\n3 2 7 3\n"
+            "3 0 4 6\n3 0 6 2\n3 1 3 7\n3 1 7 5\n")
+    (d / "cube_bad_sidecar.off").write_text(cube)
+    (d / "cube_bad_sidecar.off.sha256").write_bytes(b"\x00\xffnot a hash\n")
+    (d / "cube_fifo_sidecar.off").write_text(cube)
+    os.mkfifo(d / "cube_fifo_sidecar.off.sha256")  # reading it would block forever
+    (d / "cube.off").write_text(cube)  # a good mesh for the --expect-sha256 case
+
+    # Not regular files, in the formats the basic cases do not cover.
+    os.symlink("/dev/zero", d / "dev_zero.drc")
+    os.symlink("/dev/zero", d / "dev_zero.off")
+    os.mkfifo(d / "fifo.drc")
+    os.mkfifo(d / "fifo.ply")
