@@ -13,6 +13,7 @@
 // assert on some corrupt files) is rejected before they run. Thread-safe: OpenMesh file access is
 // serialized internally.
 #include <filesystem>
+#include <string>
 
 #include "mesh/tri_mesh.h"
 
@@ -26,6 +27,10 @@ struct SaveOptions {
 
 // Loads a triangle mesh; polygons are fan-triangulated. Vertex order is kept.
 TriMesh loadMesh(const std::filesystem::path& path);
+
+// What loadMesh does once it has the file's bytes: `path` only chooses the format (extension) and
+// names the file in errors; nothing is read from disk. For callers that hold the bytes (fuzzers).
+TriMesh parseMeshBytes(const std::string& bytes, const std::filesystem::path& path);
 
 // Saves atomically (temporary file + rename). Throws WriteError when the file cannot be written,
 // Error for an unknown extension.
