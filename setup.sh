@@ -5,6 +5,8 @@
 #   ./setup.sh demo     install + build + the main job on the bundled dragon-plane scene:
 #                       proxy-gen -> proxy-check -> render-compare (MSE table + HTML report)
 #   ./setup.sh test     install + build + the whole test suite (ctest)
+#   ./setup.sh fuzz     install + clang-14 and libFuzzer, configure build-fuzz/ (ASan + UBSan +
+#                       coverage) and build the fuzz targets of fuzz/ (run them: fuzz/run.sh)
 set -euo pipefail
 cd "$(dirname "$0")"
 BUILD_DIR=${PROXYVIS_BUILD_DIR:-build}
@@ -20,13 +22,20 @@ PKGS=(
   libgtest-dev libgmock-dev libbenchmark-dev
 )
 
+# Only for ./setup.sh fuzz: the compiler with libFuzzer and the sanitizer runtimes.
+FUZZ_PKGS=(clang-14 libclang-rt-14-dev)
+
 install_deps() {
+  install_pkgs "${PKGS[@]}"
+}
+
+install_pkgs() {
   local missing=()
-  for p in "${PKGS[@]}"; do
+  for p in "$@"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
   done
   if [ ${#missing[@]} -eq 0 ]; then
-    echo "setup: all ${#PKGS[@]} packages present"
+    echo "setup: all $# packages present"
     return
   fi
   echo "setup: installing ${missing[*]}"
@@ -40,6 +49,18 @@ install_deps() {
 build() {
   cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release
   cmake --build "$BUILD_DIR" -j "$JOBS"
+}
+
+# The fuzz build: clang, every library instrumented, no tests/benches, mesh-info (fuzz/run.sh
+# encodes its Draco seeds with it) and every fuzz/fuzz_*.cpp target.
+fuzz_build() {
+  local dir=${PROXYVIS_FUZZ_BUILD_DIR:-build-fuzz}
+  cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_C_COMPILER=clang-14 -DPROXYVIS_FUZZ=ON \
+    -DPROXYVIS_BUILD_TESTS=OFF -DPROXYVIS_BUILD_BENCH=OFF -DPROXYVIS_BUILD_APPS=ON
+  local targets=(mesh-info)
+  for f in fuzz/fuzz_*.cpp; do targets+=("$(basename "$f" .cpp)"); done
+  cmake --build "$dir" -j "$JOBS" --target "${targets[@]}"
 }
 
 demo() {
@@ -58,5 +79,6 @@ case "${1:-install}" in
   build) install_deps; build ;;
   demo) install_deps; build; demo ;;
   test) install_deps; build; ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$JOBS" ;;
-  *) echo "usage: $0 [install|build|demo|test]" >&2; exit 2 ;;
+  fuzz) install_deps; install_pkgs "${FUZZ_PKGS[@]}"; fuzz_build ;;
+  *) echo "usage: $0 [install|build|demo|test|fuzz]" >&2; exit 2 ;;
 esac

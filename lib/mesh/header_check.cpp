@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <sstream>
 #include <vector>
@@ -267,15 +268,82 @@ void checkPly(const std::string& bytes, const std::string& file) {
   }
 }
 
+// Walks the records of an ASCII OFF body from `pos` (just after the face count) and checks every
+// face's vertex count: OpenMesh reads it as unsigned, so a "-34" made it loop 4 billion times
+// pushing vertex handles (fuzz_off). Vertices are 3 values (+3 with N, +2 with ST), or a line
+// when colours (C) make their length vary; a face is its count, that many indices, and the rest
+// of the line (colours).
+void checkOffFaceCounts(const std::string& bytes, size_t pos, const std::string& magic, uint64_t nv,
+                        uint64_t nf, const std::string& file) {
+  auto skipSpace = [&] {
+    while (pos < bytes.size()) {
+      if (bytes[pos] == '#') {
+        while (pos < bytes.size() && bytes[pos] != '\n') ++pos;
+      } else if (std::isspace(static_cast<unsigned char>(bytes[pos]))) {
+        ++pos;
+      } else {
+        return true;
+      }
+    }
+    return false;
+  };
+  auto nextToken = [&]() -> std::string {
+    if (!skipSpace()) return {};
+    const size_t start = pos;
+    while (pos < bytes.size() && !std::isspace(static_cast<unsigned char>(bytes[pos]))) ++pos;
+    return bytes.substr(start, pos - start);
+  };
+  auto skipLine = [&] {
+    while (pos < bytes.size() && bytes[pos] != '\n') ++pos;
+  };
+  const bool colours = magic.find('C') != std::string::npos;
+  const uint64_t per_vertex =
+      3 + (magic.find('N') != std::string::npos ? 3 : 0) + (magic.compare(0, 2, "ST") == 0 ? 2 : 0);
+  if (nextToken().empty()) return;  // the edge count
+  for (uint64_t v = 0; v < nv; ++v) {
+    if (colours) {
+      if (!skipSpace()) return;
+      skipLine();
+    } else {
+      for (uint64_t k = 0; k < per_vertex; ++k)
+        if (nextToken().empty()) return;  // truncated: OpenMesh's own checks report it
+    }
+  }
+  for (uint64_t f = 0; f < nf; ++f) {
+    const std::string count = nextToken();
+    if (count.empty()) return;
+    const uint64_t left = (bytes.size() - pos) / 2 + 1;  // values that can still follow
+    if (count.size() > 9 || count.find_first_not_of("0123456789") != std::string::npos ||
+        std::stoull(count) > left) {
+      std::string shown = count.substr(0, 20);
+      for (char& ch : shown)
+        if (static_cast<unsigned char>(ch) < 32 || static_cast<unsigned char>(ch) > 126) ch = '?';
+      throw Error(file, "face " + std::to_string(f) + " has a vertex count '" + shown + "'",
+                  "expected a non-negative integer no larger than the values that follow",
+                  "the file is corrupt");
+    }
+    for (uint64_t k = std::stoull(count); k > 0; --k)
+      if (nextToken().empty()) return;
+    skipLine();
+  }
+}
+
 void checkOff(const std::string& bytes, const std::string& file) {
   std::istringstream in(bytes.substr(0, std::min<size_t>(bytes.size(), 4096)));
   std::string magic;
   in >> magic;
-  if (magic.size() < 3 || magic.compare(magic.size() - 3, 3, "OFF") != 0)
-    throw Error(file, "not an OFF file", "the first word is not OFF (or COFF, NOFF, ...)",
+  // The keyword is [ST][C][N][4][n]OFF, nothing else: a first word that only ended in "4OFF"
+  // after binary bytes made OpenMesh read 84 million empty faces from 490 bytes (fuzz_off).
+  size_t k = 0;
+  for (const char* prefix : {"ST", "C", "N"})
+    if (magic.compare(k, std::strlen(prefix), prefix) == 0) k += std::strlen(prefix);
+  const bool higher_dimension = k < magic.size() && (magic[k] == '4' || magic[k] == 'n');
+  if (magic.compare(k + (higher_dimension ? 1 : 0), std::string::npos, "OFF") != 0)
+    throw Error(file, "not an OFF file", "the first word is not OFF (or COFF, NOFF, STOFF, ...)",
                 "check that the file is an OFF mesh");
-  if (magic.find("4") != std::string::npos || magic.find('n') != std::string::npos)
-    return;  // 4D / n-dimensional variants: OpenMesh rejects them itself
+  if (higher_dimension)
+    throw Error(file, "4D or n-dimensional OFF ('" + magic + "')",
+                "only 3D positions can be loaded", "convert the mesh to plain OFF");
   std::string tok;
   std::vector<std::string> counts;
   while (counts.size() < 2 && in >> tok) {
@@ -306,6 +374,8 @@ void checkOff(const std::string& bytes, const std::string& file) {
                               (magic.substr(0, prefix_end).find('N') != std::string::npos ? 3 : 0) +
                               (magic.substr(0, prefix_end).find("ST") != std::string::npos ? 2 : 0);
     if (eol != std::string::npos) checkOffRecordLines(bytes, eol + 1, nv, nf, min_values, file);
+    if (const std::streamoff after = in.tellg(); after > 0)
+      checkOffFaceCounts(bytes, size_t(after), magic, nv, nf, file);
   }
 }
 

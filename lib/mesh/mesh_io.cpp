@@ -63,13 +63,17 @@ bool isSupportedMeshExtension(const fs::path& path) {
 }
 
 TriMesh loadMesh(const fs::path& path) {
+  std::error_code ec;
+  if (formatOf(path).empty() && fs::is_regular_file(path, ec)) throw unknownExtension(path);
+  std::string bytes = readTextFile(path);  // missing, directory, unreadable -> Error
+  detail::verifySidecar(path, bytes);
+  return parseMeshBytes(std::move(bytes), path);
+}
+
+TriMesh parseMeshBytes(std::string bytes, const fs::path& path) {
   const std::string file = path.string();
   const std::string format = formatOf(path);
-  std::error_code ec;
-  if (format.empty() && fs::is_regular_file(path, ec)) throw unknownExtension(path);
-  std::string bytes = readTextFile(path);  // missing, directory, unreadable -> Error
   if (format.empty()) throw unknownExtension(path);
-  detail::verifySidecar(path, bytes);
   if (bytes.empty())
     throw Error(file, "empty file", "0 bytes", "the file was not written completely; re-export it");
 

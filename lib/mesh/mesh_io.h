@@ -18,6 +18,7 @@
 // assert on some corrupt files) is rejected before they run. Thread-safe: OpenMesh file access is
 // serialized internally.
 #include <filesystem>
+#include <string>
 
 #include "mesh/tri_mesh.h"
 
@@ -31,6 +32,11 @@ struct SaveOptions {
 
 // Loads a triangle mesh; polygons are fan-triangulated. Vertex order is kept.
 TriMesh loadMesh(const std::filesystem::path& path);
+
+// What loadMesh does once it has the file's bytes (and checked them against a .sha256 sidecar):
+// `path` only chooses the format (extension) and names the file in errors; nothing is read from
+// disk. For callers that hold the bytes (fuzzers).
+TriMesh parseMeshBytes(std::string bytes, const std::filesystem::path& path);
 
 // Saves atomically (temporary file + rename), then its "<file>.sha256" sidecar the same way.
 // Throws WriteError when either cannot be written (and leaves neither), Error for an unknown

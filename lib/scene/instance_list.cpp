@@ -6,8 +6,9 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "scene/internal/quoted.h"
+#include "scene/internal/value_ranges.h"
 #include "scene/scene_desc.h"
-#include "scene/transform.h"
 #include "util/atomic_write.h"
 #include "util/error.h"
 #include "util/input_file.h"
@@ -17,8 +18,8 @@ namespace proxyvis {
 namespace {
 
 [[noreturn]] void failLine(const std::filesystem::path& path, size_t line, const std::string& what,
-                           const std::string& why = {}) {
-  throw Error(path.string() + ":" + std::to_string(line), what, why);
+                           const std::string& why = {}, const std::string& todo = {}) {
+  throw Error(path.string() + ":" + std::to_string(line), what, why, todo);
 }
 
 // Splits on whitespace after removing a trailing comment.
@@ -47,10 +48,15 @@ bool parseFloat(std::string_view s, float& out) {
 
 std::vector<SceneInstanceDesc> loadInstanceList(const std::filesystem::path& path,
                                                 const std::vector<SceneMeshDesc>& meshes) {
+  return parseInstanceList(readTextFile(path), path, meshes);
+}
+
+std::vector<SceneInstanceDesc> parseInstanceList(const std::string& text,
+                                                 const std::filesystem::path& path,
+                                                 const std::vector<SceneMeshDesc>& meshes) {
   std::unordered_map<std::string, uint32_t> index;
   for (size_t i = 0; i < meshes.size(); ++i) index.emplace(meshes[i].name, uint32_t(i));
 
-  const std::string text = readTextFile(path);
   std::vector<SceneInstanceDesc> out;
   std::istringstream in(text);
   std::string line;
@@ -62,7 +68,7 @@ std::vector<SceneInstanceDesc> loadInstanceList(const std::filesystem::path& pat
     const std::string name(tokens[0]);
     auto it = index.find(name);
     if (it == index.end())
-      failLine(path, line_no, "unknown mesh '" + name + "'",
+      failLine(path, line_no, "unknown mesh " + scene_internal::quoteInput(name),
                "every instance must name a mesh of the scene's \"meshes\" list");
     const size_t n = tokens.size() - 1;
     if (n != 3 && n != 12 && n != 16)
@@ -73,7 +79,7 @@ std::vector<SceneInstanceDesc> loadInstanceList(const std::filesystem::path& pat
     std::vector<float> v(n);
     for (size_t i = 0; i < n; ++i)
       if (!parseFloat(tokens[i + 1], v[i]))
-        failLine(path, line_no, "bad number '" + std::string(tokens[i + 1]) + "'",
+        failLine(path, line_no, "bad number " + scene_internal::quoteInput(tokens[i + 1]),
                  "numbers must be finite decimals");
     SceneInstanceDesc inst;
     inst.mesh = it->second;
@@ -85,9 +91,9 @@ std::vector<SceneInstanceDesc> loadInstanceList(const std::filesystem::path& pat
                  "only affine transforms are allowed");
       for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 4; ++c) inst.transform.m[r][c] = v[size_t(r * 4 + c)];
-      if (!inverse(inst.transform))
-        failLine(path, line_no, "singular transform", "a transform must be invertible");
     }
+    if (auto problem = scene_internal::transformProblem(inst.transform))
+      failLine(path, line_no, problem->what, problem->why, problem->todo);
     out.push_back(inst);
   }
   return out;

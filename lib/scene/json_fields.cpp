@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "scene/internal/quoted.h"
 #include "util/error.h"
 
 namespace proxyvis::scene_internal {
@@ -14,9 +15,9 @@ const char* typeName(const json& v) {
 
 }  // namespace
 
-void Field::fail(const std::string& what, const std::string& why) const {
+void Field::fail(const std::string& what, const std::string& why, const std::string& todo) const {
   throw Error(file_.string(), (path_.empty() ? std::string("(top level)") : path_) + ": " + what,
-              why);
+              why, todo);
 }
 
 void Field::expectObject(std::initializer_list<const char*> allowed) const {
@@ -28,7 +29,8 @@ void Field::expectObject(std::initializer_list<const char*> allowed) const {
     if (!known) {
       std::string list;
       for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-      const std::string sub = path_.empty() ? key : path_ + "." + key;
+      const std::string shown = clipped(key);
+      const std::string sub = path_.empty() ? shown : path_ + "." + shown;
       throw Error(file_.string(), sub + ": unknown key",
                   "a misspelt key would otherwise be ignored silently", "known keys here: " + list);
     }

@@ -34,9 +34,22 @@
 
 namespace proxyvis {
 
+// The largest image width and height, in pixels, a scene or a command-line override may ask for.
+inline constexpr int kMaxImageSide = 16384;
+
+// Value ranges loadSceneDesc enforces. Within them the renderer's float arithmetic (squared
+// distances, radiance * area / pdf, squared pixel errors summed over an image) stays finite;
+// outside them a scene could render inf/NaN tables and still exit 0.
+inline constexpr float kMaxSceneCoordinate = 1e6f;  // |x|, |y|, |z| of every position
+inline constexpr float kMaxRadiance = 1e6f;         // each radiance component, in [0, this]
+inline constexpr float kMinLightArea = 1e-12f;      // per light triangle (the pdf is 1/area)
+inline constexpr float kMaxTransformScale = 1e6f;   // |entry| of a linear part and its inverse
+inline constexpr float kMinUpLength = 1e-6f;        // camera up: length in [this, 1/this]
+inline constexpr float kMinFovDeg = 0.01f, kMaxFovDeg = 179.0f;  // camera fov_deg
+
 struct CameraDesc {
   Vec3f eye{0, 0, 5}, look_at{0, 0, 0}, up{0, 1, 0};
-  float fov_deg = 40;  // vertical field of view, in (0, 180)
+  float fov_deg = 40;  // vertical field of view, in [kMinFovDeg, kMaxFovDeg]
   int width = 256, height = 256;
 };
 
@@ -85,11 +98,21 @@ struct SceneDesc {
 // referenced files, duplicate mesh names, singular transforms, no lights. Does not load meshes.
 SceneDesc loadSceneDesc(const std::filesystem::path& path);
 
+// The parse-and-validate stage of loadSceneDesc on text already read: `path` is the scene file
+// the text came from (relative paths resolve against its folder; errors name it). Referenced
+// files must exist but are not read: instances_file is set and `instances` stays empty.
+SceneDesc parseSceneDesc(const std::string& text, const std::filesystem::path& path);
+
 // Parses an instance list for `meshes` (names looked up there). Throws Error naming
 // "file:line" for an unknown name, a wrong count of numbers, a non-finite or singular transform,
 // or a 4x4 whose last row is not 0 0 0 1.
 std::vector<SceneInstanceDesc> loadInstanceList(const std::filesystem::path& path,
                                                 const std::vector<SceneMeshDesc>& meshes);
+
+// loadInstanceList on text already read; `path` names the list in errors.
+std::vector<SceneInstanceDesc> parseInstanceList(const std::string& text,
+                                                 const std::filesystem::path& path,
+                                                 const std::vector<SceneMeshDesc>& meshes);
 
 // Writes a scene (paths made relative to the new file's directory), atomically. Transforms are
 // written as 16 numbers. Instances: the scene refers to scene.instances_file if set; otherwise,

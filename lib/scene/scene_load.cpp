@@ -7,6 +7,8 @@
 #include <set>
 
 #include "scene/internal/json_fields.h"
+#include "scene/internal/quoted.h"
+#include "scene/internal/value_ranges.h"
 #include "scene/scene_desc.h"
 #include "scene/transform.h"
 #include "util/atomic_write.h"
@@ -17,6 +19,11 @@ namespace proxyvis {
 
 using scene_internal::Field;
 using scene_internal::json;
+using scene_internal::numberText;
+using scene_internal::positionProblem;
+using scene_internal::quoteInput;
+using scene_internal::RangeProblem;
+using scene_internal::transformProblem;
 namespace fs = std::filesystem;
 
 namespace {
@@ -32,32 +39,67 @@ fs::path resolveFile(const Field& f, const fs::path& scene_dir) {
   return p;
 }
 
+// Reports a range problem at `f`'s JSON path.
+void check(const Field& f, const std::optional<RangeProblem>& problem) {
+  if (problem) f.fail(problem->what, problem->why, problem->todo);
+}
+
+Vec3f parsePosition(const Field& f, const std::string& what) {
+  const Vec3f p = f.asVec3();
+  check(f, positionProblem(p, what));
+  return p;
+}
+
 CameraDesc parseCamera(const Field& f) {
   f.expectObject({"eye", "look_at", "up", "fov_deg", "resolution"});
   CameraDesc c;
-  c.eye = f["eye"].asVec3();
-  c.look_at = f["look_at"].asVec3();
+  c.eye = parsePosition(f["eye"], "eye");
+  c.look_at = parsePosition(f["look_at"], "look_at");
   if (f.has("up")) c.up = f["up"].asVec3();
   if (f.has("fov_deg")) c.fov_deg = f["fov_deg"].asFloat();
-  if (!(c.fov_deg > 0 && c.fov_deg < 180)) f["fov_deg"].fail("must be in (0, 180) degrees");
+  if (!(c.fov_deg >= kMinFovDeg && c.fov_deg <= kMaxFovDeg))
+    f["fov_deg"].fail("field of view " + numberText(c.fov_deg) + " out of range",
+                      "fov_deg is the vertical angle in degrees, in [" + numberText(kMinFovDeg) +
+                          ", " + numberText(kMaxFovDeg) + "]",
+                      "40 is a usual value");
   if (f.has("resolution")) {
     const Field r = f["resolution"];
     if (r.arraySize() != 2) r.fail("expected [width, height]");
     c.width = r[size_t(0)].asInt();
     c.height = r[1].asInt();
-    if (c.width < 1 || c.height < 1 || c.width > 16384 || c.height > 16384)
-      r.fail("width and height must be in [1, 16384]");
+    if (c.width < 1 || c.height < 1 || c.width > kMaxImageSide || c.height > kMaxImageSide)
+      r.fail("width and height must be in [1, " + std::to_string(kMaxImageSide) + "]");
   }
+  // Eye and look_at are within kMaxSceneCoordinate, so these lengths are finite.
   const Vec3f view = c.look_at - c.eye;
-  if (!(length(view) > 0)) f.fail("eye and look_at coincide");
-  if (!(length(cross(view, c.up)) > 1e-6f * length(view) * length(c.up)))
-    f.fail("up is zero or parallel to the view direction");
+  if (!(length(view) > 1e-6f))
+    f.fail("eye and look_at coincide", "the view direction is look_at - eye",
+           "move look_at to the point the camera looks at");
+  // In double: a float length of [0, 1e-30, 0] underflows to 0.
+  const double up_length =
+      std::sqrt(double(c.up.x) * c.up.x + double(c.up.y) * c.up.y + double(c.up.z) * c.up.z);
+  if (!(up_length >= kMinUpLength && up_length <= 1 / kMinUpLength))
+    f["up"].fail("length " + numberText(up_length) + " out of range",
+                 "up must be a direction of length in [" + numberText(kMinUpLength) + ", " +
+                     numberText(1 / kMinUpLength) + "]",
+                 "e.g. [0, 1, 0] for y up");
+  const Vec3f dir = normalize(view), up_dir = c.up / float(up_length);
+  if (!(length(cross(dir, up_dir)) > 1e-6f))
+    f["up"].fail("up is parallel to the view direction (look_at - eye)",
+                 "the image's vertical axis would be undefined",
+                 "choose an up vector that is not along the view, e.g. [0, 0, 1] when looking "
+                 "along y");
   return c;
 }
 
 Vec3f parseRadiance(const Field& f) {
   const Vec3f r = f.asVec3();
-  if (r.x < 0 || r.y < 0 || r.z < 0) f.fail("radiance must be non-negative");
+  for (int i = 0; i < 3; ++i)
+    if (!(r[i] >= 0 && r[i] <= kMaxRadiance))
+      f.fail("radiance " + numberText(r[i]) + " out of range",
+             "each component must be in [0, " + numberText(kMaxRadiance) +
+                 "] so that the renderer's float arithmetic stays finite",
+             "express the radiances in a larger unit (their ratios are what matters)");
   return r;
 }
 
@@ -67,29 +109,38 @@ AreaLightDesc parseLight(const Field& f) {
   AreaLightDesc light;
   if (type == "quad") {
     f.expectObject({"type", "corner", "edge_u", "edge_v", "radiance"});
-    const Vec3f c = f["corner"].asVec3(), u = f["edge_u"].asVec3(), v = f["edge_v"].asVec3();
+    const Vec3f c = parsePosition(f["corner"], "corner");
+    const Vec3f u = f["edge_u"].asVec3(), v = f["edge_v"].asVec3();
     light.triangles.push_back({c, c + u, c + u + v});
     light.triangles.push_back({c, c + u + v, c + v});
   } else if (type == "triangle") {
     f.expectObject({"type", "vertices", "radiance"});
     const Field vs = f["vertices"];
     if (vs.arraySize() != 3) vs.fail("expected 3 vertices");
-    light.triangles.push_back({vs[size_t(0)].asVec3(), vs[1].asVec3(), vs[2].asVec3()});
+    light.triangles.push_back({parsePosition(vs[size_t(0)], "vertex"),
+                               parsePosition(vs[1], "vertex"), parsePosition(vs[2], "vertex")});
   } else if (type == "triangles") {
     f.expectObject({"type", "triangles", "radiance"});
     const Field ts = f["triangles"];
     for (size_t i = 0, n = ts.arraySize(); i < n; ++i) {
       const Field t = ts[i];
       if (t.arraySize() != 3) t.fail("expected 3 vertices");
-      light.triangles.push_back({t[size_t(0)].asVec3(), t[1].asVec3(), t[2].asVec3()});
+      light.triangles.push_back({parsePosition(t[size_t(0)], "vertex"),
+                                 parsePosition(t[1], "vertex"), parsePosition(t[2], "vertex")});
     }
     if (light.triangles.empty()) ts.fail("no triangles");
   } else {
-    f["type"].fail("unknown light type '" + type + "'", "known types: quad, triangle, triangles");
+    f["type"].fail("unknown light type " + quoteInput(type),
+                   "known types: quad, triangle, triangles");
   }
-  for (const auto& t : light.triangles)
-    if (!(length(cross(t[1] - t[0], t[2] - t[0])) > 0))
-      f.fail("degenerate light (zero area)", "area sampling needs a positive area");
+  for (const auto& t : light.triangles) {
+    for (const Vec3f& p : t) check(f, positionProblem(p, "light vertex"));  // corner + edges
+    const float area = 0.5f * length(cross(t[1] - t[0], t[2] - t[0]));
+    if (!(area >= kMinLightArea))
+      f.fail("light triangle of area " + numberText(area) + " (below " + numberText(kMinLightArea) +
+                 ")",
+             "area sampling divides by the area", "make the light larger or remove it");
+  }
   light.radiance = parseRadiance(f["radiance"]);
   return light;
 }
@@ -131,7 +182,7 @@ Affine3f parseTransform(const Field& f) {
     if (f.has("translate")) t = Affine3f::translation(f["translate"].asVec3());
     a = compose(t, compose(r, s));
   }
-  if (!inverse(a)) f.fail("singular transform", "a transform must be invertible");
+  check(f, transformProblem(a));
   return a;
 }
 
@@ -140,14 +191,14 @@ ProxyRef parseProxy(const Field& f, const fs::path& dir) {
   ProxyRef p;
   p.kind = f["kind"].asString();
   if (!parseProxyClass(p.kind))
-    f["kind"].fail("unknown kind '" + p.kind + "'", "known: outside, inside, general");
+    f["kind"].fail("unknown kind " + quoteInput(p.kind), "known: outside, inside, general");
   if (f.has("method")) p.method = f["method"].asString();
   p.file = resolveFile(f["file"], dir);
   if (f.has("class")) {
     const std::string c = f["class"].asString();
     p.verified_class = parseProxyClass(c);
     if (!p.verified_class)
-      f["class"].fail("unknown class '" + c + "'", "known: outside, inside, general");
+      f["class"].fail("unknown class " + quoteInput(c), "known: outside, inside, general");
   }
   return p;
 }
@@ -185,10 +236,18 @@ int SceneDesc::findMesh(const std::string& name) const {
 }
 
 SceneDesc loadSceneDesc(const fs::path& path) {
+  std::error_code ec;
+  const fs::path absolute = fs::absolute(path, ec).lexically_normal();
+  SceneDesc scene = parseSceneDesc(readTextFile(absolute), absolute);
+  if (!scene.instances_file.empty())
+    scene.instances = loadInstanceList(scene.instances_file, scene.meshes);
+  return scene;
+}
+
+SceneDesc parseSceneDesc(const std::string& text, const fs::path& path) {
   SceneDesc scene;
   std::error_code ec;
   scene.path = fs::absolute(path, ec).lexically_normal();
-  const std::string text = readTextFile(scene.path);
   json root;
   try {
     root = json::parse(text, nullptr, true, /*ignore_comments=*/true);
@@ -212,7 +271,7 @@ SceneDesc loadSceneDesc(const fs::path& path) {
   for (size_t i = 0, n = meshes.arraySize(); i < n; ++i) {
     scene.meshes.push_back(parseMesh(meshes[i], dir));
     if (!names.insert(scene.meshes.back().name).second)
-      meshes[i]["name"].fail("duplicate mesh name '" + scene.meshes.back().name + "'");
+      meshes[i]["name"].fail("duplicate mesh name " + quoteInput(scene.meshes.back().name));
   }
   if (scene.meshes.empty()) meshes.fail("no meshes");
 
@@ -220,7 +279,6 @@ SceneDesc loadSceneDesc(const fs::path& path) {
     const Field inst = top["instances"];
     inst.expectObject({"file"});
     scene.instances_file = resolveFile(inst["file"], dir);
-    scene.instances = loadInstanceList(scene.instances_file, scene.meshes);
   }
   return scene;
 }

@@ -9,7 +9,8 @@ namespace proxyvis {
 
 enum ExitCode : int { kExitOk = 0, kExitCheckFailed = 1, kExitBadInput = 2, kExitCannotWrite = 3 };
 
-// A bad-input error. The message reads "FILE: WHAT; WHY (TODO)" and is printed as one line.
+// A bad-input error. The message reads "FILE: WHAT; WHY (TODO)" and is printed as one line (its
+// control and non-ASCII bytes are written as \xNN).
 // `file` may be empty for errors that are not about a file (e.g. a bad flag value).
 class Error : public std::runtime_error {
  public:

@@ -57,5 +57,27 @@ TEST(InstanceList, BadLinesNameFileAndLine) {
   EXPECT_THROW(loadInstanceList(dir.path() / "missing.txt", twoMeshes()), Error);
 }
 
+TEST(InstanceList, TransformsOutOfRangeAreRefused) {
+  test::ScratchDir dir;
+  EXPECT_NE(errorOf(dir, "GRASS1 1 2 3\nGRASS1 4e6 0 0\n")
+                .find("list.txt:2: translation coordinate 4e+06 out of range"),
+            std::string::npos);
+  EXPECT_NE(errorOf(dir, "BUSH11 1e7 0 0 0  0 1 0 0  0 0 1 0\n")
+                .find("list.txt:1: transform scales by 1e+07, more than 1e+06"),
+            std::string::npos);
+  EXPECT_NE(errorOf(dir, "BUSH11 1e-7 0 0 0  0 1 0 0  0 0 1 0\n")
+                .find("list.txt:1: transform scales down by 1e+07"),
+            std::string::npos);
+}
+
+TEST(InstanceList, QuotedTokensArePrintableAndShort) {
+  test::ScratchDir dir;
+  const std::string name = errorOf(dir, "TR\x1b[2JEE 1 2 3\n");
+  EXPECT_NE(name.find("list.txt:1: unknown mesh 'TR\\x1b[2JEE'"), std::string::npos) << name;
+  const std::string number = errorOf(dir, "GRASS1 1 2 " + std::string(100000, '7') + "x\n");
+  EXPECT_NE(number.find("bad number '" + std::string(60, '7') + "...'"), std::string::npos);
+  EXPECT_LT(number.size(), 300u);
+}
+
 }  // namespace
 }  // namespace proxyvis

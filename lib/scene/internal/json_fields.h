@@ -22,8 +22,9 @@ class Field {
   const json& value() const { return value_; }
   const std::string& path() const { return path_; }
 
-  // Throws Error("FILE", "PATH: what", why).
-  [[noreturn]] void fail(const std::string& what, const std::string& why = {}) const;
+  // Throws Error("FILE", "PATH: what", why, todo).
+  [[noreturn]] void fail(const std::string& what, const std::string& why = {},
+                         const std::string& todo = {}) const;
 
   // Requires an object whose keys are all in `allowed`; names the first unknown key.
   void expectObject(std::initializer_list<const char*> allowed) const;

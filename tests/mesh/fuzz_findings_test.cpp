@@ -1,0 +1,69 @@
+// Inputs the fuzz targets (fuzz/) found, minimized, as regression tests: each must be refused
+// with an Error quickly. The bytes are written here, not stored as files.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <string>
+
+#include "mesh/mesh_io.h"
+#include "util/error.h"
+
+namespace proxyvis {
+namespace {
+
+// The message of parsing `bytes` as `name`, which must fail within `seconds`.
+std::string refusal(const std::string& bytes, const std::string& name, double seconds = 2) {
+  const auto start = std::chrono::steady_clock::now();
+  std::string message;
+  try {
+    parseMeshBytes(bytes, name);
+    ADD_FAILURE() << name << " loaded";
+  } catch (const Error& e) {
+    message = e.what();
+  }
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+            seconds);
+  return message;
+}
+
+// fuzz_off: a first word of binary bytes that only ended in "4OFF" passed the header check (the
+// 4D variant was left to OpenMesh), and OpenMesh then read 84 million empty faces from these 262
+// bytes (a second of CPU, and more for a larger count).
+TEST(FuzzFindings, OffKeywordAfterBinaryBytesIsRefused) {
+  const std::string bytes =
+      std::string("\000\000\000\000\266\077\006\000\260`", 10) + std::string(32, '\000') +
+      std::string("4OFF", 4) + std::string(8, '\000') + std::string("OFF\n", 4) +
+      std::string(10, '\000') +
+      std::string("\n1 1 0\n0 1 0\n0.5 0.5 1\n4 0 1 2 3\n4 0 1 \n3 2 3 4\n\000OFF\n", 53) +
+      std::string(51, '\000') + std::string(60, '\005') + std::string("0 1 \n3 2 3 4\n", 13) +
+      std::string(7, '\000') + std::string("4\n", 2) + std::string(8, '\000');
+  ASSERT_EQ(bytes.size(), 262u);
+  EXPECT_NE(refusal(bytes, "finding.off").find("finding.off: not an OFF file"), std::string::npos);
+}
+
+TEST(FuzzFindings, OffKeywordsAreExact) {
+  const std::string body = "\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  EXPECT_EQ(parseMeshBytes("OFF" + body, "ok.off").triangles.size(), 1u);
+  EXPECT_NE(refusal("xOFF" + body, "x.off").find("not an OFF file"), std::string::npos);
+  EXPECT_NE(refusal("4OFF" + body, "four.off").find("4D or n-dimensional OFF ('4OFF')"),
+            std::string::npos);
+  EXPECT_NE(refusal("nOFF 3" + body, "n.off").find("4D or n-dimensional OFF"), std::string::npos);
+}
+
+// fuzz_off: OpenMesh reads a face's vertex count as unsigned, so "-34" made it push 4 billion
+// vertex handles (a timeout, or 16 GB).
+TEST(FuzzFindings, NegativeOffFaceCountIsRefused) {
+  const std::string bytes = "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n-34\n";
+  EXPECT_NE(refusal(bytes, "negative.off").find("negative.off: face 1 has a vertex count '-34'"),
+            std::string::npos);
+  // Counts larger than what follows are refused the same way; colours after a face are fine.
+  EXPECT_NE(refusal("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n900000 0 1 2\n", "big.off")
+                .find("face 0 has a vertex count '900000'"),
+            std::string::npos);
+  EXPECT_EQ(parseMeshBytes("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 255 0 0\n", "c.off")
+                .triangles.size(),
+            1u);
+}
+
+}  // namespace
+}  // namespace proxyvis
