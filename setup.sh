@@ -5,6 +5,9 @@
 #   ./setup.sh demo     install + build + the main job on the bundled dragon-plane scene:
 #                       proxy-gen -> proxy-check -> render-compare (MSE table + HTML report)
 #   ./setup.sh test     install + build + the whole test suite (ctest)
+#   ./setup.sh test-sanitize
+#                       install + a second build tree (build-asan) with AddressSanitizer and
+#                       UndefinedBehaviorSanitizer, then the whole test suite under them
 #   ./setup.sh fuzz     install + clang-14 and libFuzzer, configure build-fuzz/ (ASan + UBSan +
 #                       coverage) and build the fuzz targets of fuzz/ (run them: fuzz/run.sh)
 set -euo pipefail
@@ -51,6 +54,30 @@ build() {
   cmake --build "$BUILD_DIR" -j "$JOBS"
 }
 
+# The sanitizer build: -O1 -g (readable stacks at tolerable speed), NDEBUG like Release so the
+# same code is tested, benches off. Any UBSan finding aborts (no recovery), so a test with one
+# fails; ASan leak checking is on. Suppressions of third-party findings live in .ci/.
+sanitize_env() {
+  local supp="$PWD/.ci"
+  export ASAN_OPTIONS="halt_on_error=1:abort_on_error=0:detect_leaks=1:detect_stack_use_after_return=0:check_initialization_order=1:suppressions=$supp/asan.supp"
+  export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:suppressions=$supp/ubsan.supp"
+  export LSAN_OPTIONS="suppressions=$supp/lsan.supp:print_suppressions=0"
+}
+
+build_sanitize() {
+  local dir=${PROXYVIS_ASAN_BUILD_DIR:-build-asan}
+  local flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
+  sanitize_env  # gtest discovery runs the test executables at build time
+  cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g -DNDEBUG" -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g -DNDEBUG" \
+    -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_C_FLAGS="$flags" \
+    -DCMAKE_EXE_LINKER_FLAGS="$flags" -DCMAKE_SHARED_LINKER_FLAGS="$flags" \
+    -DPROXYVIS_BUILD_BENCH=OFF
+  cmake --build "$dir" -j "$JOBS"
+  # Tests labelled not_sanitized are too slow under ASan (see their definition for why).
+  ctest --test-dir "$dir" --output-on-failure -j "$JOBS" -LE not_sanitized
+}
+
 # The fuzz build: clang, every library instrumented, no tests/benches, mesh-info (fuzz/run.sh
 # encodes its Draco seeds with it) and every fuzz/fuzz_*.cpp target.
 fuzz_build() {
@@ -80,5 +107,6 @@ case "${1:-install}" in
   demo) install_deps; build; demo ;;
   test) install_deps; build; ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$JOBS" ;;
   fuzz) install_deps; install_pkgs "${FUZZ_PKGS[@]}"; fuzz_build ;;
-  *) echo "usage: $0 [install|build|demo|test|fuzz]" >&2; exit 2 ;;
+  test-sanitize) install_deps; build_sanitize ;;
+  *) echo "usage: $0 [install|build|demo|test|test-sanitize|fuzz]" >&2; exit 2 ;;
 esac

@@ -3,7 +3,8 @@
 //
 //   proxy-check ORIGINAL PROXY [--rays N] [--seed S] [--expect outside|inside|general]
 //               [--json OUT] [--dump-errors FILE.ply]
-//   proxy-check SCENE.json     (every proxy of every mesh; instanced meshes: their prototype)
+//   proxy-check SCENE.json [--write-scene OUT.json]
+//               (every proxy of every mesh; instanced meshes: their prototype)
 #include <fmt/core.h>
 
 #include <cstdio>
@@ -20,6 +21,7 @@
 #include "util/app_main.h"
 #include "util/atomic_write.h"
 #include "util/error.h"
+#include "util/sha256.h"
 
 namespace fs = std::filesystem;
 using namespace proxyvis;
@@ -33,6 +35,7 @@ struct Options {
   std::string distribution = "sphere";
   std::string expect;
   std::string dump_errors;
+  std::string write_scene;
 };
 
 // The human report goes to stdout unless the JSON does; then to stderr (unless --quiet).
@@ -64,6 +67,9 @@ int runPair(const Options& o) {
   if (o.distribution != "sphere")
     throw Error("", "--distribution scene needs a scene", "a mesh pair has no camera or lights",
                 "run proxy-check SCENE.json --distribution scene");
+  if (!o.write_scene.empty())
+    throw Error("", "--write-scene needs a scene", "a mesh pair has no scene to record into",
+                "run proxy-check SCENE.json --write-scene OUT.json");
   const TriMesh original = loadMesh(o.inputs[0]);
   const TriMesh proxy = loadMesh(o.inputs[1]);
   PairCheckReport r = checkPair(original, proxy, pairOptions(o));
@@ -75,8 +81,18 @@ int runPair(const Options& o) {
   return r.failed() ? kExitCheckFailed : kExitOk;
 }
 
+// The class the exact check proved (general unless contains / contained, and general when the
+// sampled verdict disagrees with it), for --write-scene.
+ProxyClass provenClass(const PairCheckReport& r) {
+  if (r.mismatch) return ProxyClass::kGeneral;
+  if (r.exact.verdict == ContainmentVerdict::kContains) return ProxyClass::kOutside;
+  if (r.exact.verdict == ContainmentVerdict::kContained) return ProxyClass::kInside;
+  return ProxyClass::kGeneral;
+}
+
 int runScene(const Options& o) {
   const SceneDesc scene = loadSceneDesc(o.inputs[0]);
+  SceneDesc proven = scene;  // --write-scene: the classes the checks prove, with their hashes
   // The scene distribution traces primary rays against every object of the scene.
   TraceDevice device;
   std::unique_ptr<TraceScene> full;
@@ -94,6 +110,7 @@ int runScene(const Options& o) {
     const TriMesh original =
         scene_rays ? transformedMesh(loadMesh(mesh.file), mesh.transform) : loadMesh(mesh.file);
     for (const ProxyRef& ref : mesh.proxies) {
+      ProxyRef& record = proven.meshes[mesh_index].proxies[size_t(&ref - mesh.proxies.data())];
       PairCheckOptions po = pairOptions(o);
       if (scene_rays) {
         po.generator = sceneSegments(*full, scene, mesh_index, o.common.seed);
@@ -119,6 +136,8 @@ int runScene(const Options& o) {
       printHuman(o, formatHumanReport(r) + "\n");
       printMismatch(r);
       failed = failed || r.failed();
+      record.verified_class = provenClass(r);
+      record.sha256 = sha256OfFile(ref.file);
       checks.push_back(toJson(r));
       all_errors.insert(all_errors.end(), r.sampled.errors.begin(), r.sampled.errors.end());
       ++pairs;
@@ -128,6 +147,7 @@ int runScene(const Options& o) {
     throw Error(o.inputs[0], "the scene lists no proxies", "there is nothing to check",
                 "generate them with proxy-gen SCENE.json");
   if (!o.dump_errors.empty()) writeErrorSegmentsPly(all_errors, o.dump_errors);
+  if (!o.write_scene.empty()) saveSceneDesc(proven, o.write_scene);
   if (!o.common.json_path.empty()) {
     nlohmann::json j = {{"scene", scene.path.string()},
                         {"seed", o.common.seed},
@@ -167,6 +187,12 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"outside", "inside", "general"}));
   app.add_option("--dump-errors", o.dump_errors,
                  "Write the error segments as a PLY of edges (red HM', blue MH')");
+  app.add_option("--write-scene", o.write_scene,
+                 "Scene input: write a copy of the scene (paths relative to OUT.json) in which "
+                 "each proxy's class is the one the exact check proved (outside: contains; "
+                 "inside: contained; otherwise general) with the SHA-256 of its file, so "
+                 "render-compare relies on it without checking again. Written also when a check "
+                 "fails (exit 1): it then records what holds.");
   return runApp(app, argc, argv, o.common, [&] {
     if (o.inputs.size() == 1) {
       if (fs::path(o.inputs[0]).extension() != ".json")

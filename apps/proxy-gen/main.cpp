@@ -17,6 +17,7 @@
 #include "util/error.h"
 #include "util/progress.h"
 #include "util/rng.h"
+#include "util/sha256.h"
 
 namespace fs = std::filesystem;
 using namespace proxyvis;
@@ -112,7 +113,10 @@ int runScene(const Args& a, const CommonOptions& common) {
           ref.kind = a.kind;
           ref.method = r.report["method"].get<std::string>();
           ref.file = fs::absolute(out);
-          if (r.verified) ref.verified_class = base.kind;
+          if (r.verified) {  // the hash says which file content the class was proven for
+            ref.verified_class = base.kind;
+            ref.sha256 = sha256OfFile(out);
+          }
           refs[i] = ref;
           reports[i] = std::move(r.report);
         }

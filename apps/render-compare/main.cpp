@@ -15,6 +15,7 @@
 #include "metrics/image_error.h"
 #include "metrics/report.h"
 #include "outputs.h"
+#include "proxies/check/class_trust.h"
 #include "reference.h"
 #include "render/image_io.h"
 #include "render/render_scene.h"
@@ -73,7 +74,25 @@ void addReferenceNotes(Report& report, const Reference& ref, bool quiet) {
   }
 }
 
-Report makeReport(const CompareOptions& o, const RenderScene& scene, const Reference& ref) {
+// Each proxy's class status (class_trust.h): a note per proxy whose claim was not taken as is, and
+// every proxy in the JSON meta.
+void addProxyTrust(Report& report, const std::vector<ProxyTrust>& trust) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const ProxyTrust& t : trust) {
+    list.push_back({{"mesh", t.mesh},
+                    {"proxy", t.proxy.filename().string()},
+                    {"claimed", t.claimed ? proxyClassName(*t.claimed) : "none"},
+                    {"class", proxyClassName(t.trust.trusted)},
+                    {"class_status", classStatusName(t.trust.status)},
+                    {"reason", t.trust.reason}});
+    if (t.trust.status == ClassStatus::kReVerified || t.trust.status == ClassStatus::kDowngraded)
+      report.notes.push_back("Proxy class " + describeProxyTrust(t));
+  }
+  report.meta["proxy_classes"] = list;
+}
+
+Report makeReport(const CompareOptions& o, const RenderScene& scene, const Reference& ref,
+                  const std::vector<ProxyTrust>& trust) {
   const SceneDesc& desc = scene.desc();
   Report report;
   report.title = "render-compare: " + desc.path.filename().string();
@@ -95,6 +114,7 @@ Report makeReport(const CompareOptions& o, const RenderScene& scene, const Refer
   report.meta["reference_file"] = ref.file.filename().string();
   report.meta["reference_cached"] = ref.cached;
   report.meta["relmse_epsilon"] = kRelMseEpsilon;
+  addProxyTrust(report, trust);
   for (const std::string& w : scene.warnings()) report.notes.push_back("Scene: " + w);
   if (!scene.usesProxies())
     report.notes.push_back(
@@ -126,13 +146,20 @@ int runCompare(CompareOptions& o) {
   SceneDesc desc = loadSceneDesc(o.scene);
   if (o.width > 0) desc.camera.width = o.width;
   if (o.height > 0) desc.camera.height = o.height;
-  prepareOutputDirectory(o.out);
 
   RenderSceneOptions scene_options;
   scene_options.proxy_kind = o.proxy_kind;
   scene_options.quiet = o.common.quiet;
   scene_options.flatten_instances = o.build == "flat";
   if (o.build == "auto") scene_options.auto_flatten_triangles = CompareOptions::kAutoFlatTriangles;
+  // A claimed class the proxy file no longer matches is proven again or dropped before any
+  // estimator relies on it; a downgrade is always said on stderr (the tables would hide the bias).
+  const std::vector<ProxyTrust> trust = establishProxyClasses(desc, scene_options);
+  for (const ProxyTrust& t : trust)
+    if (t.trust.status == ClassStatus::kDowngraded)
+      std::fprintf(stderr, "render-compare: warning: %s: %s\n",
+                   desc.path.filename().string().c_str(), describeProxyTrust(t).c_str());
+  prepareOutputDirectory(o.out);  // after the trust checks: they only read inputs
   std::unique_ptr<RenderScene> scene = loadRenderScene(desc, scene_options);
 
   // Cells in table order; the stems name their images.
@@ -159,7 +186,7 @@ int runCompare(CompareOptions& o) {
                  ref.cached ? " [cached]" : "");
   for (CellResult& c : cells) scoreCell(c, ref.radiance);
 
-  Report report = makeReport(o, *scene, ref);
+  Report report = makeReport(o, *scene, ref, trust);
   for (const CellResult& c : cells) report.rows.push_back(c.row);
   fillRelativeEfficiency(report.rows, kEqualSppTable);
   fillRelativeEfficiency(report.rows, kEqualTimeTable);

@@ -21,6 +21,7 @@
 
 #include "estimate/cpu_ticks.h"
 #include "estimate/roulette.h"
+#include "proxies/check/class_trust.h"
 #include "render/render_scene.h"
 #include "render/renderer.h"
 #include "render/scene_tracer.h"
@@ -70,6 +71,10 @@ int run(const std::string& scene_file, int passes, int spp, int width, int heigh
   if (height > 0) desc.camera.height = height;
   RenderSceneOptions ro;
   ro.proxy_kind = proxy_kind;
+  // A claimed class is relied on only once proven (hash or exact check), as in render-compare.
+  for (const ProxyTrust& t : establishProxyClasses(desc, ro))
+    if (t.trust.status == ClassStatus::kDowngraded)
+      std::fprintf(stderr, "bench_oracle_ceiling: warning: %s\n", describeProxyTrust(t).c_str());
   auto scene = loadRenderScene(desc, ro);
   const int w = desc.camera.width, h = desc.camera.height;
   const int tiles_x = (w + tile - 1) / tile, tiles_y = (h + tile - 1) / tile;

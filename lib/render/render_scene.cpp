@@ -24,13 +24,6 @@ bool overlaps(const Bounds3f& a, const Bounds3f& b) {
          a.lo.z <= b.hi.z && b.lo.z <= a.hi.z;
 }
 
-int chooseProxy(const SceneMeshDesc& mesh, const RenderSceneOptions& options) {
-  if (!options.use_proxies) return -1;
-  for (size_t i = 0; i < mesh.proxies.size(); ++i)
-    if (options.proxy_kind.empty() || mesh.proxies[i].kind == options.proxy_kind) return int(i);
-  return -1;
-}
-
 // Adds every object to `builder`, taking each object's geometry from meshes[mesh] (originals) or
 // from the chosen proxy. Prototypes are built lazily, once per mesh.
 void addObjects(TraceSceneBuilder& builder, const std::vector<RenderObject>& objects,
@@ -49,6 +42,13 @@ void addObjects(TraceSceneBuilder& builder, const std::vector<RenderObject>& obj
 }
 
 }  // namespace
+
+int chooseProxy(const SceneMeshDesc& mesh, const RenderSceneOptions& options) {
+  if (!options.use_proxies) return -1;
+  for (size_t i = 0; i < mesh.proxies.size(); ++i)
+    if (options.proxy_kind.empty() || mesh.proxies[i].kind == options.proxy_kind) return int(i);
+  return -1;
+}
 
 RenderScene::RenderScene(SceneDesc desc)
     : desc_(std::move(desc)), camera_(desc_.camera), lights_(desc_.lights) {}

@@ -42,6 +42,10 @@ struct RenderSceneOptions {
   bool quiet = false;       // no warnings on stderr (they are still in warnings())
 };
 
+// The index of the proxy of `mesh` the renderer uses under `options` (-1 = none), before the
+// check that skips proxies not cheaper than their original.
+int chooseProxy(const SceneMeshDesc& mesh, const RenderSceneOptions& options);
+
 struct RenderObject {
   uint32_t mesh = 0;      // index into SceneDesc::meshes
   int32_t instance = -1;  // index into SceneDesc::instances, -1 for a placed mesh
@@ -109,7 +113,9 @@ class RenderScene {
 // light is outside it; an inside proxy guarantees no MH' only if the light is outside the
 // original). The check is conservative: a light whose bounding box overlaps the proxy's (outside)
 // or the original's (inside) world bounding box downgrades the scene's class to general, with a
-// warning. Throws Error for unreadable meshes or proxies.
+// warning. The claimed classes are taken as the scene states them: apps establish them first
+// (proxies/check/class_trust.h re-verifies a class whose recorded hash does not match). Throws
+// Error for unreadable meshes or proxies.
 std::unique_ptr<RenderScene> loadRenderScene(const SceneDesc& desc,
                                              const RenderSceneOptions& options = {});
 std::unique_ptr<RenderScene> loadRenderScene(const std::filesystem::path& scene_file,

@@ -17,7 +17,8 @@
 //               "place": true,     // false: only placed through "instances"
 //               "proxies": [{"kind": "outside", "method": "wrap",
 //                            "file": "dragon-plane/dragon.outside.ply",
-//                            "class": "outside"}]}],   // class: verified by proxy-gen/proxy-check
+//                            "class": "outside",     // verified by proxy-gen/proxy-check
+//                            "sha256": "..."}]}],    // of the file the class was verified for
 //   "instances": {"file": "foliage.instances.txt"}
 // }
 // Instance list lines: "NAME tx ty tz" or "NAME" followed by 12 or 16 numbers (row-major 3x4 or
@@ -64,6 +65,10 @@ struct ProxyRef {
   std::string method;                        // generator method, e.g. "wrap", "hull", "qem"
   std::filesystem::path file;                // absolute after loading
   std::optional<ProxyClass> verified_class;  // absent = not verified: treated as general
+  // SHA-256 (64 lowercase hex digits) of the proxy file whose verified_class was proven; empty =
+  // none recorded. A class without a matching hash is re-verified before estimators rely on it
+  // (proxies/check/class_trust.h).
+  std::string sha256;
 };
 
 struct SceneMeshDesc {

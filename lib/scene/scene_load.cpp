@@ -187,7 +187,7 @@ Affine3f parseTransform(const Field& f) {
 }
 
 ProxyRef parseProxy(const Field& f, const fs::path& dir) {
-  f.expectObject({"kind", "method", "file", "class"});
+  f.expectObject({"kind", "method", "file", "class", "sha256"});
   ProxyRef p;
   p.kind = f["kind"].asString();
   if (!parseProxyClass(p.kind))
@@ -199,6 +199,12 @@ ProxyRef parseProxy(const Field& f, const fs::path& dir) {
     p.verified_class = parseProxyClass(c);
     if (!p.verified_class)
       f["class"].fail("unknown class " + quoteInput(c), "known: outside, inside, general");
+  }
+  if (f.has("sha256")) {
+    p.sha256 = f["sha256"].asString();
+    const bool hex = p.sha256.size() == 64 &&
+                     p.sha256.find_first_not_of("0123456789abcdef") == std::string::npos;
+    if (!hex) f["sha256"].fail("expected 64 lowercase hex digits", "as sha256sum prints them");
   }
   return p;
 }

@@ -83,6 +83,7 @@ json sceneToJson(const SceneDesc& scene, const fs::path& dir, const fs::path& in
       if (!p.method.empty()) jp["method"] = p.method;
       jp["file"] = relativePath(p.file, dir);
       if (p.verified_class) jp["class"] = proxyClassName(*p.verified_class);
+      if (!p.sha256.empty()) jp["sha256"] = p.sha256;
       proxies.push_back(jp);
     }
     jm["proxies"] = proxies;

@@ -1,0 +1,87 @@
+// Re-verification of claimed proxy classes (see class_trust.h).
+#include "proxies/check/class_trust.h"
+
+#include <fmt/core.h>
+
+#include "mesh/mesh_io.h"
+#include "render/render_scene.h"
+#include "scene/scene_desc.h"
+#include "util/sha256.h"
+
+namespace proxyvis {
+
+const char* classStatusName(ClassStatus s) {
+  switch (s) {
+    case ClassStatus::kUnverified:
+      return "unverified";
+    case ClassStatus::kGeneral:
+      return "general";
+    case ClassStatus::kVerifiedByHash:
+      return "verified-by-hash";
+    case ClassStatus::kReVerified:
+      return "re-verified";
+    case ClassStatus::kDowngraded:
+      return "downgraded";
+  }
+  return "unverified";
+}
+
+ClassTrust decideClassTrust(std::optional<ProxyClass> claimed, std::string_view recorded_hash,
+                            std::string_view file_hash,
+                            const std::function<ContainmentResult()>& check) {
+  if (!claimed) return {ClassStatus::kUnverified, ProxyClass::kGeneral, "no class claimed"};
+  if (*claimed == ProxyClass::kGeneral) return {ClassStatus::kGeneral, ProxyClass::kGeneral, {}};
+  if (!recorded_hash.empty() && recorded_hash == file_hash)
+    return {ClassStatus::kVerifiedByHash, *claimed, {}};
+  const std::string why = recorded_hash.empty()
+                              ? "no recorded sha256"
+                              : "the file changed since its class was verified (sha256 differs)";
+  const ContainmentVerdict needed = *claimed == ProxyClass::kOutside
+                                        ? ContainmentVerdict::kContains
+                                        : ContainmentVerdict::kContained;
+  const ContainmentResult r = check();
+  const std::string found = fmt::format("exact check: {}{}{}", containmentName(r.verdict),
+                                        r.detail.empty() ? "" : ", ", r.detail);
+  if (r.verdict == needed) return {ClassStatus::kReVerified, *claimed, why + "; " + found};
+  return {ClassStatus::kDowngraded, ProxyClass::kGeneral,
+          fmt::format("{}; {} (an {} proxy must give '{}')", why, found, proxyClassName(*claimed),
+                      containmentName(needed))};
+}
+
+std::vector<ProxyTrust> establishProxyClasses(SceneDesc& scene, const RenderSceneOptions& options) {
+  std::vector<bool> used(scene.meshes.size(), false);
+  for (size_t m = 0; m < scene.meshes.size(); ++m) used[m] = scene.meshes[m].place;
+  for (const SceneInstanceDesc& i : scene.instances) used[i.mesh] = true;
+  std::vector<ProxyTrust> out;
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    SceneMeshDesc& mesh = scene.meshes[m];
+    const int chosen = chooseProxy(mesh, options);
+    if (!used[m] || chosen < 0) continue;
+    ProxyRef& ref = mesh.proxies[size_t(chosen)];
+    ProxyTrust t{mesh.name, ref.file, ref.verified_class, {}};
+    const bool claims_guarantee = ref.verified_class && *ref.verified_class != ProxyClass::kGeneral;
+    // Only a claim of a guarantee needs the file's hash (reading a large proxy is not free).
+    const std::string file_hash = claims_guarantee ? sha256OfFile(ref.file) : std::string();
+    // The containment relation does not change under the instance transforms (affine and
+    // invertible), so the check runs on the files as they are, in object space.
+    t.trust = decideClassTrust(ref.verified_class, ref.sha256, file_hash, [&] {
+      return checkContainment(loadMesh(mesh.file), loadMesh(ref.file));
+    });
+    if (ref.verified_class) ref.verified_class = t.trust.trusted;
+    out.push_back(std::move(t));
+  }
+  return out;
+}
+
+std::string describeProxyTrust(const ProxyTrust& t) {
+  const std::string head = fmt::format(
+      "mesh '{}': proxy {}, claimed {}: {}", t.mesh, t.proxy.filename().string(),
+      t.claimed ? proxyClassName(*t.claimed) : "no class", classStatusName(t.trust.status));
+  if (t.trust.status == ClassStatus::kDowngraded)
+    return head + " to general (" + t.trust.reason + ")";
+  return t.trust.reason.empty() || t.trust.status == ClassStatus::kUnverified
+             ? head
+             : head + " (" + t.trust.reason + ")";
+}
+
+}  // namespace proxyvis

@@ -1,0 +1,63 @@
+#pragma once
+// Whether the class a scene claims for a proxy may be relied on by the estimators. A class is
+// trusted as recorded only while the proxy file still has the SHA-256 it was verified for;
+// otherwise the exact containment check (containment.h) decides again, in object space, and a
+// class it does not prove is downgraded to general. An estimator told "outside" drops the
+// correction branch for HM' segments: a mislabelled proxy would bias it silently.
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "proxies/check/containment.h"
+#include "util/proxy_class.h"
+
+namespace proxyvis {
+
+struct SceneDesc;
+struct RenderSceneOptions;
+
+enum class ClassStatus {
+  kUnverified,      // the scene claims no class: general
+  kGeneral,         // the scene claims general: nothing to verify
+  kVerifiedByHash,  // the recorded hash matches the file: the claim stands unchecked
+  kReVerified,      // no or another hash; the exact check proves the claim again
+  kDowngraded       // no or another hash; the exact check does not prove the claim: general
+};
+
+// "unverified", "general", "verified-by-hash", "re-verified", "downgraded".
+const char* classStatusName(ClassStatus s);
+
+struct ClassTrust {
+  ClassStatus status = ClassStatus::kUnverified;
+  ProxyClass trusted = ProxyClass::kGeneral;  // what the estimators may use
+  std::string reason;                         // why, for re-verified and downgraded
+};
+
+// The decision. `recorded_hash` is the scene's (empty = none), `file_hash` the proxy file's;
+// `check` runs the exact containment check and is called only when the hash does not vouch for
+// an outside or inside claim.
+ClassTrust decideClassTrust(std::optional<ProxyClass> claimed, std::string_view recorded_hash,
+                            std::string_view file_hash,
+                            const std::function<ContainmentResult()>& check);
+
+struct ProxyTrust {
+  std::string mesh;             // the mesh's name
+  std::filesystem::path proxy;  // the proxy file
+  std::optional<ProxyClass> claimed;
+  ClassTrust trust;
+};
+
+// For every proxy the renderer will use under `options` (one per mesh that is placed or
+// instanced): decides its trust, loading the original and the proxy only when the exact check
+// must run, and sets the scene's verified_class to the trusted class (general when downgraded).
+// Throws Error for unreadable files.
+std::vector<ProxyTrust> establishProxyClasses(SceneDesc& scene, const RenderSceneOptions& options);
+
+// One line for a log or a report: "mesh 'box': proxy box.outside.off, claimed outside:
+// downgraded to general (no recorded sha256; exact check: intersecting, ...)".
+std::string describeProxyTrust(const ProxyTrust& t);
+
+}  // namespace proxyvis

@@ -1,0 +1,210 @@
+// The trust of a proxy's claimed class (proxies/check/class_trust.h): the decision on its own with
+// a stand-in containment check, then on files of a scene, and that a downgrade reaches the class
+// the renderer gives its estimators.
+#include "proxies/check/class_trust.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "check_shapes.h"
+#include "mesh/mesh_io.h"
+#include "render/render_scene.h"
+#include "scene/scene_desc.h"
+#include "util/sha256.h"
+
+namespace proxyvis {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kHashA(64, 'a'), kHashB(64, 'b');
+
+// A containment check that returns `verdict` and counts its calls.
+struct FakeCheck {
+  ContainmentVerdict verdict;
+  int calls = 0;
+  std::function<ContainmentResult()> fn() {
+    return [this] {
+      ++calls;
+      ContainmentResult r;
+      r.verdict = verdict;
+      r.detail = "stand-in";
+      return r;
+    };
+  }
+};
+
+TEST(ClassTrustDecision, NoClaimIsUnverifiedGeneralWithoutCheck) {
+  FakeCheck check{ContainmentVerdict::kContains};
+  const ClassTrust t = decideClassTrust(std::nullopt, "", "", check.fn());
+  EXPECT_EQ(t.status, ClassStatus::kUnverified);
+  EXPECT_EQ(t.trusted, ProxyClass::kGeneral);
+  EXPECT_EQ(check.calls, 0);
+}
+
+TEST(ClassTrustDecision, GeneralClaimNeedsNoCheck) {
+  FakeCheck check{ContainmentVerdict::kIntersecting};
+  const ClassTrust t = decideClassTrust(ProxyClass::kGeneral, "", kHashA, check.fn());
+  EXPECT_EQ(t.status, ClassStatus::kGeneral);
+  EXPECT_EQ(t.trusted, ProxyClass::kGeneral);
+  EXPECT_EQ(check.calls, 0);
+}
+
+TEST(ClassTrustDecision, MatchingHashIsTrustedWithoutCheck) {
+  FakeCheck check{ContainmentVerdict::kIntersecting};  // would downgrade if it ran
+  const ClassTrust t = decideClassTrust(ProxyClass::kOutside, kHashA, kHashA, check.fn());
+  EXPECT_EQ(t.status, ClassStatus::kVerifiedByHash);
+  EXPECT_EQ(t.trusted, ProxyClass::kOutside);
+  EXPECT_EQ(check.calls, 0);
+  EXPECT_STREQ(classStatusName(t.status), "verified-by-hash");
+}
+
+TEST(ClassTrustDecision, MissingHashRunsTheCheckWhichReVerifies) {
+  FakeCheck check{ContainmentVerdict::kContains};
+  const ClassTrust t = decideClassTrust(ProxyClass::kOutside, "", kHashA, check.fn());
+  EXPECT_EQ(t.status, ClassStatus::kReVerified);
+  EXPECT_EQ(t.trusted, ProxyClass::kOutside);
+  EXPECT_EQ(check.calls, 1);
+  EXPECT_NE(t.reason.find("no recorded sha256"), std::string::npos) << t.reason;
+  EXPECT_STREQ(classStatusName(t.status), "re-verified");
+}
+
+TEST(ClassTrustDecision, ChangedFileThatFailsTheCheckIsDowngraded) {
+  FakeCheck check{ContainmentVerdict::kIntersecting};
+  const ClassTrust t = decideClassTrust(ProxyClass::kOutside, kHashA, kHashB, check.fn());
+  EXPECT_EQ(t.status, ClassStatus::kDowngraded);
+  EXPECT_EQ(t.trusted, ProxyClass::kGeneral);
+  EXPECT_EQ(check.calls, 1);
+  EXPECT_NE(t.reason.find("sha256 differs"), std::string::npos) << t.reason;
+  EXPECT_NE(t.reason.find("intersecting"), std::string::npos) << t.reason;
+  EXPECT_STREQ(classStatusName(t.status), "downgraded");
+}
+
+TEST(ClassTrustDecision, EachClassNeedsItsOwnVerdict) {
+  FakeCheck contains{ContainmentVerdict::kContains}, contained{ContainmentVerdict::kContained};
+  EXPECT_EQ(decideClassTrust(ProxyClass::kInside, "", kHashA, contains.fn()).status,
+            ClassStatus::kDowngraded);
+  EXPECT_EQ(decideClassTrust(ProxyClass::kOutside, "", kHashA, contained.fn()).status,
+            ClassStatus::kDowngraded);
+  const ClassTrust inside = decideClassTrust(ProxyClass::kInside, "", kHashA, contained.fn());
+  EXPECT_EQ(inside.status, ClassStatus::kReVerified);
+  EXPECT_EQ(inside.trusted, ProxyClass::kInside);
+}
+
+TEST(ClassTrustDecision, UndecidableOrDisjointIsDowngraded) {
+  for (ContainmentVerdict v : {ContainmentVerdict::kUndecidable, ContainmentVerdict::kDisjoint}) {
+    FakeCheck check{v};
+    const ClassTrust t = decideClassTrust(ProxyClass::kOutside, "", kHashA, check.fn());
+    EXPECT_EQ(t.status, ClassStatus::kDowngraded) << containmentName(v);
+    EXPECT_EQ(t.trusted, ProxyClass::kGeneral);
+  }
+}
+
+// A scene of one sphere of radius 0.4 in the unit box (placed with a translation, which the check
+// must ignore) whose proxy file the tests write, under a light far above every proxy (so the
+// renderer's light check keeps the class). Box proxies have fewer triangles than the sphere, so
+// the renderer uses them.
+class ClassTrustScene : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           (std::string("pv_class_trust_") +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    saveMesh(test::makeSphere({0.5f, 0.5f, 0.5f}, 0.4f), dir_ / "sphere.off");
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // Writes the proxy (to a new file each time: one that was read cannot be replaced in the same
+  // process) and a scene claiming `claimed` with `hash` ("" = none); loads the scene.
+  SceneDesc scene(const TriMesh& proxy, const std::string& claimed, const std::string& hash) {
+    proxy_ = dir_ / ("proxy" + std::to_string(++count_) + ".off");
+    saveMesh(proxy, proxy_);
+    std::string p = R"({"kind": "outside", "file": ")" + proxy_.filename().string() + "\"";
+    if (!claimed.empty()) p += R"(, "class": ")" + claimed + "\"";
+    if (!hash.empty()) p += R"(, "sha256": ")" + hash + "\"";
+    const fs::path file = dir_ / ("scene" + std::to_string(count_) + ".json");
+    std::ofstream(file) << R"({
+      "camera": {"eye": [0, 3, 6], "look_at": [0, 0.5, 0], "resolution": [8, 8]},
+      "lights": [{"type": "quad", "corner": [-1, 20, -1], "edge_u": [2, 0, 0],
+                  "edge_v": [0, 0, 2], "radiance": [1, 1, 1]}],
+      "meshes": [{"name": "ball", "file": "sphere.off", "transform": {"translate": [5, 0, 0]},
+                  "proxies": [)" +
+                               p + "}]}]}";
+    return loadSceneDesc(file);
+  }
+  std::string proxyHash() const { return sha256OfFile(proxy_); }
+
+  fs::path dir_, proxy_;
+  int count_ = 0;
+};
+
+const TriMesh kUnitBox = test::makeBox({0, 0, 0}, {1, 1, 1});
+// The unit box contains the sphere; shrunk to half its size about its centre it cuts it, so
+// labelled outside it is mislabelled.
+const TriMesh kShrunk = test::transformed(kUnitBox, {0.5f, 0.5f, 0.5f}, 0.5f, {}, "shrunk");
+const TriMesh kGrown = test::transformed(kUnitBox, {0.5f, 0.5f, 0.5f}, 1.2f, {}, "grown");
+
+TEST_F(ClassTrustScene, MislabelledShrunkProxyIsDowngradedAndTheRendererUsesGeneral) {
+  SceneDesc desc = scene(kShrunk, "outside", "");
+  // Taken at its word, the claim reaches the estimators: the bias this guards against.
+  RenderSceneOptions quiet;
+  quiet.quiet = true;
+  EXPECT_EQ(loadRenderScene(desc, quiet)->proxyClass(), ProxyClass::kOutside);
+
+  const std::vector<ProxyTrust> trust = establishProxyClasses(desc, quiet);
+  ASSERT_EQ(trust.size(), 1u);
+  EXPECT_EQ(trust[0].trust.status, ClassStatus::kDowngraded);
+  EXPECT_EQ(trust[0].claimed, ProxyClass::kOutside);
+  EXPECT_EQ(desc.meshes[0].proxies[0].verified_class, ProxyClass::kGeneral);
+  EXPECT_EQ(loadRenderScene(desc, quiet)->proxyClass(), ProxyClass::kGeneral);
+  const std::string line = describeProxyTrust(trust[0]);
+  EXPECT_NE(line.find("downgraded to general"), std::string::npos) << line;
+  EXPECT_NE(line.find("proxy1.off"), std::string::npos) << line;
+}
+
+TEST_F(ClassTrustScene, RecordedHashIsTheFastPath) {
+  const fs::path shrunk = dir_ / "shrunk.off";
+  saveMesh(kShrunk, shrunk);  // the same bytes scene() writes
+  // The hash vouches even for a wrong claim: it records what was proven, so the check is skipped
+  // (which is what makes it fast); proxy-gen and proxy-check only record hashes of proven classes.
+  SceneDesc desc = scene(kShrunk, "outside", sha256OfFile(shrunk));
+  const std::vector<ProxyTrust> trust = establishProxyClasses(desc, {});
+  ASSERT_EQ(trust.size(), 1u);
+  EXPECT_EQ(trust[0].trust.status, ClassStatus::kVerifiedByHash);
+  EXPECT_EQ(desc.meshes[0].proxies[0].verified_class, ProxyClass::kOutside);
+}
+
+TEST_F(ClassTrustScene, ProxyEditedAfterItsHashIsReVerified) {
+  saveMesh(kGrown, dir_ / "earlier.off");  // an earlier version of the proxy, when it was hashed
+  const std::string old_hash = sha256OfFile(dir_ / "earlier.off");
+  const TriMesh edited = test::transformed(kUnitBox, {0.5f, 0.5f, 0.5f}, 1.5f, {}, "edited");
+  SceneDesc desc = scene(edited, "outside", old_hash);
+  ASSERT_NE(proxyHash(), old_hash);
+  const std::vector<ProxyTrust> trust = establishProxyClasses(desc, {});
+  ASSERT_EQ(trust.size(), 1u);
+  EXPECT_EQ(trust[0].trust.status, ClassStatus::kReVerified);
+  EXPECT_NE(trust[0].trust.reason.find("sha256 differs"), std::string::npos);
+  EXPECT_EQ(desc.meshes[0].proxies[0].verified_class, ProxyClass::kOutside);
+}
+
+TEST_F(ClassTrustScene, UnclaimedAndUnusedProxiesAreLeftAlone) {
+  SceneDesc desc = scene(kShrunk, "", "");
+  std::vector<ProxyTrust> trust = establishProxyClasses(desc, {});
+  ASSERT_EQ(trust.size(), 1u);
+  EXPECT_EQ(trust[0].trust.status, ClassStatus::kUnverified);
+  EXPECT_FALSE(desc.meshes[0].proxies[0].verified_class.has_value());
+
+  desc = scene(kShrunk, "outside", "");
+  RenderSceneOptions inside_kind;
+  inside_kind.proxy_kind = "inside";  // the renderer would use none of this mesh's proxies
+  EXPECT_TRUE(establishProxyClasses(desc, inside_kind).empty());
+  desc.meshes[0].place = false;  // nor of a mesh that is neither placed nor instanced
+  EXPECT_TRUE(establishProxyClasses(desc, {}).empty());
+}
+
+}  // namespace
+}  // namespace proxyvis
