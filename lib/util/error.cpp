@@ -5,13 +5,29 @@
 
 namespace proxyvis {
 
+std::string printableText(std::string_view text) {
+  static const char* kHex = "0123456789abcdef";
+  std::string out;
+  out.reserve(text.size());
+  for (const unsigned char c : text) {
+    if (c >= 0x20 && c < 0x7f) {
+      out += char(c);
+    } else {
+      out += "\\x";
+      out += kHex[c >> 4];
+      out += kHex[c & 15];
+    }
+  }
+  return out;
+}
+
 namespace {
 std::string composeMessage(const std::string& file, const std::string& what, const std::string& why,
                            const std::string& todo) {
   std::string msg = file.empty() ? what : file + ": " + what;
   if (!why.empty()) msg += "; " + why;
   if (!todo.empty()) msg += " (" + todo + ")";
-  return msg;
+  return printableText(msg);
 }
 }  // namespace
 
