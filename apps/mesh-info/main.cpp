@@ -43,7 +43,7 @@ int main(int argc, char** argv) {
       throw Error(save_path, "unsupported output extension",
                   "mesh-info writes .obj, .ply, .off or .drc");
     // The converted mesh and the JSON that describes it (with its hash) are written as one unit.
-    OutputSet outputs;
+    OutputSet outputs(MissingFolders::kCreate);
     nlohmann::json all = nlohmann::json::array();
     for (const std::string& file : files) {
       const TriMesh mesh = loadMesh(file);

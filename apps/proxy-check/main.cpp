@@ -47,7 +47,7 @@ void printHuman(const Options& o, const std::string& text) {
 // The error segments and the JSON that describes them (with their hash) as one unit: the JSON is
 // put in place last.
 void writeOutputs(const Options& o, const std::vector<ErrorSegment>& errors, nlohmann::json json) {
-  OutputSet outputs;
+  OutputSet outputs(MissingFolders::kCreate);
   if (!o.dump_errors.empty()) {
     outputs.add(o.dump_errors,
                 [&](const std::filesystem::path& tmp) { writeErrorSegmentsPly(errors, tmp); });

@@ -66,7 +66,7 @@ int runMesh(const Args& a, const CommonOptions& common) {
                 "proxy-gen writes .obj, .ply, .off or .drc");
   const TriMesh input = loadMesh(a.input);
   ProxyGenResult result = generateProxy(input, toOptions(a, common));
-  OutputSet outputs;
+  OutputSet outputs(MissingFolders::kCreate);
   outputs.add(a.output, [&](const fs::path& tmp) { saveMesh(result.proxy, tmp); });
   result.report["output"] = a.output;
   result.report["output_sha256"] = outputs.sha256Of(a.output);
@@ -151,7 +151,7 @@ int runScene(const Args& a, const CommonOptions& common) {
   const fs::path scene_out = fs::path(a.out_dir) / "scene.json";
   saveSceneDesc(scene, scene_out);
   summary += fmt::format("scene with proxies: {}\n", scene_out.string());
-  OutputSet outputs;
+  OutputSet outputs(MissingFolders::kCreate);
   emit({{"scene", a.input}, {"scene_out", scene_out.string()}, {"meshes", reports}}, summary,
        common, outputs);
   return code;

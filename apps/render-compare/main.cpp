@@ -24,6 +24,7 @@
 #include "util/atomic_write.h"
 #include "util/error.h"
 #include "util/output_path.h"
+#include "util/output_set.h"
 #include "util/staged_folder.h"
 
 namespace proxyvis {
@@ -202,7 +203,11 @@ int runCompare(CompareOptions& o) {
   writeTextAtomically(dir / "report.html", reportToHtml(report, layout));
   folder.commit();  // the manifest last, then the folder in place
   const fs::path html = o.out / "report.html";
-  if (!o.common.json_path.empty()) writeTextAtomically(o.common.json_path, json_text);
+  if (!o.common.json_path.empty()) {
+    OutputSet json_output(MissingFolders::kCreate);
+    json_output.addText(o.common.json_path, json_text);
+    json_output.commit();
+  }
 
   // stdout: the equal-time table (the headline) and where the report is. With --json - the
   // JSON owns stdout, so the human text goes to stderr.

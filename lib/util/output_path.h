@@ -41,7 +41,7 @@ struct OutputFlag {
 // input (a folder output) or is named twice; WriteError (exit 3) when it cannot be written: its
 // folder is a file, not writable or on a read-only file system, or the output is a folder.
 // Missing parent folders are not created here (a run that fails later leaves nothing behind);
-// writeAtomically creates them.
+// the program's OutputSet (MissingFolders::kCreate) creates them when it writes.
 void checkOutputs(const std::vector<std::string>& inputs, const std::vector<OutputFlag>& outputs);
 
 }  // namespace proxyvis

@@ -98,7 +98,12 @@ void OutputSet::add(const fs::path& target, const std::function<void(const fs::p
       throw Error(name, "refusing to overwrite an input of this run", {},
                   "choose another output path");
     dir = s.resolved.path.parent_path();
-    createOutputFolder(dir, name);
+    std::error_code ec;
+    if (missing_ == MissingFolders::kCreate)
+      createOutputFolder(dir, name);
+    else if (!fs::is_directory(dir, ec))
+      throw WriteError(name, "cannot write output", "folder '" + dir.string() + "' does not exist",
+                       "create it first");
     removeStaleTemporariesOnce(dir);
     s.tmp = temporaryPathFor(s.resolved.path);
   } else {

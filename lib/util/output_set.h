@@ -15,16 +15,22 @@
 
 namespace proxyvis {
 
+// What to do when the folder of an output does not exist: programs create the folders of the
+// outputs named on their command line (`-o out/x.ply` works on a fresh checkout); library
+// writers fail, so that a typo in a path computed by code does not scatter folders around.
+enum class MissingFolders { kFail, kCreate };
+
 class OutputSet {
  public:
-  OutputSet() = default;
+  explicit OutputSet(MissingFolders missing = MissingFolders::kFail) : missing_(missing) {}
   ~OutputSet();  // removes what was staged and not committed
   OutputSet(const OutputSet&) = delete;
   OutputSet& operator=(const OutputSet&) = delete;
 
   // Calls write(tmp) with a temporary path (same extension as `target`) and keeps the result for
-  // commit(). Throws Error if `target` is an input of this run (exit 2), WriteError if it cannot
-  // be written (exit 3); whatever write throws propagates, and its temporary is removed.
+  // commit(). A missing folder is created or a WriteError, as set at construction. Throws Error if
+  // `target` is an input of this run (exit 2), WriteError if it cannot be written (exit 3);
+  // whatever write throws propagates, and its temporary is removed.
   void add(const std::filesystem::path& target,
            const std::function<void(const std::filesystem::path& tmp)>& write);
   // add() for text; "-" is stdout.
@@ -44,6 +50,7 @@ class OutputSet {
     std::filesystem::path tmp;
     LiveTemporary live;
   };
+  MissingFolders missing_;
   std::vector<Staged> staged_;
 };
 

@@ -14,12 +14,13 @@ def box_off(lo: float, hi: float) -> str:
     return "\n".join(lines + ["3 " + t for t in tris]) + "\n"
 
 
-def scene(radiance: float) -> str:
+def scene(radiance: float, size: float = 2) -> str:
     return json.dumps({
         "camera": {"eye": [0, 3, 6], "look_at": [0, 0.5, 0], "fov_deg": 40,
                    "resolution": [16, 12]},
-        "lights": [{"type": "quad", "corner": [-1, 4, -1], "edge_u": [2, 0, 0],
-                    "edge_v": [0, 0, 2], "radiance": [radiance] * 3}],
+        "lights": [{"type": "quad", "corner": [-size / 2, 4, -size / 2],
+                    "edge_u": [size, 0, 0], "edge_v": [0, 0, size],
+                    "radiance": [radiance] * 3}],
         "meshes": [
             {"name": "ground", "file": "ground.obj", "transform": {"scale": 10}},
             {"name": "box", "file": "cube.off", "transform": {"translate": [-0.5, 0, -0.5]},
@@ -39,8 +40,8 @@ def build(out: pathlib.Path, data: pathlib.Path) -> None:
     os.link(io / "cube.off", io / "hard_cube.off")
     (io / "scene.json").write_text(scene(8))
     os.symlink("scene.json", io / "link_to_scene.json")
-    # 1e38 is a finite float; squared errors of such pixels are not.
-    (io / "huge_radiance.json").write_text(scene(1e38))
+    # 3e38 is a finite float, but a large light of it lights pixels beyond the largest float.
+    (io / "huge_radiance.json").write_text(scene(3e38, 100))
     os.symlink("/dev/null", io / "null.ply")  # a device behind a link: written in place
     (io / "a_file").write_text("not a folder\n")
     (io / "a_folder").mkdir()

@@ -37,6 +37,18 @@ TEST(AtomicWrite, FailureLeavesNothing) {
   EXPECT_TRUE(fs::is_empty(d));
 }
 
+TEST(AtomicWrite, MissingDirectoryIsWriteError) {
+  fs::path d = freshDir("atomic_missing");
+  try {
+    writeTextAtomically(d / "missing" / "c.txt", "x");
+    FAIL() << "expected WriteError";
+  } catch (const WriteError& e) {
+    EXPECT_EQ(e.exitCode(), kExitCannotWrite);
+    EXPECT_NE(std::string(e.what()).find("does not exist"), std::string::npos);
+  }
+  EXPECT_TRUE(fs::is_empty(d));
+}
+
 TEST(AtomicWrite, UnwritableDirectoryIsWriteError) {
   fs::path d = freshDir("atomic_nodir");
   writeTextAtomically(d / "a_file", "x");

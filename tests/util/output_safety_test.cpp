@@ -114,9 +114,13 @@ TEST(OutputTarget, FolderIsAWriteError) {
   EXPECT_TRUE(fs::is_directory(d / "a_folder"));
 }
 
-TEST(OutputTarget, MissingParentsAreCreated) {
+TEST(OutputTarget, MissingParentsAreCreatedOnlyWhenAsked) {
   const fs::path d = freshDir("out_parents");
-  writeTextAtomically(d / "new" / "deeper" / "c.txt", "x");
+  EXPECT_THROW(writeTextAtomically(d / "new" / "deeper" / "c.txt", "x"), WriteError);
+  EXPECT_TRUE(fs::is_empty(d));
+  OutputSet set(MissingFolders::kCreate);
+  set.addText(d / "new" / "deeper" / "c.txt", "x");
+  set.commit();
   EXPECT_EQ(slurp(d / "new" / "deeper" / "c.txt"), "x");
 }
 
