@@ -44,6 +44,8 @@ bad_input_test(io_two_outputs_one_file proxy-check "${pair} --json @OUT@/x --dum
 bad_input_test(io_proxy_gen_output_to_dev_null_link proxy-gen
   "${io}/cube.off -o ${io}/null.ply --kind outside --method hull --quiet" CODE 0
   INPUTS ${io}/null.ply ${io}/cube.off WATCH ${io} TIMEOUT 60)
+bad_input_test(io_mesh_info_json_to_dev_stdout mesh-info "${io}/cube.off --json /dev/stdout --quiet"
+  CODE 0 INPUTS ${io}/cube.off WATCH ${io} TIMEOUT 20)
 
 # Outputs that cannot be written: exit 3 before the work, with the system's reason.
 bad_input_test(io_proxy_check_dump_errors_dev_full proxy-check "${pair} --dump-errors /dev/full"
