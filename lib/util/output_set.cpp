@@ -66,6 +66,25 @@ void copyInto(const fs::path& tmp, const OutputTarget& target, const std::string
   if (err != 0) throw WriteError(output, "cannot write output", systemError(err));
 }
 
+// Rethrows the current Error with the hidden temporary's name replaced by the output's: a writer
+// only knows the path it was given, the user only the one they named. Same exit code.
+[[noreturn]] void rethrowNamingTarget(const fs::path& tmp, const std::string& name) {
+  try {
+    throw;
+  } catch (const Error& e) {
+    const std::string hidden = printableText(tmp.string());
+    std::string message = e.what();
+    if (message.find(hidden) == std::string::npos) throw;
+    for (size_t at = message.find(hidden); at != std::string::npos;
+         at = message.find(hidden, at + name.size()))
+      message.replace(at, hidden.size(), name);
+    if (message.rfind(name + ": ", 0) == 0) message.erase(0, name.size() + 2);
+    if (e.exitCode() == kExitCannotWrite) throw WriteError(name, message);
+    if (e.exitCode() == kExitCheckFailed) throw CheckFailed(name, message);
+    throw Error(name, message);
+  }
+}
+
 }  // namespace
 
 void writeFileBytes(const fs::path& path, const std::string& bytes, const std::string& output) {
@@ -127,7 +146,7 @@ void OutputSet::add(const fs::path& target, const std::function<void(const fs::p
   } catch (...) {
     std::error_code ec;
     fs::remove(s.tmp, ec);
-    throw;
+    rethrowNamingTarget(s.tmp, name);
   }
   std::error_code ec;
   if (!fs::is_regular_file(s.tmp, ec)) {

@@ -289,6 +289,22 @@ TEST(OutputSet, UncommittedLeavesNothing) {
   EXPECT_EQ(entries(d), 1u);
 }
 
+TEST(OutputSet, WriterErrorsNameTheOutputNotTheTemporary) {
+  const fs::path d = freshDir("set_error_name");
+  OutputSet set;
+  try {
+    set.add(d / "proxy.ply", [](const fs::path& tmp) {
+      throw WriteError(tmp.string(), "cannot write output", "cannot create '" + tmp.string() + "'");
+    });
+    FAIL() << "expected WriteError";
+  } catch (const WriteError& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(what.find(".tmp"), std::string::npos) << what;
+    EXPECT_EQ(what.rfind((d / "proxy.ply").string() + ": cannot write output", 0), 0u) << what;
+  }
+  EXPECT_TRUE(fs::is_empty(d));
+}
+
 TEST(StagedFolder, ReplacesThePreviousReportAsAWhole) {
   const fs::path d = freshDir("staged_replace");
   for (const char* run : {"first", "second"}) {
