@@ -10,8 +10,9 @@
 #include "mesh/mesh_io.h"
 #include "mesh/validation.h"
 #include "util/app_main.h"
-#include "util/atomic_write.h"
 #include "util/error.h"
+#include "util/output_path.h"
+#include "util/output_set.h"
 #include "util/sha256.h"
 
 namespace {
@@ -56,16 +57,17 @@ int main(int argc, char** argv) {
                  "write the (single) input mesh to this file (format by extension)");
   app.add_option("--draco-bits", save.draco_quantization,
                  "with --save *.drc: position quantization bits (0 = lossless)")
-      ->check(CLI::Range(0, 30));
+      ->check(integerIn(0, 30));
   app.add_option("--draco-speed", save.draco_speed,
                  "with --save *.drc: encoder speed 0 (smallest) .. 10 (sequential connectivity)")
-      ->check(CLI::Range(0, 10));
+      ->check(integerIn(0, 10));
   app.add_flag("!--ascii", save.binary, "with --save *.ply: write ASCII instead of binary");
   std::string expect_sha256;
   app.add_option("--expect-sha256", expect_sha256,
                  "refuse the (single) input unless its SHA-256 is this (64 hex digits)")
       ->check(sha256Digits);
   return runApp(app, argc, argv, common, [&] {
+    checkOutputs(files, {{"--json", common.json_path}, {"--save", save_path}});
     if (!save_path.empty() && files.size() != 1)
       throw Error({}, "--save needs exactly one input mesh",
                   std::to_string(files.size()) + " given");
@@ -75,17 +77,27 @@ int main(int argc, char** argv) {
                     std::to_string(files.size()) + " given");
       checkExpectedSha256(files[0], expect_sha256);
     }
+    if (!save_path.empty() && !isSupportedMeshExtension(save_path))
+      throw Error(save_path, "unsupported output extension",
+                  "mesh-info writes .obj, .ply, .off or .drc");
+    // The converted mesh and the JSON that describes it (with its hash) are written as one unit.
+    OutputSet outputs(MissingFolders::kCreate);
     nlohmann::json all = nlohmann::json::array();
     for (const std::string& file : files) {
       const TriMesh mesh = loadMesh(file);
-      if (!save_path.empty()) saveMesh(mesh, save_path, save);
+      nlohmann::json j;
+      if (!save_path.empty()) {
+        addMeshOutput(outputs, mesh, save_path, save);
+        j["saved"] = {{"file", save_path}, {"sha256", outputs.sha256Of(save_path)}};
+      }
       const MeshReport report = validateMesh(mesh, validation);
-      if (!common.quiet) std::fputs(formatReport(report, file).c_str(), stdout);
-      nlohmann::json j = toJson(report);
+      if (!common.quiet) printHumanReport(common, formatReport(report, file));
+      j.update(toJson(report));
       j["file"] = file;
       all.push_back(std::move(j));
     }
-    if (!common.json_path.empty()) writeTextAtomically(common.json_path, all.dump(2) + "\n");
+    if (!common.json_path.empty()) outputs.addText(common.json_path, all.dump(2) + "\n");
+    outputs.commit();
     return kExitOk;
   });
 }

@@ -19,14 +19,18 @@
 #include "proxies/check/scene_segments.h"
 #include "scene/scene_desc.h"
 #include "util/app_main.h"
-#include "util/atomic_write.h"
 #include "util/error.h"
+#include "util/output_path.h"
+#include "util/output_set.h"
 #include "util/sha256.h"
 
 namespace fs = std::filesystem;
 using namespace proxyvis;
 
 namespace {
+
+// Ten billion segments take hours; more is a typo (2^64-1 would never end).
+constexpr uint64_t kMaxRays = 10'000'000'000ULL;
 
 struct Options {
   CommonOptions common;
@@ -40,11 +44,22 @@ struct Options {
 
 // The human report goes to stdout unless the JSON does; then to stderr (unless --quiet).
 void printHuman(const Options& o, const std::string& text) {
-  if (o.common.json_path != "-") {
-    std::fputs(text.c_str(), stdout);
-  } else if (!o.common.quiet) {
-    std::fputs(text.c_str(), stderr);
+  printHumanReport(o.common, text);
+}
+
+// The error segments and the JSON that describes them (with their hash) as one unit: the JSON is
+// put in place last.
+void writeOutputs(const Options& o, const std::vector<ErrorSegment>& errors, nlohmann::json json) {
+  OutputSet outputs(MissingFolders::kCreate);
+  if (!o.dump_errors.empty()) {
+    outputs.add(o.dump_errors,
+                [&](const std::filesystem::path& tmp) { writeErrorSegmentsPly(errors, tmp); });
+    json["dump_errors"] = {{"file", o.dump_errors},
+                           {"segments", errors.size()},
+                           {"sha256", outputs.sha256Of(o.dump_errors)}};
   }
+  if (!o.common.json_path.empty()) outputs.addText(o.common.json_path, json.dump(2) + "\n");
+  outputs.commit();
 }
 
 void printMismatch(const PairCheckReport& r) {
@@ -75,9 +90,7 @@ int runPair(const Options& o) {
   PairCheckReport r = checkPair(original, proxy, pairOptions(o));
   printHuman(o, formatHumanReport(r));
   printMismatch(r);
-  if (!o.dump_errors.empty()) writeErrorSegmentsPly(r.sampled.errors, o.dump_errors);
-  if (!o.common.json_path.empty())
-    writeTextAtomically(o.common.json_path, toJson(r).dump(2) + "\n");
+  writeOutputs(o, r.sampled.errors, toJson(r));
   return r.failed() ? kExitCheckFailed : kExitOk;
 }
 
@@ -146,16 +159,13 @@ int runScene(const Options& o) {
   if (pairs == 0)
     throw Error(o.inputs[0], "the scene lists no proxies", "there is nothing to check",
                 "generate them with proxy-gen SCENE.json");
-  if (!o.dump_errors.empty()) writeErrorSegmentsPly(all_errors, o.dump_errors);
   if (!o.write_scene.empty()) saveSceneDesc(proven, o.write_scene);
-  if (!o.common.json_path.empty()) {
-    nlohmann::json j = {{"scene", scene.path.string()},
-                        {"seed", o.common.seed},
-                        {"rays", o.rays},
-                        {"checks", checks},
-                        {"ok", !failed}};
-    writeTextAtomically(o.common.json_path, j.dump(2) + "\n");
-  }
+  writeOutputs(o, all_errors,
+               {{"scene", scene.path.string()},
+                {"seed", o.common.seed},
+                {"rays", o.rays},
+                {"checks", checks},
+                {"ok", !failed}});
   return failed ? kExitCheckFailed : kExitOk;
 }
 
@@ -174,7 +184,7 @@ int main(int argc, char** argv) {
       ->required()
       ->expected(1, 2);
   app.add_option("--rays", o.rays, "Number of segments to sample")
-      ->check(positiveNumber())
+      ->check(integerIn(1, kMaxRays))
       ->capture_default_str();
   app.add_option("--distribution", o.distribution,
                  "sphere: random lines through a sphere around both meshes; scene: camera hits "
@@ -194,6 +204,9 @@ int main(int argc, char** argv) {
                  "render-compare relies on it without checking again. Written also when a check "
                  "fails (exit 1): it then records what holds.");
   return runApp(app, argc, argv, o.common, [&] {
+    checkOutputs(o.inputs, {{"--json", o.common.json_path},
+                            {"--dump-errors", o.dump_errors},
+                            {"--write-scene", o.write_scene}});
     if (o.inputs.size() == 1) {
       if (fs::path(o.inputs[0]).extension() != ".json")
         throw Error(o.inputs[0], "one input must be a scene (.json)",

@@ -13,8 +13,9 @@
 #include "proxies/general/proxy_pipeline.h"
 #include "scene/scene_desc.h"
 #include "util/app_main.h"
-#include "util/atomic_write.h"
 #include "util/error.h"
+#include "util/output_path.h"
+#include "util/output_set.h"
 #include "util/progress.h"
 #include "util/rng.h"
 #include "util/sha256.h"
@@ -49,14 +50,13 @@ ProxyGenOptions toOptions(const Args& a, const CommonOptions& common) {
   return o;
 }
 
-// The JSON goes to --json; the human summary to stdout, or to stderr when stdout carries JSON.
-void emit(const json& report, const std::string& summary, const CommonOptions& common) {
-  if (!common.json_path.empty()) writeTextAtomically(common.json_path, report.dump(2) + "\n");
-  if (common.json_path == "-") {
-    if (!common.quiet) std::fputs(summary.c_str(), stderr);
-  } else {
-    std::fputs(summary.c_str(), stdout);
-  }
+// The JSON goes to --json, put in place after the files staged in `outputs` that it describes;
+// the human summary to stdout, or to stderr when stdout carries JSON.
+void emit(const json& report, const std::string& summary, const CommonOptions& common,
+          OutputSet& outputs) {
+  if (!common.json_path.empty()) outputs.addText(common.json_path, report.dump(2) + "\n");
+  outputs.commit();
+  printHumanReport(common, summary);
 }
 
 int runMesh(const Args& a, const CommonOptions& common) {
@@ -67,9 +67,11 @@ int runMesh(const Args& a, const CommonOptions& common) {
                 "proxy-gen writes .obj, .ply, .off or .drc");
   const TriMesh input = loadMesh(a.input);
   ProxyGenResult result = generateProxy(input, toOptions(a, common));
-  saveMesh(result.proxy, a.output);
+  OutputSet outputs(MissingFolders::kCreate);
+  addMeshOutput(outputs, result.proxy, a.output);
   result.report["output"] = a.output;
-  emit(result.report, formatProxyReport(result.report), common);
+  result.report["output_sha256"] = outputs.sha256Of(a.output);
+  emit(result.report, formatProxyReport(result.report), common, outputs);
   return kExitOk;
 }
 
@@ -153,8 +155,9 @@ int runScene(const Args& a, const CommonOptions& common) {
   const fs::path scene_out = fs::path(a.out_dir) / "scene.json";
   saveSceneDesc(scene, scene_out);
   summary += fmt::format("scene with proxies: {}\n", scene_out.string());
+  OutputSet outputs(MissingFolders::kCreate);
   emit({{"scene", a.input}, {"scene_out", scene_out.string()}, {"meshes", reports}}, summary,
-       common);
+       common, outputs);
   return code;
 }
 
@@ -197,6 +200,7 @@ int main(int argc, char** argv) {
   app.add_flag("--fill-holes", a.fill_holes, "inside: fill the holes of an open input first");
   addCommonOptions(app, common);
   return runApp(app, argc, argv, common, [&] {
+    checkOutputs({a.input}, {{"-o", a.output}, {"--json", common.json_path}});
     fs::path in(a.input);
     std::string ext = in.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),

@@ -24,34 +24,38 @@ std::vector<std::string> splitList(const std::string& list) {
 
 void addCompareOptions(CLI::App& app, CompareOptions& o) {
   app.add_option("scene", o.scene, "Scene file (JSON, scenes/FORMAT.md)")->required();
-  app.add_option("--out", o.out, "Output directory (created if missing)")->required();
+  app.add_option("--out", o.out,
+                 "Output folder (created if missing; each run replaces it as a whole)")
+      ->required();
   app.add_option("--estimators", o.estimators, "Comma-separated estimators")->capture_default_str();
   app.add_option("--spp", o.spp,
                  "Comma-separated light samples per pixel for the equal-sample table")
       ->capture_default_str();
   app.add_option("--equal-time", o.equal_time,
                  "Seconds per render for the equal-time table (0 = no such table)")
-      ->check(nonNegativeNumber())
+      ->check(numberIn(0, kMaxEqualTimeSeconds))
       ->capture_default_str();
   app.add_option("--reference-spp", o.reference_spp,
                  "Samples per pixel of the exact reference (0 = max(1024, 16 x largest --spp))")
-      ->check(nonNegativeNumber())
+      ->check(integerIn(0, kMaxSpp))
       ->capture_default_str();
   app.add_option("--seeds", o.seeds,
                  "Independent renders per table cell (standard error over them)")
-      ->check(positiveNumber())
+      ->check(integerIn(1, kMaxSeeds))
       ->capture_default_str();
-  app.add_option("--width", o.width, "Override the scene's image width (0 = keep)")
-      ->check(nonNegativeNumber());
-  app.add_option("--height", o.height, "Override the scene's image height (0 = keep)")
-      ->check(nonNegativeNumber());
+  // The scene's own limit (scenes/FORMAT.md): an override may not bypass it.
+  app.add_option("--width", o.width, "Override the scene's image width")
+      ->check(integerIn(1, kMaxImageSide));
+  app.add_option("--height", o.height, "Override the scene's image height")
+      ->check(integerIn(1, kMaxImageSide));
   app.add_option("--proxy-kind", o.proxy_kind,
-                 "Use each mesh's proxy of this kind (outside, inside, general; default: first)");
+                 "Use each mesh's proxy of this kind (outside, inside, general; default: first)")
+      ->check(CLI::IsMember({"outside", "inside", "general"}));
   app.add_option("--q-min", o.q_min, "Roulette floor where an error class is possible")
-      ->check(CLI::Range(1e-6, 1.0))
+      ->check(numberIn(1e-6, 1.0))
       ->capture_default_str();
   app.add_option("--probes", o.probes, "Probe rays per shading point (paper-optimal, paper-cost)")
-      ->check(positiveNumber())
+      ->check(integerIn(1, kMaxProbes))
       ->capture_default_str();
   app.add_option("--build", o.build,
                  "Instances as Embree instances, flattened into one BVH, or auto (flat when the "
@@ -76,18 +80,12 @@ void CompareOptions::resolve() {
     throw Error({}, "--estimators is empty", {},
                 "name at least one estimator, e.g. exact,roulette");
   spp_list.clear();
-  for (const std::string& item : splitList(spp)) {
-    size_t used = 0;
-    int v = 0;
-    try {
-      v = std::stoi(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != item.size() || v <= 0)
-      throw Error({}, "--spp: '" + item + "' is not a positive integer", {},
-                  "give a comma-separated list such as 4,16");
-    spp_list.push_back(v);
+  const CLI::Validator spp_check = integerIn(1, kMaxSpp);
+  for (std::string item : splitList(spp)) {
+    const std::string problem = spp_check(item);
+    if (!problem.empty())
+      throw Error({}, "--spp: " + problem, {}, "give a comma-separated list such as 4,16");
+    spp_list.push_back(std::stoi(item));
   }
   fixed_costs.reset();
   if (roulette_costs != "measured") {
@@ -123,7 +121,7 @@ int CompareOptions::referenceSpp(int largest_spp_reached) const {
   int64_t wanted = std::max<int64_t>(1024, 16 * int64_t(largest_spp_reached));
   int64_t spp = 1;
   while (spp < wanted) spp *= 2;
-  return int(std::min<int64_t>(spp, 1 << 24));
+  return int(std::min<int64_t>(spp, int64_t(kMaxSpp)));
 }
 
 }  // namespace proxyvis

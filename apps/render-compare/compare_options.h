@@ -14,6 +14,14 @@
 
 namespace proxyvis {
 
+// The ranges of the numeric flags: what a run can use, so that a typo fails at once instead of
+// running for days or bypassing the scene's own limits.
+inline constexpr uint64_t kMaxSpp = 1 << 24;  // also the largest automatic reference
+inline constexpr double kMaxEqualTimeSeconds = 86400;
+inline constexpr uint64_t kMaxSeeds = 1000;
+inline constexpr uint64_t kMaxImageSide = 16384;  // the scene format's limit
+inline constexpr uint64_t kMaxProbes = 4096;
+
 struct CompareOptions {
   std::filesystem::path scene;
   std::filesystem::path out;
@@ -22,7 +30,7 @@ struct CompareOptions {
   double equal_time = 1.0;  // seconds per render; 0 = no equal-time table
   int reference_spp = 0;    // 0 = max(1024, 16 × the largest spp reached), a power of two
   int seeds = 3;
-  int width = 0, height = 0;  // 0 = the scene's resolution
+  int width = 0, height = 0;  // 0 (not given) = the scene's resolution
   std::string proxy_kind;     // which proxy of each mesh ("outside", "inside", "general")
   double q_min = 0.05;
   int probes = 16;

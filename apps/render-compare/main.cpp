@@ -24,28 +24,14 @@
 #include "util/app_main.h"
 #include "util/atomic_write.h"
 #include "util/error.h"
+#include "util/output_path.h"
+#include "util/output_set.h"
+#include "util/staged_folder.h"
 
 namespace proxyvis {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Creates the output directory and proves it is writable before any rendering starts, so an
-// unwritable --out fails in a second (exit 3) instead of after minutes of work.
-void prepareOutputDirectory(const fs::path& dir) {
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec || !fs::is_directory(dir, ec))
-    throw WriteError(dir.string(), "cannot create the output directory",
-                     ec ? ec.message() : "a file of that name exists", "choose another --out");
-  fs::path probe = dir / ".render-compare-write-test";
-  {
-    std::ofstream out(probe);
-    out << "ok";
-    if (!out) throw WriteError(dir.string(), "output directory is not writable");
-  }
-  fs::remove(probe, ec);
-}
 
 std::string listText(const std::vector<int>& v) {
   std::string s;
@@ -142,10 +128,17 @@ Report makeReport(const CompareOptions& o, const RenderScene& scene, const Refer
 }
 
 int runCompare(CompareOptions& o) {
+  checkOutputs({o.scene.string()},
+               {{"--out", o.out.string(), /*is_folder=*/true}, {"--json", o.common.json_path}});
   o.resolve();
   SceneDesc desc = loadSceneDesc(o.scene);
   if (o.width > 0) desc.camera.width = o.width;
   if (o.height > 0) desc.camera.height = o.height;
+  // The report folder is written under a temporary name and swapped in at the end: a rerun
+  // leaves nothing of the previous report, a failed or killed one leaves it intact. Staged
+  // before any rendering, so an unwritable --out fails in a second (exit 3).
+  StagedFolder folder(o.out, "render-compare", "report.json");
+  const fs::path& dir = folder.path();
 
   RenderSceneOptions scene_options;
   scene_options.proxy_kind = o.proxy_kind;
@@ -159,7 +152,6 @@ int runCompare(CompareOptions& o) {
     if (t.trust.status == ClassStatus::kDowngraded)
       std::fprintf(stderr, "render-compare: warning: %s: %s\n",
                    desc.path.filename().string().c_str(), describeProxyTrust(t).c_str());
-  prepareOutputDirectory(o.out);  // after the trust checks: they only read inputs
   std::unique_ptr<RenderScene> scene = loadRenderScene(desc, scene_options);
 
   // Cells in table order; the stems name their images.
@@ -179,10 +171,10 @@ int runCompare(CompareOptions& o) {
   for (const CellResult& c : cells)
     largest_spp = std::max(largest_spp, c.row.extra.at("spp_max").get<int>());
 
-  Reference ref = loadOrRenderReference(*scene, o, o.referenceSpp(largest_spp));
+  Reference ref = loadOrRenderReference(*scene, o, o.referenceSpp(largest_spp), dir);
   if (!o.common.quiet)
     std::fprintf(stderr, "render-compare: reference %s (%d spp, variance of mean %.2e)%s\n",
-                 ref.file.string().c_str(), ref.spp, ref.variance_of_mean,
+                 (o.out / ref.file.filename()).string().c_str(), ref.spp, ref.variance_of_mean,
                  ref.cached ? " [cached]" : "");
   for (CellResult& c : cells) scoreCell(c, ref.radiance);
 
@@ -194,13 +186,14 @@ int runCompare(CompareOptions& o) {
       o.estimator_list.end())
     report.notes.push_back("exact was not among --estimators: efficiencies are reported as 0.");
   addReferenceNotes(report, ref, o.common.quiet);
+  requireFiniteRows(report.rows, desc.path);
   for (size_t i = 0; i < cells.size(); ++i) cells[i].row = report.rows[i];
 
   // Images and heat-maps; one colour scale per kind of map and table, so the maps of the
   // estimators in one table compare.
   float exposure = autoExposure(ref.radiance);
   const std::string reference_png = "reference.png";
-  writeImage(ref.radiance, o.out / reference_png, {exposure, false, {}});
+  writeImage(ref.radiance, dir / reference_png, {exposure, false, {}});
   HtmlReportLayout layout;
   layout.plots.push_back(mseTimePlot(report.rows));
   auto addTable = [&](std::string_view table, double spp, const std::string& title) {
@@ -216,8 +209,7 @@ int runCompare(CompareOptions& o) {
     }
     for (const auto& m : cost_maps) cost_ptrs.push_back(&m);
     HeatMapRange error_range = sharedLogRange(error_maps), cost_range = sharedLogRange(cost_ptrs);
-    for (const CellImages& im : images)
-      writeCellImages(im, o.out, exposure, error_range, cost_range);
+    for (const CellImages& im : images) writeCellImages(im, dir, exposure, error_range, cost_range);
     return cellGalleries(title, reference_png, images, error_range, cost_range);
   };
   auto add = [&](const std::vector<HtmlGallery>& g, bool shown) {
@@ -232,16 +224,21 @@ int runCompare(CompareOptions& o) {
 
   nlohmann::json json = reportToJson(report);
   const std::string json_text = json.dump(2) + "\n";
-  writeTextAtomically(o.out / "report.json", json_text);
-  writeTextAtomically(o.out / "report.csv", reportToCsv(report.rows));
-  writeTextAtomically(o.out / "report.md", reportToMarkdown(report));
+  writeTextAtomically(dir / "report.json", json_text);
+  writeTextAtomically(dir / "report.csv", reportToCsv(report.rows));
+  writeTextAtomically(dir / "report.md", reportToMarkdown(report));
+  writeTextAtomically(dir / "report.html", reportToHtml(report, layout));
+  folder.commit();  // the manifest last, then the folder in place
   const fs::path html = o.out / "report.html";
-  writeTextAtomically(html, reportToHtml(report, layout));
-  if (!o.common.json_path.empty()) writeTextAtomically(o.common.json_path, json_text);
+  if (!o.common.json_path.empty()) {
+    OutputSet json_output(MissingFolders::kCreate);
+    json_output.addText(o.common.json_path, json_text);
+    json_output.commit();
+  }
 
   // stdout: the equal-time table (the headline) and where the report is. With --json - the
   // JSON owns stdout, so the human text goes to stderr.
-  FILE* human = o.common.json_path == "-" ? stderr : stdout;
+  FILE* human = jsonOnStdout(o.common) ? stderr : stdout;
   std::string_view headline = o.equal_time > 0 ? kEqualTimeTable : kEqualSppTable;
   std::fprintf(human,
                "\n%s MSE (relMSE eps = %g; efficiency = 1/(MSE*time) relative to exact):\n\n%s\n",

@@ -2,11 +2,13 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "metrics/image_variance.h"
 #include "metrics/stopwatch.h"
 #include "render/image_io.h"
+#include "runs.h"
 #include "util/atomic_write.h"
 #include "util/error.h"
 #include "util/input_file.h"
@@ -51,6 +53,8 @@ bool loadCached(Reference& ref, const fs::path& json_file, int width, int height
     if (j.at("key") != ref.key || j.at("spp").get<int>() < min_spp || image.width != width ||
         image.height != height || image.channels < 3)
       return false;
+    for (float v : image.pixels)
+      if (!std::isfinite(v)) return false;
     if (image.channels != 3) {  // keep RGB only
       Image rgb{width, height, 3, std::vector<float>(size_t(width) * height * 3)};
       for (int y = 0; y < height; ++y)
@@ -72,15 +76,29 @@ bool loadCached(Reference& ref, const fs::path& json_file, int width, int height
 
 }  // namespace
 
-Reference loadOrRenderReference(const RenderScene& scene, const CompareOptions& options, int spp) {
+Reference loadOrRenderReference(const RenderScene& scene, const CompareOptions& options, int spp,
+                                const fs::path& write_dir) {
   const SceneDesc& desc = scene.desc();
   Reference ref;
   ref.partials = std::min(kPartials, spp);
   const int per_partial = (spp + ref.partials - 1) / ref.partials;
   ref.key = cacheKey(desc, scene.instancesFlattened());
-  ref.file = options.out / ("reference-" + ref.key + ".exr");
-  const fs::path json_file = options.out / ("reference-" + ref.key + ".json");
-  if (loadCached(ref, json_file, desc.camera.width, desc.camera.height, spp)) return ref;
+  const std::string exr_name = "reference-" + ref.key + ".exr";
+  const std::string json_name = "reference-" + ref.key + ".json";
+  ref.file = options.out / exr_name;
+  if (loadCached(ref, options.out / json_name, desc.camera.width, desc.camera.height, spp)) {
+    ref.file = write_dir / exr_name;
+    for (const std::string& name : {exr_name, json_name}) {
+      std::error_code ec;
+      fs::copy_file(options.out / name, write_dir / name, fs::copy_options::overwrite_existing, ec);
+      if (ec)
+        throw WriteError((write_dir / name).string(), "cannot copy the cached reference",
+                         ec.message());
+    }
+    return ref;
+  }
+  ref.file = write_dir / exr_name;
+  const fs::path json_file = write_dir / json_name;
   ref.spp = per_partial * ref.partials;
 
   ImageVarianceAccumulator acc;
@@ -101,6 +119,7 @@ Reference loadOrRenderReference(const RenderScene& scene, const CompareOptions& 
   ref.seconds = watch.seconds();
   ref.variance_of_mean = acc.meanVarianceOfMean();
   ref.radiance = Image{desc.camera.width, desc.camera.height, 3, acc.mean()};
+  requireFinitePixels(ref.radiance, desc.path, "the exact reference");
 
   writeImage(ref.radiance, ref.file, {1.0f, /*full_float=*/true, {}});
   nlohmann::json j = {{"key", ref.key},

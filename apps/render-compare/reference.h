@@ -25,6 +25,10 @@ struct Reference {
   std::filesystem::path file;  // the EXR
 };
 
-Reference loadOrRenderReference(const RenderScene& scene, const CompareOptions& options, int spp);
+// The cache is looked up in options.out (the previous report folder) and the reference is
+// written to `write_dir` (the report folder being staged), copied there when it came from the
+// cache, so that the new folder keeps it.
+Reference loadOrRenderReference(const RenderScene& scene, const CompareOptions& options, int spp,
+                                const std::filesystem::path& write_dir);
 
 }  // namespace proxyvis

@@ -4,10 +4,12 @@
 
 #include <algorithm>
 #include <climits>
+#include <cmath>
 #include <cstdio>
 
 #include "metrics/efficiency.h"
 #include "metrics/image_error.h"
+#include "util/error.h"
 #include "util/rng.h"
 
 namespace proxyvis {
@@ -46,6 +48,8 @@ CellResult runCell(const RenderScene& scene, const CompareOptions& options, Esti
     settings.seed = hashKeys(options.common.seed, uint64_t(k));
     settings.quiet = options.common.quiet;
     RenderResult r = render(scene, settings);
+    requireFinitePixels(r.radiance, scene.desc().path,
+                        fmt::format("the {} render (seed {})", estimatorName(kind), k + 1));
     seconds.push_back(r.seconds);
     spp_reached.push_back(r.spp);
     shading.push_back(r.shading_seconds);
@@ -75,6 +79,32 @@ CellResult runCell(const RenderScene& scene, const CompareOptions& options, Esti
   row.extra["visibility_seconds"] = summarizeSeeds(visibility).mean;
   if (time_budget > 0) row.extra["time_budget"] = time_budget;
   return cell;
+}
+
+void requireFinitePixels(const Image& image, const std::filesystem::path& scene,
+                         const std::string& what) {
+  const auto bad = std::find_if(image.pixels.begin(), image.pixels.end(),
+                                [](float v) { return !std::isfinite(v); });
+  if (bad == image.pixels.end()) return;
+  const size_t pixel = size_t(bad - image.pixels.begin()) / size_t(std::max(image.channels, 1));
+  throw Error(scene.string(),
+              fmt::format("{} has a non-finite pixel ({} at x={}, y={})", what, *bad,
+                          pixel % size_t(std::max(image.width, 1)),
+                          pixel / size_t(std::max(image.width, 1))),
+              "a radiance of the scene overflows single-precision floats, so no error or "
+              "efficiency can be computed",
+              "scale the scene's light and material values down");
+}
+
+void requireFiniteRows(const std::vector<ReportRow>& rows, const std::filesystem::path& scene) {
+  for (const ReportRow& r : rows)
+    if (!std::isfinite(r.mse) || !std::isfinite(r.relmse) || !std::isfinite(r.efficiency))
+      throw Error(scene.string(),
+                  fmt::format("the {} row of {} has a non-finite error (MSE {}, relMSE {}, "
+                              "efficiency {})",
+                              r.estimator, r.table, r.mse, r.relmse, r.efficiency),
+                  "the squared errors overflow: the scene's radiance is too large",
+                  "scale the scene's light and material values down");
 }
 
 void scoreCell(CellResult& cell, const Image& reference) {

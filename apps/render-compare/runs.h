@@ -1,6 +1,8 @@
 #pragma once
 // One table cell: an estimator rendered with K seeds at a sample count (equal-spp) or a time
 // budget (equal-time), scored against the reference.
+#include <filesystem>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -23,6 +25,14 @@ struct CellResult {
 // sized by the samples every cell actually reached.
 CellResult runCell(const RenderScene& scene, const CompareOptions& options, EstimatorKind kind,
                    int spp, double time_budget, std::string_view table);
+
+// Throws Error naming `scene` if `image` has an inf or NaN pixel: every MSE and efficiency would
+// then be inf or NaN, and a table of those says nothing. `what` names the render.
+void requireFinitePixels(const Image& image, const std::filesystem::path& scene,
+                         const std::string& what);
+
+// Throws Error naming `scene` if a row's MSE, relMSE or efficiency is not finite.
+void requireFiniteRows(const std::vector<ReportRow>& rows, const std::filesystem::path& scene);
 
 // MSE, relMSE and their standard errors over the seeds; frees the per-seed images.
 void scoreCell(CellResult& cell, const Image& reference);

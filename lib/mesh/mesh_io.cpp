@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <fstream>
 #include <sstream>
 #include <system_error>
 
@@ -13,6 +12,7 @@
 #include "util/atomic_write.h"
 #include "util/error.h"
 #include "util/input_file.h"
+#include "util/output_set.h"
 
 namespace proxyvis {
 namespace fs = std::filesystem;
@@ -90,7 +90,8 @@ TriMesh parseMeshBytes(std::string bytes, const fs::path& path) {
   return mesh;
 }
 
-void saveMesh(const TriMesh& mesh, const fs::path& path, const SaveOptions& options) {
+void addMeshOutput(OutputSet& outputs, const TriMesh& mesh, const fs::path& path,
+                   const SaveOptions& options) {
   const std::string file = path.string();
   const std::string format = formatOf(path);
   if (format.empty()) throw unknownExtension(path);
@@ -103,24 +104,15 @@ void saveMesh(const TriMesh& mesh, const fs::path& path, const SaveOptions& opti
       throw WriteError(file, "cannot write output", "OpenMesh's " + format + " writer failed");
     bytes = std::move(encoded).str();
   }
-  writeAtomically(path, [&](const fs::path& tmp) {
-    std::ofstream out(tmp, std::ios::binary);
-    if (!out) throw WriteError(file, "cannot write output", "cannot create '" + tmp.string() + "'");
-    out.write(bytes.data(), std::streamsize(bytes.size()));
-    out.close();
-    if (!out) throw WriteError(file, "cannot write output", "write failed (disk full?)");
-  });
-  // The sidecar follows the mesh. Should it fail, the mesh goes too: a mesh beside a missing or
-  // stale sidecar is a partial output (and a stale one would make loadMesh refuse it).
-  try {
-    detail::writeSidecar(path, bytes);
-  } catch (...) {
-    std::error_code ec;
-    fs::remove(path, ec);
-    const fs::path sidecar = detail::sidecarPathOf(path);
-    if (!isRegisteredInput(sidecar)) fs::remove(sidecar, ec);
-    throw;
-  }
+  // The sidecar is put in place after the mesh: a mesh beside a stale sidecar would be refused.
+  outputs.addText(path, bytes);
+  outputs.addText(detail::sidecarPathOf(path), detail::sidecarLine(path, bytes));
+}
+
+void saveMesh(const TriMesh& mesh, const fs::path& path, const SaveOptions& options) {
+  OutputSet outputs;
+  addMeshOutput(outputs, mesh, path, options);
+  outputs.commit();
 }
 
 }  // namespace proxyvis

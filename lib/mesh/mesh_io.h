@@ -24,6 +24,8 @@
 
 namespace proxyvis {
 
+class OutputSet;
+
 struct SaveOptions {
   bool binary = true;           // PLY only: binary_little_endian (true) or ASCII
   int draco_quantization = 16;  // .drc only: position quantization bits (0 = lossless float)
@@ -43,6 +45,11 @@ TriMesh parseMeshBytes(std::string bytes, const std::filesystem::path& path);
 // extension.
 void saveMesh(const TriMesh& mesh, const std::filesystem::path& path,
               const SaveOptions& options = {});
+
+// Stages `mesh` and its sidecar in `outputs` (saveMesh is this plus commit()), for programs that
+// write a mesh together with the report describing it as one unit.
+void addMeshOutput(OutputSet& outputs, const TriMesh& mesh, const std::filesystem::path& path,
+                   const SaveOptions& options = {});
 
 // True if the extension is one loadMesh/saveMesh understands (.obj .ply .off .drc).
 bool isSupportedMeshExtension(const std::filesystem::path& path);

@@ -46,9 +46,8 @@ fs::path sidecarPathOf(const fs::path& mesh) {
   return sidecar;
 }
 
-void writeSidecar(const fs::path& mesh, const std::string& bytes) {
-  writeTextAtomically(sidecarPathOf(mesh),
-                      sha256Hex(bytes) + "  " + mesh.filename().string() + "\n");
+std::string sidecarLine(const fs::path& mesh, const std::string& bytes) {
+  return sha256Hex(bytes) + "  " + mesh.filename().string() + "\n";
 }
 
 void verifySidecar(const fs::path& mesh, const std::string& bytes) {

@@ -14,7 +14,9 @@
 #include <new>
 
 #include "util/error.h"
+#include "util/output_path.h"
 #include "util/progress.h"
+#include "util/temp_files.h"
 
 namespace proxyvis {
 
@@ -112,10 +114,11 @@ int runApp(CLI::App& app, int argc, char** argv, const CommonOptions& options,
   } catch (const CLI::ParseError& e) {
     // One line, like every other error: program, what is wrong, what to do.
     std::fprintf(stderr, "%s: error: %s (run %s --help for usage)\n", app.get_name().c_str(),
-                 e.what(), app.get_name().c_str());
+                 printableText(e.what()).c_str(), app.get_name().c_str());
     return kExitBadInput;
   }
   Progress::setGloballyQuiet(options.quiet);
+  removeTemporariesOnTerminatingSignals();
   const std::string name = app.get_name();
   try {
     int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
@@ -129,8 +132,26 @@ int runApp(CLI::App& app, int argc, char** argv, const CommonOptions& options,
                  name.c_str());
     return kExitBadInput;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "%s: error: %s\n", name.c_str(), e.what());
+    std::fprintf(stderr, "%s: error: %s\n", name.c_str(), printableText(e.what()).c_str());
     return kExitBadInput;
+  }
+}
+
+bool jsonOnStdout(const CommonOptions& options) {
+  if (options.json_path.empty()) return false;
+  try {
+    const OutputTarget target = resolveOutputTarget(options.json_path);
+    return target.kind == OutputTarget::Kind::kStream && target.fd == 1;
+  } catch (const Error&) {
+    return false;
+  }
+}
+
+void printHumanReport(const CommonOptions& options, const std::string& text) {
+  if (!jsonOnStdout(options)) {
+    std::fputs(text.c_str(), stdout);
+  } else if (!options.quiet) {
+    std::fputs(text.c_str(), stderr);
   }
 }
 

@@ -33,9 +33,16 @@ struct CommonOptions {
 // Adds the standard flags to `app` and the exit-code table to its footer.
 void addCommonOptions(CLI::App& app, CommonOptions& options);
 
+// True if --json writes to stdout ("-", /dev/stdout): then stdout carries only the JSON.
+bool jsonOnStdout(const CommonOptions& options);
+
+// The human-readable report: to stdout, or to stderr (unless --quiet) when the JSON owns stdout.
+void printHumanReport(const CommonOptions& options, const std::string& text);
+
 // Parses argv and runs `body` under a TBB arena limited to options.threads. Exceptions become
-// one line on stderr ("<app>: error: <message>") and the documented exit code. CLI11 parse
-// errors exit through app.exit(), with usage errors mapped to exit code 2.
+// one line on stderr ("<app>: error: <message>") and the documented exit code. A terminating
+// signal (SIGINT, SIGTERM, SIGHUP) removes the run's temporary files before the process dies. CLI11
+// parse errors exit through app.exit(), with usage errors mapped to exit code 2.
 int runApp(CLI::App& app, int argc, char** argv, const CommonOptions& options,
            const std::function<int()>& body);
 

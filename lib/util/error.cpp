@@ -5,32 +5,29 @@
 
 namespace proxyvis {
 
-namespace {
-// Messages quote the input (a key, a token, a library's diagnostic): its control and non-ASCII
-// bytes are written as \xNN so the message stays one printable line on any terminal.
-std::string printable(const std::string& text) {
-  static const char kHex[] = "0123456789abcdef";
+std::string printableText(std::string_view text) {
+  static const char* kHex = "0123456789abcdef";
   std::string out;
   out.reserve(text.size());
-  for (const char c : text) {
-    const auto u = static_cast<unsigned char>(c);
-    if (u >= 0x20 && u < 0x7f) {
-      out += c;
+  for (const unsigned char c : text) {
+    if (c >= 0x20 && c < 0x7f) {
+      out += char(c);
     } else {
       out += "\\x";
-      out += kHex[u >> 4];
-      out += kHex[u & 15];
+      out += kHex[c >> 4];
+      out += kHex[c & 15];
     }
   }
   return out;
 }
 
+namespace {
 std::string composeMessage(const std::string& file, const std::string& what, const std::string& why,
                            const std::string& todo) {
   std::string msg = file.empty() ? what : file + ": " + what;
   if (!why.empty()) msg += "; " + why;
   if (!todo.empty()) msg += " (" + todo + ")";
-  return printable(msg);
+  return printableText(msg);
 }
 }  // namespace
 

@@ -4,13 +4,18 @@
 // lib/ never calls exit(): only apps/ turn errors into exit codes (see util/app_main.h).
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace proxyvis {
 
 enum ExitCode : int { kExitOk = 0, kExitCheckFailed = 1, kExitBadInput = 2, kExitCannotWrite = 3 };
 
-// A bad-input error. The message reads "FILE: WHAT; WHY (TODO)" and is printed as one line (its
-// control and non-ASCII bytes are written as \xNN).
+// `text` with every byte that is not printable ASCII written as \xNN: a message stays one line of
+// text whatever a file name or a corrupt file's bytes contain.
+std::string printableText(std::string_view text);
+
+// A bad-input error. The message reads "FILE: WHAT; WHY (TODO)" and is printed as one line; bytes
+// that are not printable ASCII (in file names, in text quoted from a file) appear as \xNN.
 // `file` may be empty for errors that are not about a file (e.g. a bad flag value).
 class Error : public std::runtime_error {
  public:

@@ -2,6 +2,10 @@
 
 #include <openssl/evp.h>
 
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <iterator>
 #include <memory>
 
 #include "util/error.h"
@@ -25,6 +29,14 @@ std::string sha256Hex(std::string_view bytes) {
 
 std::string sha256OfFile(const std::filesystem::path& path) {
   return sha256Hex(readTextFile(path));
+}
+
+std::string sha256OfOwnFile(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in.is_open() || in.bad())
+    throw WriteError(path.string(), "cannot read back an output", std::strerror(errno));
+  return sha256Hex(bytes);
 }
 
 }  // namespace proxyvis

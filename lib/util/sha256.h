@@ -14,4 +14,8 @@ std::string sha256Hex(std::string_view bytes);
 // The hash of a whole file (read through util/input_file.h); throws Error naming the file.
 std::string sha256OfFile(const std::filesystem::path& path);
 
+// The hash of a file this run wrote (not registered as an input, unlike sha256OfFile); throws
+// WriteError naming the file if it cannot be read back.
+std::string sha256OfOwnFile(const std::filesystem::path& path);
+
 }  // namespace proxyvis

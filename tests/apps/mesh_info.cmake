@@ -1,5 +1,18 @@
 # mesh-info end to end: exit codes, the one-line error on stderr, report text and JSON keys
 # (support/run_app.cmake checks the exit code and that stdout+stderr match the regex).
+if(CMAKE_SCRIPT_MODE_FILE)
+  # --json -: stdout is the JSON and nothing else (the report text went to stderr).
+  string(STRIP "${out}" json)
+  string(JSON type ERROR_VARIABLE bad TYPE "${json}")
+  if(bad OR NOT json MATCHES "^\\[.*\\]$")
+    message(FATAL_ERROR "stdout is not only JSON: ${bad}\nstdout:\n${out}")
+  endif()
+  if(NOT err MATCHES "triangles")
+    message(FATAL_ERROR "the report text is not on stderr:\n${err}")
+  endif()
+  return()
+endif()
+
 if(NOT TARGET mesh-info)
   return()
 endif()
@@ -28,3 +41,12 @@ mesh_info_test(expect_sha256_match 0 "triangles +4" --expect-sha256 ${collinear_
 proxyvis_app_test(app_mesh_info_save_writes_sidecar mesh-info 0
   "--quiet --save ${CMAKE_CURRENT_BINARY_DIR}/saved_bunny.ply ${d}/bunny.off"
   FILES ${CMAKE_CURRENT_BINARY_DIR}/saved_bunny.ply ${CMAKE_CURRENT_BINARY_DIR}/saved_bunny.ply.sha256)
+proxyvis_app_test(app_mesh_info_json_stdout_only mesh-info 0
+  "--json - ${d}/bunny.off" CHECKS ${CMAKE_CURRENT_LIST_FILE})
+# The converted mesh and the JSON describing it (with its hash), into folders that do not exist
+# yet (created).
+set(mi_dir ${CMAKE_CURRENT_BINARY_DIR}/mesh_info)
+proxyvis_app_test(app_mesh_info_save_with_json mesh-info 0
+  "${d}/bunny.off --quiet --save ${mi_dir}/new/bunny.ply --json ${mi_dir}/new/deeper/bunny.json"
+  CLEAN ${mi_dir} FILES ${mi_dir}/new/bunny.ply ${mi_dir}/new/deeper/bunny.json
+  REGEX "^$")

@@ -4,6 +4,24 @@
 # Included from tests/apps/CMakeLists.txt this writes the meshes and registers the tests; in
 # script mode support/run_app.cmake includes it after its checks (exit code, OUTPUT_REGEX, written
 # files) to check that JSON_FILE has every key and JSON_EXACT as its "exact" value.
+if(CMAKE_SCRIPT_MODE_FILE AND JSON_ONLY_STDOUT)
+  # --json -: stdout is the JSON and nothing else (the report text went to stderr).
+  string(STRIP "${out}" json)
+  string(JSON type ERROR_VARIABLE bad TYPE "${json}")
+  if(bad OR NOT json MATCHES "^{.*}$")
+    message(FATAL_ERROR "stdout is not only JSON: ${bad}\nstdout:\n${out}")
+  endif()
+  expect_json_keys("stdout" "${json}" counts exact dump_errors)
+  string(JSON sha GET "${json}" dump_errors sha256)
+  file(SHA256 "${DUMP_FILE}" actual)
+  if(NOT sha STREQUAL actual)
+    message(FATAL_ERROR "the JSON records sha256 ${sha}, the file has ${actual}")
+  endif()
+  if(NOT err MATCHES "sampled class")
+    message(FATAL_ERROR "the report text is not on stderr:\n${err}")
+  endif()
+  return()
+endif()
 if(CMAKE_SCRIPT_MODE_FILE)
   file(READ "${JSON_FILE}" json)
   expect_json_keys("${JSON_FILE}" "${json}" counts V_avg f_hit f_miss intervals sampled_class exact
@@ -60,7 +78,17 @@ pc_test(bad_expect 2 "${pc_dir}/cube.off ${pc_dir}/around.off --expect sideways"
 pc_test(no_arguments 2 "")
 pc_test(one_mesh_is_not_a_scene 2 "${pc_dir}/cube.off" REGEX "scene")
 pc_test(unwritable_json 3
-  "${pc_dir}/cube.off ${pc_dir}/inner.off ${q} --json ${pc_dir}/no/such/dir/out.json")
+  "${pc_dir}/cube.off ${pc_dir}/inner.off ${q} --json ${pc_dir}/cube.off/out.json"
+  REGEX "out.json: cannot write output; .*cube.off' is not a folder")
+# A missing folder is created (as for render-compare's --out).
+pc_test(json_into_new_folder 0
+  "${pc_dir}/cube.off ${pc_dir}/inner.off ${q} --json ${pc_dir}/new/folder/out.json"
+  FILE ${pc_dir}/new/folder/out.json)
+# --json - without --quiet: only JSON on stdout; it records the hash of the error segments.
+proxyvis_app_test(app.proxy_check.json_stdout_only proxy-check 1
+  "${pc_dir}/cube.off ${pc_dir}/inner.off --rays 20000 --seed 3 --expect outside --json - --dump-errors ${pc_dir}/stdout_errors.ply"
+  CHECKS ${CMAKE_CURRENT_LIST_FILE} DEFS -DJSON_ONLY_STDOUT=1
+  -DDUMP_FILE=${pc_dir}/stdout_errors.ply FILES ${pc_dir}/stdout_errors.ply TIMEOUT 60)
 pc_test(dump_errors 0
   "${pc_dir}/cube.off ${pc_dir}/inner.off ${q} --dump-errors ${pc_dir}/errors.ply"
   FILE ${pc_dir}/errors.ply)

@@ -6,7 +6,55 @@
 # support/run_app.cmake includes it after its checks (last exit code of RUNS runs, OUTPUT_REGEX,
 # written files) to check that stdout is a JSON report of JSON_STDOUT rows carrying the contract
 # keys.
+if(CMAKE_SCRIPT_MODE_FILE AND RC_SEQUENCE)
+  # Runs into one --out: a rerun leaves nothing of the previous report; a run killed by SIGTERM
+  # leaves the previous report intact and no temporary; stale temporaries of dead runs (pid
+  # 999999999 exceeds any pid_max) are removed by the next run.
+  set(dir ${RC_DIR}/sequence)
+  file(REMOVE_RECURSE ${dir})
+  file(MAKE_DIRECTORY ${dir})
+  set(common ${RC_SCENE} --out ${dir}/rep --width 8 --height 8 --spp 1 --seeds 1
+    --reference-spp 16 --quiet)
+  execute_process(COMMAND ${EXE} ${common} --equal-time 0 --estimators exact,roulette
+    RESULT_VARIABLE code ERROR_VARIABLE err)
+  if(NOT code EQUAL 0 OR NOT EXISTS ${dir}/rep/roulette_1.png OR NOT EXISTS ${dir}/rep/manifest.json)
+    message(FATAL_ERROR "first run: exit ${code}, no report\n${err}")
+  endif()
+  file(MAKE_DIRECTORY ${dir}/.rep.tmp999999999_0)
+  file(WRITE ${dir}/.rep.tmp999999999_0/exact_1.png "stale")
+  file(WRITE ${dir}/.report.tmp999999999_1.json "stale")
+  execute_process(COMMAND ${EXE} ${common} --equal-time 0 --estimators exact
+    RESULT_VARIABLE code ERROR_VARIABLE err)
+  if(NOT code EQUAL 0 OR EXISTS ${dir}/rep/roulette_1.png)
+    message(FATAL_ERROR "rerun: exit ${code}; roulette_1.png of the first run must be gone\n${err}")
+  endif()
+  file(GLOB left LIST_DIRECTORIES true ${dir}/.*)
+  if(left)
+    message(FATAL_ERROR "stale temporaries of a dead run were not removed: ${left}")
+  endif()
+  file(SHA256 ${dir}/rep/report.json report_hash)
+  # Killed while rendering (each equal-time cell takes 2 minutes).
+  execute_process(COMMAND timeout -s TERM 5 ${EXE} ${common} --equal-time 120
+    RESULT_VARIABLE code ERROR_VARIABLE err)
+  if(NOT code EQUAL 124)
+    message(FATAL_ERROR "the run to be killed ended with ${code} before SIGTERM\n${err}")
+  endif()
+  file(SHA256 ${dir}/rep/report.json after)
+  if(NOT after STREQUAL report_hash)
+    message(FATAL_ERROR "the killed run changed the previous report")
+  endif()
+  file(GLOB left LIST_DIRECTORIES true ${dir}/.* ${dir}/rep/.*)
+  if(left)
+    message(FATAL_ERROR "temporaries left behind: ${left}")
+  endif()
+  return()
+endif()
 if(CMAKE_SCRIPT_MODE_FILE)
+  # Only JSON on stdout (text before or after it would make it unparsable for a consumer).
+  string(STRIP "${out}" stripped)
+  if(NOT stripped MATCHES "^{.*}$")
+    message(FATAL_ERROR "stdout holds more than the JSON report:\n${out}")
+  endif()
   string(JSON rows ERROR_VARIABLE bad GET "${out}" rows)
   if(bad)
     message(FATAL_ERROR "stdout is not a JSON report with rows: ${bad}\n${out}")
@@ -100,3 +148,11 @@ rc_test(fixed_costs_flat 0
   "${rc_dir}/tiny.json --out ${rc_dir}/fixed ${tiny} --estimators exact,roulette --roulette-costs 10,10,40,40,20 --build flat --quiet --json -"
   JSON 6 CLEAN ${rc_dir}/fixed)
 rc_test(unwritable_out 3 "${rc_dir}/tiny.json --out ${rc_dir}/a_file/out ${tiny} --quiet")
+# --json - without --quiet: still only the JSON on stdout, the tables go to stderr.
+rc_test(json_stdout_only 0
+  "${rc_dir}/tiny.json --out ${rc_dir}/stdout_only ${tiny} --estimators exact,roulette --json -"
+  JSON 6 CLEAN ${rc_dir}/stdout_only)
+add_test(NAME app.render_compare.rerun_and_sigterm COMMAND ${CMAKE_COMMAND}
+  -DEXE=$<TARGET_FILE:render-compare> -DRC_SEQUENCE=1 -DRC_DIR=${rc_dir}
+  -DRC_SCENE=${rc_dir}/tiny.json -P ${CMAKE_CURRENT_LIST_FILE})
+set_tests_properties(app.render_compare.rerun_and_sigterm PROPERTIES TIMEOUT 180)

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "util/error.h"
+#include "util/input_file.h"
 
 namespace proxyvis {
 namespace {
@@ -37,13 +38,26 @@ TEST(AtomicWrite, FailureLeavesNothing) {
 }
 
 TEST(AtomicWrite, MissingDirectoryIsWriteError) {
-  fs::path d = freshDir("atomic_nodir");
+  fs::path d = freshDir("atomic_missing");
   try {
     writeTextAtomically(d / "missing" / "c.txt", "x");
     FAIL() << "expected WriteError";
   } catch (const WriteError& e) {
     EXPECT_EQ(e.exitCode(), kExitCannotWrite);
     EXPECT_NE(std::string(e.what()).find("does not exist"), std::string::npos);
+  }
+  EXPECT_TRUE(fs::is_empty(d));
+}
+
+TEST(AtomicWrite, UnwritableDirectoryIsWriteError) {
+  fs::path d = freshDir("atomic_nodir");
+  writeTextAtomically(d / "a_file", "x");
+  try {
+    writeTextAtomically(d / "a_file" / "c.txt", "x");
+    FAIL() << "expected WriteError";
+  } catch (const WriteError& e) {
+    EXPECT_EQ(e.exitCode(), kExitCannotWrite);
+    EXPECT_NE(std::string(e.what()).find("a_file"), std::string::npos);
   }
 }
 

@@ -11,9 +11,8 @@ namespace proxyvis::detail {
 // `mesh` with ".sha256" appended to its file name.
 std::filesystem::path sidecarPathOf(const std::filesystem::path& mesh);
 
-// Writes the sidecar of `mesh` (already written, whose content is `bytes`) atomically. Throws
-// WriteError naming the sidecar when it cannot be written.
-void writeSidecar(const std::filesystem::path& mesh, const std::string& bytes);
+// The sidecar's line for `mesh` whose content is `bytes`.
+std::string sidecarLine(const std::filesystem::path& mesh, const std::string& bytes);
 
 // When `mesh` has a sidecar, checks that `bytes` (the mesh file's content) has the hash it
 // records. Throws Error naming the mesh on a mismatch, naming the sidecar when it is not a
