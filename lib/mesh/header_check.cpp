@@ -468,9 +468,13 @@ bool isObjCorner(const std::string& t) {
         t.substr(pos, slash == std::string::npos ? std::string::npos : slash - pos);
     const size_t digits = f.size() - (!f.empty() && f[0] == '-');
     const bool empty_ok = field > 0 && f.empty();
-    const bool integer = digits >= 1 && digits <= 10 && f.back() != '-' &&
-                         f.find_first_not_of("0123456789", f[0] == '-') == std::string::npos &&
-                         f[f[0] == '-'] != '0';
+    // Within int: OpenMesh reads indices with operator>> and dropped a face whose index
+    // overflowed (9999999999), silently.
+    const bool integer =
+        digits >= 1 && digits <= 10 && f.back() != '-' &&
+        f.find_first_not_of("0123456789", f[0] == '-') == std::string::npos &&
+        f[f[0] == '-'] != '0' &&
+        isIntegerIn(f, std::numeric_limits<int32_t>::min(), std::numeric_limits<int32_t>::max());
     if (!integer && !empty_ok) return false;
     if (slash == std::string::npos) return true;
     if (++field > 2) return false;

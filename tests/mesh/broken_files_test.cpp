@@ -221,6 +221,9 @@ TEST_F(BrokenFiles, NonIntegerCountsAndIndicesNameTheLine) {
   expectBroken("big_index.ply", ply + "3 0 1 3000000000\n", "'3000000000' on line 13");
   expectBroken("frac_length.ply", ply + "3.0 0 1 2\n", "is not a valid list length");
   expectBroken("neg_uchar.ply", ply + "300 0 1 2\n", "'300' on line 13");
+  // An OBJ face whose index overflows int was dropped without a word.
+  expectBroken("big_index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 9999999999\n",
+               "bad face index '9999999999' on line 5");
   // Colours after the indices of an OFF face may be decimals.
   // OpenMesh reads an OFF vertex from one line: a short line left coordinates uninitialised.
   expectBroken("split_vertex.off", "OFF\n3 1 0\n0 0 0\n1\n0 0\n0 1 0\n3 0 1 2\n",
