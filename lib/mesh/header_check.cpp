@@ -169,6 +169,64 @@ void checkAsciiRecords(const std::string& bytes, size_t from,
 void checkOffRecordLines(const std::string& bytes, size_t from, uint64_t vertices, uint64_t faces,
                          size_t min_vertex_values, const std::string& file);
 
+// A binary list length is read from the file and OpenMesh reads that many items: 2e9 in a
+// 100-byte file kept it reading past the end for minutes. Walks the records (elements without
+// lists in one step): every list length must be a non-negative integer whose items fit in the
+// bytes left.
+void checkBinaryRecords(const std::string& bytes, size_t from,
+                        const std::vector<PlyElement>& elements, bool big_endian,
+                        const std::string& file) {
+  uint64_t pos = from;
+  const uint64_t size = bytes.size();
+  auto readCount = [&](const std::string& type) -> int64_t {
+    const int n = plyTypeSize(type);
+    unsigned char b[8] = {};
+    for (int k = 0; k < n; ++k)
+      b[big_endian ? n - 1 - k : k] = static_cast<unsigned char>(bytes[size_t(pos) + size_t(k)]);
+    pos += uint64_t(n);
+    uint64_t raw = 0;
+    for (int k = n - 1; k >= 0; --k) raw = (raw << 8) | b[k];
+    if (type[0] == 'u') return int64_t(raw);
+    const int shift = 64 - 8 * n;  // sign-extend
+    return int64_t(raw << shift) >> shift;
+  };
+  for (const PlyElement& e : elements) {
+    const bool has_list =
+        std::any_of(e.props.begin(), e.props.end(), [](const PlyProperty& p) { return p.list; });
+    if (!has_list) {
+      pos += e.count * e.min_binary_bytes;  // checked against the size above
+      continue;
+    }
+    for (uint64_t r = 0; r < e.count; ++r) {
+      for (const PlyProperty& p : e.props) {
+        const uint64_t field = uint64_t(plyTypeSize(p.list ? p.count_type : p.type));
+        if (pos + field > size)
+          throw Error(file,
+                      "file ends inside " + printableExcerpt(e.name, 30) + " " + std::to_string(r),
+                      "fewer bytes than the header declares", "the file is truncated");
+        if (!p.list) {
+          pos += field;
+          continue;
+        }
+        int64_t lo = 0, hi = 0;
+        const int64_t items = readCount(p.count_type);
+        const uint64_t item_size = uint64_t(plyTypeSize(p.type));
+        const std::string where = printableExcerpt(e.name, 30) + " " + std::to_string(r);
+        if (!plyIntegerRange(p.count_type, lo, hi) || items < 0)
+          throw Error(file, "list length " + std::to_string(items) + " in " + where,
+                      "a list length is a non-negative integer", "the file is corrupt");
+        if (uint64_t(items) > (size - pos) / item_size)
+          throw Error(file, "file ends inside " + where,
+                      "its list of " + std::to_string(items) + " items needs " +
+                          std::to_string(uint64_t(items) * item_size) + " bytes, " +
+                          std::to_string(size - pos) + " are left",
+                      "the file is truncated or its list length is corrupt");
+        pos += uint64_t(items) * item_size;
+      }
+    }
+  }
+}
+
 void badHeaderLine(const std::string& file, size_t number, const std::string& line,
                    const std::string& why) {
   throw Error(
@@ -246,9 +304,7 @@ void checkPly(const std::string& bytes, const std::string& file) {
     throw Error(file, "unknown PLY format '" + printableExcerpt(format, 30) + "'",
                 "expected ascii, binary_little_endian or binary_big_endian",
                 "the header is corrupt");
-  if (ascii) checkAsciiNumbers(bytes, pos, file, false);
   const uint64_t body = bytes.size() - pos;
-  if (ascii) checkAsciiRecords(bytes, pos, elements, file);
   uint64_t need = 0;
   for (const PlyElement& e : elements) {
     // Records of no bytes: the file size cannot bound their number, and OpenMesh would reserve
@@ -265,6 +321,13 @@ void checkPly(const std::string& bytes, const std::string& file) {
     if (need > body + 1)
       tooMany(file, std::to_string(e.count) + " " + printableExcerpt(e.name, 30) + " elements",
               need, body);
+  }
+  // The counts fit; now every record, list lengths included.
+  if (ascii) {
+    checkAsciiNumbers(bytes, pos, file, false);
+    checkAsciiRecords(bytes, pos, elements, file);
+  } else {
+    checkBinaryRecords(bytes, pos, elements, format == "binary_big_endian", file);
   }
 }
 
@@ -475,9 +538,13 @@ bool isObjCorner(const std::string& t) {
         t.substr(pos, slash == std::string::npos ? std::string::npos : slash - pos);
     const size_t digits = f.size() - (!f.empty() && f[0] == '-');
     const bool empty_ok = field > 0 && f.empty();
-    const bool integer = digits >= 1 && digits <= 10 && f.back() != '-' &&
-                         f.find_first_not_of("0123456789", f[0] == '-') == std::string::npos &&
-                         f[f[0] == '-'] != '0';
+    // Within int: OpenMesh reads indices with operator>> and dropped a face whose index
+    // overflowed (9999999999), silently.
+    const bool integer =
+        digits >= 1 && digits <= 10 && f.back() != '-' &&
+        f.find_first_not_of("0123456789", f[0] == '-') == std::string::npos &&
+        f[f[0] == '-'] != '0' &&
+        isIntegerIn(f, std::numeric_limits<int32_t>::min(), std::numeric_limits<int32_t>::max());
     if (!integer && !empty_ok) return false;
     if (slash == std::string::npos) return true;
     if (++field > 2) return false;

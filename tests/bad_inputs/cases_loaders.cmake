@@ -12,6 +12,7 @@ endfunction()
 
 # A PLY element of 2^31-1 records without properties: OpenMesh reserved 12 GB for it.
 loaders_case(no_properties no_properties.ply "header declares 2147483647 'vertex' elements with no properties")
+loaders_case(long_list long_list.ply "file ends inside face 0; its list of 2000000000 items")
 # Beyond float range and non-numbers: an Error naming the line, not uninitialised values or a
 # silently shifted OBJ face.
 loaders_case(coord_1e39_off coord_1e39.off "number beyond float range on line 4")
@@ -25,7 +26,7 @@ loaders_case(fraction_index_off fraction_index.off "face index '1.5' on line 6")
 loaders_case(fraction_count_off fraction_count.off "face vertex count '3.5' on line 6")
 loaders_case(exponent_index_ply exponent_index.ply "'1e5' on line 13 is not a valid int")
 # Raw bytes of the file are not echoed (the driver checks the output is printable).
-loaders_case(binary_name_ply binary_name.ply "file ends inside v")
+loaders_case(binary_name_ply binary_name.ply "header declares 3 v")
 loaders_case(binary_token_obj binary_token.obj "not a number on line 2")
 # Draco flips that decoded without complaint (one made every y -1.7e38 and crashed proxy-gen).
 loaders_case(dragon_origin_flip dragon_origin_flip.drc "corrupt Draco position quantization")

@@ -28,6 +28,11 @@ def build(out: pathlib.Path, data: pathlib.Path) -> None:
         b"ply\nformat binary_little_endian 1.0\nelement vertex 2147483647\nelement face 1\n"
         b"property list uchar int vertex_indices\nend_header\n")
 
+    # A binary list length of 2e9 in a 100-byte file: OpenMesh kept reading past the end.
+    (d / "long_list.ply").write_bytes(
+        PLY_ASCII_HEADER.replace("ascii", "binary_little_endian").replace("uchar", "int").encode()
+        + bytes(36) + struct.pack("<i", 2000000000) + bytes(12))
+
     # Beyond float range: OpenMesh's stream failed and it used uninitialised values (OFF, PLY)
     # or dropped the vertex so that the face used the next one (OBJ).
     (d / "coord_1e39.off").write_text("OFF\n3 1 0\n0 0 0\n1e39 0 0\n0 1 0\n3 0 1 2\n")

@@ -94,8 +94,8 @@ TEST_F(BrokenFiles, TruncatedBinaryPly) {
   const std::string full = readBytes(scratch / "bunny.ply");
   // A quarter of the file: the header's counts no longer fit (caught before reading).
   expectBroken("quarter.ply", full.substr(0, full.size() / 4), "truncated");
-  // Half: fits the minimum size of the declared records, OpenMesh's reader notices the end.
-  expectBroken("half.ply", full.substr(0, full.size() / 2), "end of file");
+  // Half: fits the minimum size of the declared records; walking the records finds the end.
+  expectBroken("half.ply", full.substr(0, full.size() / 2), "file ends inside face");
   // A few bytes short: only the reader can notice (the last face is incomplete).
   expectBroken("short.ply", full.substr(0, full.size() - 5), "");
   // Header only.
@@ -221,6 +221,9 @@ TEST_F(BrokenFiles, NonIntegerCountsAndIndicesNameTheLine) {
   expectBroken("big_index.ply", ply + "3 0 1 3000000000\n", "'3000000000' on line 13");
   expectBroken("frac_length.ply", ply + "3.0 0 1 2\n", "is not a valid list length");
   expectBroken("neg_uchar.ply", ply + "300 0 1 2\n", "'300' on line 13");
+  // An OBJ face whose index overflows int was dropped without a word.
+  expectBroken("big_index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 9999999999\n",
+               "bad face index '9999999999' on line 5");
   // Colours after the indices of an OFF face may be decimals.
   // OpenMesh reads an OFF vertex from one line: a short line left coordinates uninitialised.
   expectBroken("split_vertex.off", "OFF\n3 1 0\n0 0 0\n1\n0 0\n0 1 0\n3 0 1 2\n",
@@ -234,6 +237,29 @@ TEST_F(BrokenFiles, NonIntegerCountsAndIndicesNameTheLine) {
   const TriMesh coloured = loadMesh(dir / "colour.off");
   EXPECT_EQ(coloured.triangles, (std::vector<Triangle>{{0, 1, 2}}));
   EXPECT_EQ(coloured.vertices[2], Vec3f(0, 1, 0));
+}
+
+// A binary list length is read from the file: 2e9 in a 100-byte file kept OpenMesh reading past
+// the end for minutes.
+TEST_F(BrokenFiles, BinaryListLongerThanTheFileIsRefused) {
+  for (const bool big_endian : {false, true}) {
+    std::string ply = "ply\nformat " +
+                      std::string(big_endian ? "binary_big_endian" : "binary_little_endian") +
+                      " 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                      "property float z\nelement face 1\nproperty list int int vertex_indices\n"
+                      "end_header\n";
+    ply += std::string(36, '\0');  // three vertices at the origin (0.0f in either byte order)
+    const char count[4] = {0x77, 0x35, (char)0x94, 0x00};  // 2000000000 = 0x77359400
+    for (int k = 0; k < 4; ++k) ply.push_back(big_endian ? count[k] : count[3 - k]);
+    ply += std::string(12, '\0');
+    expectBroken(big_endian ? "long_list_be.ply" : "long_list_le.ply", ply,
+                 "its list of 2000000000 items needs 8000000000 bytes, 12 are left");
+  }
+  std::string negative = binaryPlyHeader(3, 1) + std::string(36, '\0');
+  negative.replace(negative.find("uchar"), 5, "char");
+  negative.push_back(char(-3));
+  negative += std::string(12, '\0');
+  expectBroken("negative_list.ply", negative, "list length -3 in face 0");
 }
 
 // Binary formats have no lines: a non-finite value names the vertex.
