@@ -10,6 +10,7 @@
 
 #include "estimate/roulette.h"
 #include "estimate/visibility_estimator.h"
+#include "scene/scene_desc.h"  // kMaxImageSide: --width/--height share the scene format's limit
 #include "util/app_main.h"
 
 namespace proxyvis {
@@ -19,7 +20,6 @@ namespace proxyvis {
 inline constexpr uint64_t kMaxSpp = 1 << 24;  // also the largest automatic reference
 inline constexpr double kMaxEqualTimeSeconds = 86400;
 inline constexpr uint64_t kMaxSeeds = 1000;
-inline constexpr uint64_t kMaxImageSide = 16384;  // the scene format's limit
 inline constexpr uint64_t kMaxProbes = 4096;
 
 struct CompareOptions {
