@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "proxies/inside/inside_proxy.h"
+#include "proxies/limits/input_geometry.h"
 #include "util/error.h"
 
 namespace proxyvis {
@@ -87,10 +88,11 @@ Grid voxelize(const TriMesh& mesh, double h) {
 
 // Erosion (keep = all) or dilation (keep = any) by a (2r+1)^3 cube, as three 1-D filters:
 // erosion keeps a voxel if every voxel within L∞ distance r is inside.
-void morph(Grid& g, int r, bool dilate) {
+void morph(Grid& g, int r, bool dilate, const TimeBudget* budget) {
   for (int axis = 0; axis < 3; ++axis) {
     std::vector<uint8_t> out(g.in.size(), 0);
-    for (int k = 0; k < g.n[2]; ++k)
+    for (int k = 0; k < g.n[2]; ++k) {
+      checkBudget(budget, "the erosion");
       for (int j = 0; j < g.n[1]; ++j)
         for (int i = 0; i < g.n[0]; ++i) {
           bool keep = !dilate;
@@ -101,6 +103,7 @@ void morph(Grid& g, int r, bool dilate) {
           }
           out[g.index(i, j, k)] = keep;
         }
+    }
     g.in.swap(out);
   }
 }
@@ -108,9 +111,10 @@ void morph(Grid& g, int r, bool dilate) {
 // Removes voxels until no 2x2x2 block holds a critical configuration: two face-diagonal voxels
 // without the other two of their square (edge case), or two antipodal voxels alone / the six
 // others without them (vertex case).
-void makeWellComposed(Grid& g) {
+void makeWellComposed(Grid& g, const TimeBudget* budget) {
   bool changed = true;
   while (changed) {
+    checkBudget(budget, "the erosion");
     changed = false;
     for (int k = -1; k < g.n[2]; ++k)
       for (int j = -1; j < g.n[1]; ++j)
@@ -204,10 +208,12 @@ TriMesh extractBoundary(const Grid& g, const std::string& source) {
 }  // namespace
 
 TriMesh makeErodeProxy(const TriMesh& input, const ErodeOptions& options, InsideStats* stats) {
-  if (!(options.voxel > 0) || !(options.erosion >= 0))
-    throw Error("", "voxel size must be positive and erosion non-negative",
-                "fractions of the diagonal");
-  if (input.empty()) throw Error(input.source, "cannot erode", "the mesh has no triangles");
+  // At most ~1000^3 voxels and an erosion no deeper than the mesh is wide.
+  if (!(options.voxel >= 1e-3 && options.voxel <= 1) ||
+      !(options.erosion >= 0 && options.erosion <= 1))
+    throw Error("", "the voxel size must be in [0.001, 1] and the erosion in [0, 1]",
+                "both are fractions of the diagonal");
+  requireProxyGeometry(input, GeometryNeed::kSolid, "an erosion proxy");
   const double diag = input.diagonal();
   const double h = options.voxel * diag;
   Grid g = voxelize(input, h);
@@ -215,9 +221,9 @@ TriMesh makeErodeProxy(const TriMesh& input, const ErodeOptions& options, Inside
   // Opening: erode by r + 1, dilate by 1. The result is a subset of the r-eroded set without
   // parts thinner than about 3 voxels, which the budgeted inward collapse would otherwise press
   // flat (its two sheets meeting = a self-intersection).
-  morph(g, r + 1, false);
-  morph(g, 1, true);
-  makeWellComposed(g);
+  morph(g, r + 1, false, options.budget);
+  morph(g, 1, true, options.budget);
+  makeWellComposed(g, options.budget);
   size_t voxels = 0;
   for (uint8_t v : g.in) voxels += v;
   if (stats) stats->voxels = voxels;
