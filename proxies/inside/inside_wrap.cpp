@@ -183,7 +183,7 @@ TriMesh makeInsideWrapProxy(const TriMesh& input, const InsideWrapOptions& optio
   SurfaceMesh wrap;
   // seed_points belongs to the SECOND (output) named-parameter pack: in the first it is
   // silently ignored and the result is an outer wrap (measured with CGAL 5.5).
-  cgal::WrapBudgetVisitor visitor(options.budget, kMaxEstimatedWrapFaces, input.source);
+  cgal::WrapBudgetVisitor visitor(options.budget, kMaxEstimatedWrapFaces / 4, input.source);
   CGAL::alpha_wrap_3(sm, options.alpha * diag, offset, wrap, CGAL::parameters::default_values(),
                      CGAL::parameters::seed_points(seeds).visitor(visitor));
   if (wrap.number_of_faces() == 0)

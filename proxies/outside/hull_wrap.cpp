@@ -107,8 +107,7 @@ TriMesh makeWrapProxy(const TriMesh& input, const WrapOptions& options) {
   const double diag = input.diagonal();
   cgal::Soup soup = cgal::toSoup(input);
   SurfaceMesh wrap;
-  // Each Steiner point adds about two faces: twice the estimate's limit is a wide margin.
-  cgal::WrapBudgetVisitor visitor(options.budget, kMaxEstimatedWrapFaces, input.source);
+  cgal::WrapBudgetVisitor visitor(options.budget, kMaxEstimatedWrapFaces / 4, input.source);
   CGAL::alpha_wrap_3(soup.points, soup.faces, options.alpha * diag, options.offset * diag, wrap,
                      CGAL::parameters::default_values(), CGAL::parameters::visitor(visitor));
   if (wrap.number_of_faces() == 0)

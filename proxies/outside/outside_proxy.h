@@ -25,8 +25,11 @@ struct WrapOptions {
   const TimeBudget* budget = nullptr;  // polled while wrapping; null = no limit
 };
 
-// The most faces a wrap may be expected to have (estimateWrapFaces): beyond it the wrap's
-// triangulation needs more memory and time than a proxy is worth (about 1 GB per million).
+// The most faces a wrap may be estimated to have (estimateWrapFaces): beyond it the wrap needs
+// more memory and time than a proxy is worth. The estimate is about 6 times what is built: on
+// the bunny, alpha 1/100 is estimated at 89 k faces and builds 13.9 k; alpha 1/250 at 555 k and
+// builds 78 k (39 s, 130 MB for the whole run). The wrap itself stops after a quarter of this
+// many Steiner points (about half as many faces), in case the estimate is ever too low.
 inline constexpr double kMaxEstimatedWrapFaces = 4e6;
 
 // An upper estimate of the faces of an alpha wrap (outer or inner) of `input` with alpha and
