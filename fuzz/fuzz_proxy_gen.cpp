@@ -40,8 +40,8 @@ class Bytes {
 // Mostly small grid values (duplicates, collinear and coplanar points are then common), some
 // extreme constants, some raw float bit patterns.
 float coordinate(Bytes& in) {
-  static const float kSpecial[] = {0.0f,   -0.0f,  1e-30f, -1e-30f, 1e-9f,  1e11f,
-                                   -1e11f, 1e12f,  -1e12f, 1e13f,   1e20f,  -1e20f,
+  static const float kSpecial[] = {0.0f,   -0.0f,  1e-30f, -1e-30f,        1e-9f, 1e11f,
+                                   -1e11f, 1e12f,  -1e12f, 1e13f,          1e20f, -1e20f,
                                    3e38f,  -3e38f, 1e-45f, 1.17549435e-38f};
   const uint8_t selector = in.next();
   if (selector < 200) return float(selector % 16) * 0.25f - 2.0f;
@@ -69,17 +69,17 @@ TriMesh buildMesh(Bytes& in) {
   } else {  // a soup of 1..40 triangles on any vertices
     const size_t faces = 1 + in.next() % 40;
     for (size_t f = 0; f < faces; ++f)
-      mesh.triangles.push_back({uint32_t(in.next() % n), uint32_t(in.next() % n),
-                                uint32_t(in.next() % n)});
+      mesh.triangles.push_back(
+          {uint32_t(in.next() % n), uint32_t(in.next() % n), uint32_t(in.next() % n)});
   }
   return mesh;
 }
 
 ProxyGenOptions buildOptions(Bytes& in) {
   static const std::pair<ProxyClass, const char*> kMethods[] = {
-      {ProxyClass::kOutside, "hull"}, {ProxyClass::kOutside, "wrap"},
-      {ProxyClass::kInside, "wrap"},  {ProxyClass::kInside, "erode"},
-      {ProxyClass::kGeneral, "qem"},  {ProxyClass::kGeneral, "cgal-sms"},
+      {ProxyClass::kOutside, "hull"},   {ProxyClass::kOutside, "wrap"},
+      {ProxyClass::kInside, "wrap"},    {ProxyClass::kInside, "erode"},
+      {ProxyClass::kGeneral, "qem"},    {ProxyClass::kGeneral, "cgal-sms"},
       {ProxyClass::kGeneral, "meshopt"}};
   const auto& [kind, method] = kMethods[in.next() % 7];
   ProxyGenOptions o;
@@ -117,11 +117,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const std::string message = e.what();
     if (message.empty()) finding("Error with an empty message");
     for (char c : message)
-      if (c != '\t' && (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) > 0x7e))
+      if (c != '\t' &&
+          (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) > 0x7e))
         finding("Error message with a non-printable byte: " + message);
   } catch (const std::exception& e) {
-    finding(std::string("exception other than proxyvis::Error (") + typeid(e).name() + "): " +
-            e.what());
+    finding(std::string("exception other than proxyvis::Error (") + typeid(e).name() +
+            "): " + e.what());
   }
   return 0;
 }

@@ -153,6 +153,9 @@ TriMesh simplifyMeshopt(const TriMesh& input, const GeneralOptions& options) {
   const TriMesh welded = weldVertices(input);
   const size_t target = generalTargetFaces(input, options);
   std::vector<uint32_t> idx = flatIndices(welded), out(idx.size());
+  // Already within the budget (a mesh of fewer than 4 triangles): meshopt asserts on a target
+  // above the index count.
+  if (target * 3 >= idx.size()) return compact(welded.vertices, idx, "meshopt of " + input.source);
   // target_error 1 (relative to the mesh extent) lets the face budget alone decide.
   size_t n = meshopt_simplify(out.data(), idx.data(), idx.size(), &welded.vertices[0].x,
                               welded.vertices.size(), sizeof(Vec3f), target * 3, 1.0f);

@@ -63,8 +63,8 @@ std::string resolveMethod(const ProxyGenOptions& options) {
 void checkOptionRanges(const ProxyGenOptions& o) {
   auto check = [](const std::optional<double>& v, ParameterRange range, const char* name) {
     if (v && !range.contains(*v))
-      throw Error("", fmt::format("{} must be in [{:g}, {:g}], got {:g}", name, range.lo,
-                                  range.hi, *v),
+      throw Error("",
+                  fmt::format("{} must be in [{:g}, {:g}], got {:g}", name, range.lo, range.hi, *v),
                   "it is a fraction of the bounding-box diagonal");
   };
   check(o.alpha, kAlphaRange, "--alpha");
@@ -72,8 +72,8 @@ void checkOptionRanges(const ProxyGenOptions& o) {
   check(o.erosion, kErosionRange, "--erosion");
   check(o.ratio, kRatioRange, "--ratio");
   if (o.max_faces > kMaxFacesLimit)
-    throw Error("", fmt::format("--max-faces must be at most {}, got {}", kMaxFacesLimit,
-                                o.max_faces));
+    throw Error("",
+                fmt::format("--max-faces must be at most {}, got {}", kMaxFacesLimit, o.max_faces));
   if (o.max_seconds != 0 && !kMaxSecondsRange.contains(o.max_seconds))
     throw Error("", fmt::format("--max-seconds must be in [{:g}, {:g}], got {:g}",
                                 kMaxSecondsRange.lo, kMaxSecondsRange.hi, o.max_seconds));
@@ -166,9 +166,8 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
   // Before CGAL or OpenMesh see the mesh: they crash, abort or loop on some geometry that loads.
   requireProxyGeometry(input, geometryNeed(options.kind, method),
                        fmt::format("the {} {} proxy", method, proxyClassName(options.kind)));
-  const TimeBudget budget = options.max_seconds > 0
-                                ? TimeBudget(options.max_seconds, input.source)
-                                : TimeBudget();
+  const TimeBudget budget =
+      options.max_seconds > 0 ? TimeBudget(options.max_seconds, input.source) : TimeBudget();
 
   const MeshReport in_report = timer.run("validate_input", [&] { return validateMesh(input); });
   report["input"] = {{"path", input.source},

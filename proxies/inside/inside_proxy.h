@@ -22,8 +22,8 @@ struct InsideWrapOptions {
 };
 
 struct ErodeOptions {
-  double voxel = 1.0 / 150;    // voxel edge length
-  double erosion = 1.0 / 150;  // erosion distance (rounded up to whole voxels, at least 1)
+  double voxel = 1.0 / 150;            // voxel edge length
+  double erosion = 1.0 / 150;          // erosion distance (rounded up to whole voxels, at least 1)
   const TimeBudget* budget = nullptr;  // polled between voxel passes; null = no limit
 };
 

@@ -62,11 +62,12 @@ GeometryMeasure measureGeometry(const TriMesh& mesh) {
   // Two far-apart vertices: the lowest along the longest box side, and the farthest from it.
   const Vec3d extent = box.extent();
   const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
-  const Vec3d a = *std::min_element(points.begin(), points.end(),
-                                    [&](const Vec3d& p, const Vec3d& q) { return p[axis] < q[axis]; });
-  const Vec3d b = *std::max_element(points.begin(), points.end(), [&](const Vec3d& p, const Vec3d& q) {
-    return length(p - a) < length(q - a);
-  });
+  const Vec3d a =
+      *std::min_element(points.begin(), points.end(),
+                        [&](const Vec3d& p, const Vec3d& q) { return p[axis] < q[axis]; });
+  const Vec3d b = *std::max_element(
+      points.begin(), points.end(),
+      [&](const Vec3d& p, const Vec3d& q) { return length(p - a) < length(q - a); });
   const Vec3d dir = normalize(b - a);
   Vec3d c = a;
   for (const Vec3d& p : points) {
@@ -93,33 +94,41 @@ GeometryMeasure measureGeometry(const TriMesh& mesh) {
 void requireProxyGeometry(const TriMesh& mesh, GeometryNeed need, const std::string& generator) {
   const std::string& file = mesh.source;
   const std::string cannot = "cannot build " + generator;
-  if (mesh.empty()) throw Error(file, "the mesh has no triangles", "there is nothing to build a proxy of");
+  if (mesh.empty())
+    throw Error(file, "the mesh has no triangles", "there is nothing to build a proxy of");
   for (const Triangle& t : mesh.triangles)
     for (uint32_t i : t)
       if (i >= mesh.vertices.size())
-        throw Error(file, fmt::format("a triangle refers to vertex {} of {}", i, mesh.vertices.size()),
+        throw Error(file,
+                    fmt::format("a triangle refers to vertex {} of {}", i, mesh.vertices.size()),
                     "the mesh is inconsistent");
   const GeometryMeasure m = measureGeometry(mesh);
   if (!m.finite)
     throw Error(file, "a vertex coordinate is not finite", cannot + " from infinite or NaN points",
                 "repair the mesh");
   if (m.max_abs > kMaxProxyCoordinate)
-    throw Error(file, fmt::format("coordinates reach {:.3g}, beyond +-{:g}", m.max_abs, kMaxProxyCoordinate),
-                cannot + ": offsets and squared distances of such numbers overflow float",
-                "scale the mesh down (other units) and translate it near the origin");
+    throw Error(
+        file,
+        fmt::format("coordinates reach {:.3g}, beyond +-{:g}", m.max_abs, kMaxProxyCoordinate),
+        cannot + ": offsets and squared distances of such numbers overflow float",
+        "scale the mesh down (other units) and translate it near the origin");
   if (m.diagonal == 0)
     throw Error(file, "all vertices are at one point", cannot + " of a mesh without extent",
                 "check the mesh (a scale of 0?)");
   if (m.diagonal < kMinProxyDiagonal)
-    throw Error(file, fmt::format("the bounding-box diagonal is {:.3g}, below {:g}", m.diagonal, kMinProxyDiagonal),
+    throw Error(file,
+                fmt::format("the bounding-box diagonal is {:.3g}, below {:g}", m.diagonal,
+                            kMinProxyDiagonal),
                 cannot + ": squared distances this small underflow float",
                 "scale the mesh up (other units)");
   if (m.diagonal < kMinProxyRelativeExtent * m.max_abs)
-    throw Error(file,
-                fmt::format("the mesh spans {:.3g} at coordinates up to {:.3g}", m.diagonal, m.max_abs),
-                cannot + ": float coordinates this far from the origin leave too few steps across "
-                         "the mesh to place a proxy around it",
-                "translate the mesh near the origin");
+    throw Error(
+        file,
+        fmt::format("the mesh spans {:.3g} at coordinates up to {:.3g}", m.diagonal, m.max_abs),
+        cannot +
+            ": float coordinates this far from the origin leave too few steps across "
+            "the mesh to place a proxy around it",
+        "translate the mesh near the origin");
   const double flat = m.flat_tolerance();
   if (m.width <= flat)
     throw Error(file, "all vertices lie on one line (within float rounding)",
@@ -129,7 +138,8 @@ void requireProxyGeometry(const TriMesh& mesh, GeometryNeed need, const std::str
                 cannot + ": the mesh has no surface", "check the mesh");
   if (need == GeometryNeed::kSolid && m.thickness <= flat)
     throw Error(file, "all vertices lie in one plane (within float rounding)",
-                cannot + ": the mesh encloses no volume", "use --kind outside --method wrap for a flat mesh");
+                cannot + ": the mesh encloses no volume",
+                "use --kind outside --method wrap for a flat mesh");
 }
 
 }  // namespace proxyvis

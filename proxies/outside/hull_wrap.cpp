@@ -44,10 +44,10 @@ void pushHullOutward(SurfaceMesh& hull, double distance, const std::string& sour
   // A hull far thinner than the push would be scaled by a huge factor (float overflow).
   const double s = 1 + distance / min_h;
   if (!(s < 2))
-    throw Error(source, "cannot build a convex hull proxy",
-                fmt::format("the hull is {:.3g} thick, too thin to push out by {:.3g}", min_h,
-                            distance),
-                "use --method wrap");
+    throw Error(
+        source, "cannot build a convex hull proxy",
+        fmt::format("the hull is {:.3g} thick, too thin to push out by {:.3g}", min_h, distance),
+        "use --method wrap");
   for (auto v : hull.vertices()) hull.point(v) = c + (hull.point(v) - c) * s;
 }
 

@@ -8,6 +8,7 @@
 #include <string>
 #include <thread>
 
+#include "proxies/general/general_proxy.h"
 #include "proxies/general/proxy_pipeline.h"
 #include "proxies/limits/input_geometry.h"
 #include "proxies/limits/time_budget.h"
@@ -75,8 +76,8 @@ TEST(InputGeometry, RefusesCollinearVerticesNamingTheFile) {
     EXPECT_EQ(message.rfind("tetra.off: all vertices lie on one line", 0), 0u) << message;
   }
   // Collinear up to float rounding along a direction no axis has: still one line.
-  const TriMesh slanted = tetra({{0.1f, 0.2f, 0.3f}, {0.2f, 0.4f, 0.6f}, {0.3f, 0.6f, 0.9f},
-                                 {0.4f, 0.8f, 1.2f}});
+  const TriMesh slanted =
+      tetra({{0.1f, 0.2f, 0.3f}, {0.2f, 0.4f, 0.6f}, {0.3f, 0.6f, 0.9f}, {0.4f, 0.8f, 1.2f}});
   EXPECT_NE(refusal(slanted, GeometryNeed::kSurface).find("one line"), std::string::npos);
 }
 
@@ -87,8 +88,10 @@ TEST(InputGeometry, RefusesIdenticalPoints) {
 }
 
 TEST(InputGeometry, RefusesCoordinatesBeyondTheLimit) {
-  const TriMesh huge = tetra({{3e38f, 3e38f, 3e38f}, {-3e38f, -3e38f, 3e38f},
-                              {-3e38f, 3e38f, -3e38f}, {3e38f, -3e38f, -3e38f}});
+  const TriMesh huge = tetra({{3e38f, 3e38f, 3e38f},
+                              {-3e38f, -3e38f, 3e38f},
+                              {-3e38f, 3e38f, -3e38f},
+                              {3e38f, -3e38f, -3e38f}});
   EXPECT_NE(refusal(huge, GeometryNeed::kSurface).find("coordinates reach 3e+38"),
             std::string::npos);
   // The limit itself: a tetrahedron scaled to 1e11 passes, to 1e13 not.
@@ -155,15 +158,17 @@ TEST(InputGeometry, GenerateProxyRefusesThemForEveryMethod) {
   const std::vector<TriMesh> bad = {
       tetra({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}}),
       tetra({{1, 1, 1}, {1, 1, 1}, {1, 1, 1}, {1, 1, 1}}),
-      tetra({{3e38f, 3e38f, 3e38f}, {-3e38f, -3e38f, 3e38f}, {-3e38f, 3e38f, -3e38f},
+      tetra({{3e38f, 3e38f, 3e38f},
+             {-3e38f, -3e38f, 3e38f},
+             {-3e38f, 3e38f, -3e38f},
              {3e38f, -3e38f, -3e38f}}),
       transformed(gen_test::mesh("bunny.off"), 1e20f, 0),
       transformed(gen_test::mesh("bunny.off"), 1, 1e20f),
   };
   const std::pair<ProxyClass, const char*> methods[] = {
-      {ProxyClass::kOutside, "hull"}, {ProxyClass::kOutside, "wrap"},
-      {ProxyClass::kInside, "wrap"},  {ProxyClass::kInside, "erode"},
-      {ProxyClass::kGeneral, "qem"},  {ProxyClass::kGeneral, "cgal-sms"},
+      {ProxyClass::kOutside, "hull"},   {ProxyClass::kOutside, "wrap"},
+      {ProxyClass::kInside, "wrap"},    {ProxyClass::kInside, "erode"},
+      {ProxyClass::kGeneral, "qem"},    {ProxyClass::kGeneral, "cgal-sms"},
       {ProxyClass::kGeneral, "meshopt"}};
   for (const TriMesh& mesh : bad)
     for (const auto& [kind, method] : methods) {
@@ -186,6 +191,20 @@ TEST(InputGeometry, GenerateProxyChecksOptionRanges) {
   o.alpha.reset();
   o.offset = 10;
   EXPECT_THROW(generateProxy(regularTetra(), o), Error);
+}
+
+// Found by fuzz_proxy_gen: a mesh of fewer triangles than the smallest budget (4) made
+// meshoptimizer assert (its target above the index count). Every simplifier returns it as is.
+TEST(SmallMeshes, SimplifiersKeepAMeshBelowTheSmallestBudget) {
+  TriMesh two;
+  two.source = "two.off";
+  two.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  two.triangles = {{0, 1, 2}, {0, 2, 3}};
+  GeneralOptions g;
+  g.ratio = 1;
+  EXPECT_EQ(simplifyMeshopt(two, g).numTriangles(), 2u);
+  EXPECT_EQ(simplifyQem(two, g).numTriangles(), 2u);
+  EXPECT_EQ(simplifyCgalSms(two, g).numTriangles(), 2u);
 }
 
 TEST(TimeBudget, UnlimitedNeverExpiresAndASpentOneThrowsNamingTheSource) {
