@@ -3,7 +3,7 @@
 // raw float bits: NaN, infinity). generateProxy must return a proxy or throw proxyvis::Error
 // (with a one-line printable message); any other exception, a crash, a sanitizer report or a
 // hang is a finding. Sizes are coarse (alpha >= 0.2 of the diagonal, few Hausdorff samples) and
-// the time budget is 5 s, so that one execution stays fast.
+// the time budget is 2 s, so that one execution stays fast.
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -93,7 +93,7 @@ ProxyGenOptions buildOptions(Bytes& in) {
   o.ratio = 0.1 + 0.1 * (in.next() % 10);
   o.fill_holes = in.next() & 1;
   o.hausdorff_samples = 64;
-  o.max_seconds = 5;
+  o.max_seconds = 2;
   return o;
 }
 

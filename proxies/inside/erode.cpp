@@ -32,7 +32,7 @@ struct Grid {
 // irrational fraction of a voxel so that they do not pass exactly through grid-aligned edges;
 // a column with an odd number of crossings (a ray grazing an edge) is left empty, which errs
 // on the inside.
-Grid voxelize(const TriMesh& mesh, double h) {
+Grid voxelize(const TriMesh& mesh, double h, const TimeBudget* budget) {
   const Bounds3f b = mesh.bounds();
   Grid g;
   g.h = h;
@@ -72,6 +72,7 @@ Grid voxelize(const TriMesh& mesh, double h) {
     }
   }
   g.in.assign(size_t(g.n[0]) * g.n[1] * g.n[2], 0);
+  checkBudget(budget, "the voxelisation");
   for (int k = 0; k < g.n[2]; ++k)
     for (int j = 0; j < g.n[1]; ++j) {
       std::vector<double>& xs = hits[size_t(k) * g.n[1] + j];
@@ -114,9 +115,9 @@ void morph(Grid& g, int r, bool dilate, const TimeBudget* budget) {
 void makeWellComposed(Grid& g, const TimeBudget* budget) {
   bool changed = true;
   while (changed) {
-    checkBudget(budget, "the erosion");
     changed = false;
-    for (int k = -1; k < g.n[2]; ++k)
+    for (int k = -1; k < g.n[2]; ++k) {
+      checkBudget(budget, "the erosion");
       for (int j = -1; j < g.n[1]; ++j)
         for (int i = -1; i < g.n[0]; ++i) {
           auto v = [&](int c) { return g.at(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1)); };
@@ -152,12 +153,13 @@ void makeWellComposed(Grid& g, const TimeBudget* budget) {
             }
           }
         }
+    }
   }
 }
 
 // The voxel faces between inside and outside voxels, as two triangles each, sharing grid
 // corners; outward oriented.
-TriMesh extractBoundary(const Grid& g, const std::string& source) {
+TriMesh extractBoundary(const Grid& g, const std::string& source, const TimeBudget* budget) {
   TriMesh mesh;
   mesh.source = source;
   const int cn[3] = {g.n[0] + 1, g.n[1] + 1, g.n[2] + 1};
@@ -171,7 +173,8 @@ TriMesh extractBoundary(const Grid& g, const std::string& source) {
     }
     return id;
   };
-  for (int k = 0; k < g.n[2]; ++k)
+  for (int k = 0; k < g.n[2]; ++k) {
+    checkBudget(budget, "the erosion's surface extraction");
     for (int j = 0; j < g.n[1]; ++j)
       for (int i = 0; i < g.n[0]; ++i) {
         if (!g.at(i, j, k)) continue;
@@ -202,6 +205,7 @@ TriMesh extractBoundary(const Grid& g, const std::string& source) {
             }
           }
       }
+  }
   return mesh;
 }
 
@@ -216,7 +220,7 @@ TriMesh makeErodeProxy(const TriMesh& input, const ErodeOptions& options, Inside
   requireProxyGeometry(input, GeometryNeed::kSolid, "an erosion proxy");
   const double diag = input.diagonal();
   const double h = options.voxel * diag;
-  Grid g = voxelize(input, h);
+  Grid g = voxelize(input, h, options.budget);
   const int r = std::max(1, int(std::ceil(options.erosion / options.voxel - 1e-9)));
   // Opening: erode by r + 1, dilate by 1. The result is a subset of the r-eroded set without
   // parts thinner than about 3 voxels, which the budgeted inward collapse would otherwise press
@@ -230,7 +234,7 @@ TriMesh makeErodeProxy(const TriMesh& input, const ErodeOptions& options, Inside
   if (voxels == 0)
     throw Error(input.source, fmt::format("nothing is left after eroding by {} voxels", r),
                 "the mesh is thinner than the erosion", "lower --erosion or the voxel size");
-  return extractBoundary(g, "eroded " + input.source);
+  return extractBoundary(g, "eroded " + input.source, options.budget);
 }
 
 }  // namespace proxyvis

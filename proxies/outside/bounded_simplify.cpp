@@ -75,9 +75,13 @@ boost::optional<Point3> placeOutside(const Profile& profile, double max_move_edg
   return Point3((*x)[0], (*x)[1], (*x)[2]);
 }
 
+// Once the time budget is spent, no edge gets a placement: CGAL's initial pass over every edge
+// (an LP each) then ends quickly, and the stop predicate ends the collapses.
 struct OutsidePlacement {
   double max_move_edges;
+  const TimeBudget* budget;
   boost::optional<Point3> operator()(const Profile& profile) const {
+    if (budget && budget->expired()) return boost::none;
     return placeOutside(profile, max_move_edges);
   }
 };
@@ -193,7 +197,7 @@ TriMesh simplifyBounded(const TriMesh& mesh, const BoundedSimplifyOptions& optio
   CountCollapses visitor(&st.collapses);
   SMS::edge_collapse(sm, stop,
                      CGAL::parameters::get_cost(AddedVolumeCost())
-                         .get_placement(OutsidePlacement{options.max_move_edges})
+                         .get_placement(OutsidePlacement{options.max_move_edges, options.budget})
                          .filter(LocalIntersectionFilter())
                          .visitor(visitor));
   checkBudget(options.budget, "the face budget's edge collapse");
