@@ -2,8 +2,8 @@
 // from the fuzz bytes, extreme values included (0, -0, denormals, 1e-30, +-1e12, +-1e20, +-3e38,
 // raw float bits: NaN, infinity). generateProxy must return a proxy or throw proxyvis::Error
 // (with a one-line printable message); any other exception, a crash, a sanitizer report or a
-// hang is a finding. Sizes are coarse (alpha >= 0.2 of the diagonal, few Hausdorff samples) and
-// the time budget is 2 s, so that one execution stays fast.
+// hang is a finding. Sizes are coarse (alpha >= 0.2 of the diagonal, voxels of 1/20, few Hausdorff
+// samples) and the time budget is 2 s, so that one execution stays fast.
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -87,7 +87,8 @@ ProxyGenOptions buildOptions(Bytes& in) {
   o.method = method;
   o.alpha = 0.2 + 0.1 * (in.next() % 9);      // 0.2 .. 1
   o.offset = 0.01 + 0.01 * (in.next() % 10);  // 0.01 .. 0.1
-  o.erosion = 0.02 + 0.02 * (in.next() % 10);
+  o.voxel = 0.05;  // a 22^3 grid: the default 1/150 costs seconds per execution
+  o.erosion = 0.05 + 0.05 * (in.next() % 6);
   const uint8_t faces = in.next();
   o.max_faces = faces < 128 ? 0 : 4 + faces % 32;
   o.ratio = 0.1 + 0.1 * (in.next() % 10);

@@ -125,6 +125,7 @@ Built build(const TriMesh& reference, const ProxyGenOptions& o, const std::strin
       b.extra["seeds"] = stats.seeds;
     } else {
       ErodeOptions e;
+      e.voxel = o.voxel.value_or(e.voxel);
       e.erosion = o.erosion.value_or(2 * e.voxel);
       e.budget = budget;
       params["erosion"] = e.erosion;

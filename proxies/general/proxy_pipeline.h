@@ -39,6 +39,7 @@ struct ProxyGenOptions {
   // max(12, ratio x input faces) when max_faces is 0.
   std::optional<double> ratio;
   std::optional<double> erosion;  // erode: fraction of the diagonal (default 1/75)
+  std::optional<double> voxel;    // erode: voxel edge, fraction of the diagonal (default 1/150)
   bool fill_holes = false;        // inside: fill the holes of an open input first
   uint64_t seed = 0;              // sampling of the Hausdorff estimates
   uint64_t hausdorff_samples = 20000;
