@@ -10,6 +10,7 @@
 
 #include "proxies/general/general_proxy.h"
 #include "proxies/general/proxy_pipeline.h"
+#include "proxies/inside/inside_proxy.h"
 #include "proxies/limits/input_geometry.h"
 #include "proxies/limits/time_budget.h"
 #include "tests/proxies/gen_test_util.h"
@@ -205,6 +206,21 @@ TEST(SmallMeshes, SimplifiersKeepAMeshBelowTheSmallestBudget) {
   EXPECT_EQ(simplifyMeshopt(two, g).numTriangles(), 2u);
   EXPECT_EQ(simplifyQem(two, g).numTriangles(), 2u);
   EXPECT_EQ(simplifyCgalSms(two, g).numTriangles(), 2u);
+}
+
+// Found by fuzz_proxy_gen: a triangle whose corners weld into one point made CGAL's
+// orient_polygon_soup loop for ever (inside kind, --fill-holes). Welding now drops it.
+TEST(SmallMeshes, ATriangleDegenerateAfterWeldingIsDropped) {
+  TriMesh m = regularTetra();
+  m.vertices.push_back(m.vertices[0]);  // vertex 4 = vertex 0
+  m.vertices.push_back(m.vertices[0]);  // vertex 5 = vertex 0
+  m.triangles.push_back({0, 4, 1});
+  m.triangles.push_back({4, 5, 0});
+  EXPECT_EQ(countBoundaryEdges(m), 0u);
+  size_t holes = 99;
+  const TriMesh filled = fillHoles(m, &holes);
+  EXPECT_EQ(holes, 0u);
+  EXPECT_EQ(filled.numTriangles(), 4u);
 }
 
 TEST(TimeBudget, UnlimitedNeverExpiresAndASpentOneThrowsNamingTheSource) {
