@@ -10,6 +10,7 @@
 #include <mutex>
 
 #include "mesh/mesh_io.h"
+#include "output_paths.h"
 #include "proxies/general/proxy_pipeline.h"
 #include "scene/scene_desc.h"
 #include "util/app_main.h"
@@ -30,6 +31,7 @@ struct Args {
   std::string input, output, out_dir, kind = "outside", method;
   std::optional<double> alpha, offset, ratio, erosion;
   size_t max_faces = 0;
+  double max_seconds = 600;
   bool fill_holes = false;
 };
 
@@ -47,6 +49,7 @@ ProxyGenOptions toOptions(const Args& a, const CommonOptions& common) {
   o.max_faces = a.max_faces;
   o.fill_holes = a.fill_holes;
   o.seed = common.seed;
+  o.max_seconds = a.max_seconds;
   return o;
 }
 
@@ -79,13 +82,29 @@ int runScene(const Args& a, const CommonOptions& common) {
   if (a.out_dir.empty())
     throw Error(a.input, "no output directory", "a scene input needs --out-dir DIR",
                 "add --out-dir out/");
-  SceneDesc scene = loadSceneDesc(a.input);
+  SceneDesc scene = loadSceneDesc(a.input);  // registers the scene and its instance list
   const ProxyGenOptions base = toOptions(a, common);
+  const size_t n = scene.meshes.size();
+  // File names from mesh names that cannot leave --out-dir; and before any work, no output may
+  // replace an input (the scene, a mesh it references, its instance list).
+  std::vector<std::string> names, inputs{a.input, scene.instances_file.string()};
+  for (const SceneMeshDesc& mesh : scene.meshes) {
+    names.push_back(mesh.name);
+    inputs.push_back(mesh.file.string());
+  }
+  const std::vector<std::string> stems = proxyFileStems(names);
+  std::vector<OutputFlag> outputs;
+  for (const std::string& stem : stems)
+    outputs.push_back(
+        {"--out-dir", (fs::path(a.out_dir) / fmt::format("{}.{}.ply", stem, a.kind)).string()});
+  const fs::path scene_out = fs::path(a.out_dir) / "scene.json";
+  outputs.push_back({"--out-dir", scene_out.string()});
+  outputs.push_back({"--json", common.json_path});
+  checkOutputs(inputs, outputs);
   std::error_code ec;
   fs::create_directories(a.out_dir, ec);
   if (ec) throw WriteError(a.out_dir, "cannot create the output directory", ec.message());
 
-  const size_t n = scene.meshes.size();
   std::vector<json> reports(n);
   std::vector<std::optional<ProxyRef>> refs(n);
   std::vector<std::string> errors(n), skipped(n);
@@ -93,7 +112,7 @@ int runScene(const Args& a, const CommonOptions& common) {
   Progress progress("proxy-gen", n, common.quiet);
   tbb::parallel_for(size_t(0), n, [&](size_t i) {
     const SceneMeshDesc& mesh = scene.meshes[i];
-    const fs::path out = fs::path(a.out_dir) / fmt::format("{}.{}.ply", mesh.name, a.kind);
+    const fs::path& out = outputs[i];
     try {
       ProxyGenOptions o = base;
       o.seed = hashKeys(common.seed, i);  // per-mesh stream: same result at any thread count
@@ -129,8 +148,17 @@ int runScene(const Args& a, const CommonOptions& common) {
     } catch (const Error& e) {
       errors[i] = e.what();
       codes[i] = e.exitCode();
-      reports[i] = {{"name", mesh.name}, {"error", e.what()}};
+    } catch (const std::bad_alloc&) {
+      errors[i] = fmt::format("{}: out of memory; the mesh is too large for this machine",
+                              mesh.file.string());
+      codes[i] = kExitBadInput;
+    } catch (const std::exception& e) {
+      // A failure inside CGAL or OpenMesh the checks did not foresee: this mesh fails, the rest
+      // of the scene goes on.
+      errors[i] = fmt::format("{}: {}", mesh.file.string(), e.what());
+      codes[i] = kExitBadInput;
     }
+    if (!errors[i].empty()) reports[i] = {{"name", mesh.name}, {"error", errors[i]}};
     progress.update();
   });
   progress.done();
@@ -139,6 +167,9 @@ int runScene(const Args& a, const CommonOptions& common) {
   std::string summary;
   for (size_t i = 0; i < n; ++i) {
     if (!errors[i].empty()) {
+      // The failure goes to stderr like any error (one line per failed mesh); the scene is
+      // still written, without a proxy for this mesh, and the exit code reports it.
+      std::fprintf(stderr, "proxy-gen: error: %s\n", errors[i].c_str());
       summary += fmt::format("== {}: FAILED: {}\n", scene.meshes[i].name, errors[i]);
       code = std::max(code, codes[i]);
       continue;
@@ -152,7 +183,6 @@ int runScene(const Args& a, const CommonOptions& common) {
     std::erase_if(proxies, [&](const ProxyRef& p) { return p.kind == a.kind; });
     proxies.push_back(*refs[i]);
   }
-  const fs::path scene_out = fs::path(a.out_dir) / "scene.json";
   saveSceneDesc(scene, scene_out);
   summary += fmt::format("scene with proxies: {}\n", scene_out.string());
   OutputSet outputs(MissingFolders::kCreate);
@@ -174,29 +204,38 @@ int main(int argc, char** argv) {
   Args a;
   CommonOptions common;
   app.add_option("input", a.input, "Mesh (.obj .ply .off .drc) or scene (.json)")->required();
-  app.add_option("--kind", a.kind, "outside | inside | general")->capture_default_str();
+  app.add_option("--kind", a.kind, "outside | inside | general")
+      ->check(CLI::IsMember({"outside", "inside", "general"}))
+      ->capture_default_str();
   app.add_option(
-      "--method", a.method,
-      "outside: wrap (default), hull; inside: wrap (default), erode; general: qem (default), "
-      "cgal-sms, meshopt");
+         "--method", a.method,
+         "outside: wrap (default), hull; inside: wrap (default), erode; general: qem (default), "
+         "cgal-sms, meshopt")
+      ->check(CLI::IsMember({"wrap", "hull", "erode", "qem", "cgal-sms", "meshopt"}));
   app.add_option("-o,--output", a.output, "Output mesh (mesh input)");
   app.add_option("--out-dir", a.out_dir,
                  "Output directory (scene input): DIR/<mesh>.<kind>.ply, DIR/scene.json");
   app.add_option("--alpha", a.alpha, "wrap: alpha as a fraction of the diagonal (default 1/50)")
-      ->check(positiveNumber());
+      ->check(numberIn(kAlphaRange.lo, kAlphaRange.hi));
   app.add_option("--offset", a.offset, "wrap: offset as a fraction of the diagonal (default 1/600)")
-      ->check(positiveNumber());
+      ->check(numberIn(kOffsetRange.lo, kOffsetRange.hi));
   app.add_option(
-      "--max-faces", a.max_faces,
-      "Face budget; outside/inside keep their guarantee while reducing (0 = none, but an "
-      "outside/inside proxy with more faces than the input is reduced to the input's count)");
+         "--max-faces", a.max_faces,
+         "Face budget; outside/inside keep their guarantee while reducing (0 = none, but an "
+         "outside/inside proxy with more faces than the input is reduced to the input's count)")
+      ->check(integerIn(0, kMaxFacesLimit));
+  app.add_option("--max-seconds", a.max_seconds,
+                 "Time budget per mesh: a wrap, erosion or decimation still running after it is "
+                 "stopped and the mesh fails (exit code 2), nothing is written")
+      ->check(numberIn(0.1, kMaxSecondsRange.hi))
+      ->capture_default_str();
   app.add_option("--ratio", a.ratio,
                  "Faces kept as a fraction of the input: general (default 0.02); outside/inside "
                  "a face budget relative to each mesh (for scenes), used when --max-faces is 0")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(numberIn(kRatioRange.lo, kRatioRange.hi));
   app.add_option("--erosion", a.erosion,
                  "erode: erosion distance as a fraction of the diagonal (default 1/75)")
-      ->check(positiveNumber());
+      ->check(numberIn(kErosionRange.lo, kErosionRange.hi));
   app.add_flag("--fill-holes", a.fill_holes, "inside: fill the holes of an open input first");
   addCommonOptions(app, common);
   return runApp(app, argc, argv, common, [&] {

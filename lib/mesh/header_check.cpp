@@ -514,10 +514,17 @@ void checkOffRecordLines(const std::string& bytes, size_t from, uint64_t vertice
                    "a face line is 'count index index ...' with integers", "the file is corrupt");
     };
     if (!isIntegerIn(token, 0, 1 << 20)) throw notInteger("vertex count");
-    for (long k = std::stol(token); k > 0; --k)
-      if (!(ls >> token) || !isIntegerIn(token, std::numeric_limits<int32_t>::min(),
-                                         std::numeric_limits<int32_t>::max()))
+    const long count = std::stol(token);
+    for (long k = count; k > 0; --k) {
+      if (!(ls >> token) || token[0] == '#')
+        throw Error(file,
+                    "face line " + std::to_string(line) + " lists fewer than its " +
+                        std::to_string(count) + " vertex indices",
+                    "a face line is 'count index index ...'", "the file is corrupt");
+      if (!isIntegerIn(token, std::numeric_limits<int32_t>::min(),
+                       std::numeric_limits<int32_t>::max()))
         throw notInteger("index");
+    }
   }
   if (records < vertices + faces)
     throw Error(file,

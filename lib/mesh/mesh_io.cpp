@@ -12,6 +12,7 @@
 #include "util/atomic_write.h"
 #include "util/error.h"
 #include "util/input_file.h"
+#include "util/output_path.h"
 #include "util/output_set.h"
 
 namespace proxyvis {
@@ -105,8 +106,10 @@ void addMeshOutput(OutputSet& outputs, const TriMesh& mesh, const fs::path& path
     bytes = std::move(encoded).str();
   }
   // The sidecar is put in place after the mesh: a mesh beside a stale sidecar would be refused.
+  // A stream or device target (/dev/null, a FIFO) is no file to verify later: no sidecar.
   outputs.addText(path, bytes);
-  outputs.addText(detail::sidecarPathOf(path), detail::sidecarLine(path, bytes));
+  if (resolveOutputTarget(path).kind == OutputTarget::Kind::kFile)
+    outputs.addText(detail::sidecarPathOf(path), detail::sidecarLine(path, bytes));
 }
 
 void saveMesh(const TriMesh& mesh, const fs::path& path, const SaveOptions& options) {

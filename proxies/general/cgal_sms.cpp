@@ -5,6 +5,8 @@
 #include <CGAL/Surface_mesh_simplification/edge_collapse.h>
 
 #include "proxies/general/general_proxy.h"
+#include "proxies/limits/input_geometry.h"
+#include "proxies/outside/internal/budget_stop.h"
 #include "proxies/outside/internal/cgal_weld.h"
 
 namespace proxyvis {
@@ -12,16 +14,19 @@ namespace proxyvis {
 TriMesh simplifyCgalSms(const TriMesh& input, const GeneralOptions& options) {
   namespace SMS = CGAL::Surface_mesh_simplification;
   using cgal::SurfaceMesh;
+  requireProxyGeometry(input, GeometryNeed::kSurface, "a cgal-sms proxy");
   SurfaceMesh sm = cgal::toWeldedMesh(input);
 
   const size_t target = generalTargetFaces(input, options);
   // Edges of a closed triangle mesh: 3F/2; the stop predicate counts edges.
-  SMS::Count_stop_predicate<SurfaceMesh> stop(target * 3 / 2 + 1);
+  cgal::CountOrBudgetStop<SurfaceMesh> stop{
+      SMS::Count_stop_predicate<SurfaceMesh>(target * 3 / 2 + 1), options.budget};
   using Policies = SMS::GarlandHeckbert_plane_policies<SurfaceMesh, cgal::Kernel>;
   Policies policies(sm);
   SMS::edge_collapse(
       sm, stop,
       CGAL::parameters::get_cost(policies.get_cost()).get_placement(policies.get_placement()));
+  checkBudget(options.budget, "the cgal-sms edge collapse");
   sm.collect_garbage();
   return cgal::fromSurfaceMesh(sm, "cgal-sms of " + input.source);
 }

@@ -5,6 +5,7 @@
 #include <cstddef>
 
 #include "mesh/tri_mesh.h"
+#include "proxies/limits/time_budget.h"
 
 namespace proxyvis {
 
@@ -14,6 +15,7 @@ struct GeneralOptions {
   // qem only: also bound the one-sided Hausdorff distance (OpenMesh ModHausdorff), as a
   // fraction of the diagonal; 0 = off.
   double hausdorff = 0;
+  const TimeBudget* budget = nullptr;  // polled while decimating (qem, cgal-sms); null = no limit
 };
 
 // The face budget the options ask for on `input` (at least 4).
@@ -23,8 +25,11 @@ size_t generalTargetFaces(const TriMesh& input, const GeneralOptions& options);
 // vertices dropped.
 TriMesh weldVertices(const TriMesh& input);
 
+// The three simplifiers throw Error when requireProxyGeometry (proxies/limits) refuses the input
+// (it needs a surface) or when options.budget is spent.
+
 // OpenMesh Decimater: ModQuadric + ModNormalFlipping (+ ModHausdorff when requested). Faces that
-// OpenMesh cannot add (non-manifold) are skipped.
+// OpenMesh cannot add (non-manifold, or degenerate after welding) are skipped.
 TriMesh simplifyQem(const TriMesh& input, const GeneralOptions& options);
 
 // CGAL Surface_mesh_simplification::edge_collapse with GarlandHeckbert_plane_policies.

@@ -7,13 +7,16 @@
 #include <OpenMesh/Tools/Decimater/ModHausdorffT.hh>
 #include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
 #include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
+#include <OpenMesh/Tools/Decimater/Observer.hh>
 #include <cstdlib>
 #include <mutex>
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "proxies/general/general_proxy.h"
+#include "proxies/limits/input_geometry.h"
 #include "util/error.h"
 
 namespace proxyvis {
@@ -40,6 +43,17 @@ TriMesh compact(const std::vector<Vec3f>& vertices, const std::vector<uint32_t>&
   }
   return out;
 }
+
+// Lets OpenMesh's decimater stop between collapses when the time budget is spent.
+class BudgetObserver : public OpenMesh::Decimater::Observer {
+ public:
+  explicit BudgetObserver(const TimeBudget& budget) : Observer(256), budget_(budget) {}
+  void notify(size_t) override {}
+  bool abort() const override { return budget_.expired(); }
+
+ private:
+  const TimeBudget& budget_;
+};
 
 std::vector<uint32_t> flatIndices(const TriMesh& mesh) {
   std::vector<uint32_t> idx;
@@ -72,12 +86,20 @@ TriMesh weldVertices(const TriMesh& input) {
 }
 
 TriMesh simplifyQem(const TriMesh& input, const GeneralOptions& options) {
+  requireProxyGeometry(input, GeometryNeed::kSurface, "a qem proxy");
   const TriMesh welded = weldVertices(input);
   OmMesh om;
   std::vector<OmMesh::VertexHandle> vh;
   vh.reserve(welded.vertices.size());
   for (const Vec3f& v : welded.vertices) vh.push_back(om.add_vertex(OmMesh::Point(v.x, v.y, v.z)));
-  for (const Triangle& t : welded.triangles) om.add_face(vh[t[0]], vh[t[1]], vh[t[2]]);
+  // A triangle whose corners welded into fewer than three vertices has no edge to collapse, and
+  // OpenMesh asserts on it.
+  for (const Triangle& t : welded.triangles)
+    if (t[0] != t[1] && t[1] != t[2] && t[0] != t[2]) om.add_face(vh[t[0]], vh[t[1]], vh[t[2]]);
+  if (om.n_faces() == 0)
+    throw Error(input.source, "cannot build a qem proxy",
+                "no triangle could be added to a half-edge mesh (all degenerate or non-manifold)",
+                "use --method meshopt");
 
   // ModNormalFlipping compares face normals before and after a collapse.
   om.request_face_normals();
@@ -97,12 +119,18 @@ TriMesh simplifyQem(const TriMesh& input, const GeneralOptions& options) {
     decimater.module(hausdorff).set_tolerance(float(options.hausdorff * input.diagonal()));
   }
   decimater.initialize();
+  std::optional<BudgetObserver> observer;
+  if (options.budget) {
+    observer.emplace(*options.budget);
+    decimater.set_observer(&*observer);
+  }
   {
     static std::mutex rand_mutex;  // OpenMesh's multiple-choice sampling draws from std::rand
     std::lock_guard<std::mutex> lock(rand_mutex);
     std::srand(1);
     decimater.decimate_to_faces(0, generalTargetFaces(input, options), 0.8f);
   }
+  checkBudget(options.budget, "the qem decimation");
   om.garbage_collection();
 
   TriMesh out;
@@ -121,9 +149,13 @@ TriMesh simplifyQem(const TriMesh& input, const GeneralOptions& options) {
 }
 
 TriMesh simplifyMeshopt(const TriMesh& input, const GeneralOptions& options) {
+  requireProxyGeometry(input, GeometryNeed::kSurface, "a meshopt proxy");
   const TriMesh welded = weldVertices(input);
   const size_t target = generalTargetFaces(input, options);
   std::vector<uint32_t> idx = flatIndices(welded), out(idx.size());
+  // Already within the budget (a mesh of fewer than 4 triangles): meshopt asserts on a target
+  // above the index count.
+  if (target * 3 >= idx.size()) return compact(welded.vertices, idx, "meshopt of " + input.source);
   // target_error 1 (relative to the mesh extent) lets the face budget alone decide.
   size_t n = meshopt_simplify(out.data(), idx.data(), idx.size(), &welded.vertices[0].x,
                               welded.vertices.size(), sizeof(Vec3f), target * 3, 1.0f);

@@ -10,6 +10,8 @@
 #include "proxies/check/mesh_distance.h"
 #include "proxies/general/general_proxy.h"
 #include "proxies/inside/inside_proxy.h"
+#include "proxies/limits/input_geometry.h"
+#include "proxies/limits/time_budget.h"
 #include "proxies/outside/bounded_simplify.h"
 #include "proxies/outside/outside_proxy.h"
 #include "util/error.h"
@@ -57,6 +59,34 @@ std::string resolveMethod(const ProxyGenOptions& options) {
   return method;
 }
 
+// Options outside their range: the CLI refuses them already, other callers get the same rule.
+void checkOptionRanges(const ProxyGenOptions& o) {
+  auto check = [](const std::optional<double>& v, ParameterRange range, const char* name) {
+    if (v && !range.contains(*v))
+      throw Error("",
+                  fmt::format("{} must be in [{:g}, {:g}], got {:g}", name, range.lo, range.hi, *v),
+                  "it is a fraction of the bounding-box diagonal");
+  };
+  check(o.alpha, kAlphaRange, "--alpha");
+  check(o.offset, kOffsetRange, "--offset");
+  check(o.erosion, kErosionRange, "--erosion");
+  check(o.ratio, kRatioRange, "--ratio");
+  if (o.max_faces > kMaxFacesLimit)
+    throw Error("",
+                fmt::format("--max-faces must be at most {}, got {}", kMaxFacesLimit, o.max_faces));
+  if (o.max_seconds != 0 && !kMaxSecondsRange.contains(o.max_seconds))
+    throw Error("", fmt::format("--max-seconds must be in [{:g}, {:g}], got {:g}",
+                                kMaxSecondsRange.lo, kMaxSecondsRange.hi, o.max_seconds));
+}
+
+// What a method needs of the input geometry (proxies/limits/input_geometry.h): the convex hull
+// and the inside methods a volume, the wrap and the simplifiers a surface.
+GeometryNeed geometryNeed(ProxyClass kind, const std::string& method) {
+  if (kind == ProxyClass::kInside) return GeometryNeed::kSolid;
+  if (kind == ProxyClass::kOutside && method == "hull") return GeometryNeed::kSolid;
+  return GeometryNeed::kSurface;
+}
+
 struct Built {
   TriMesh mesh;          // before the budget
   bool bounded = false;  // reduce with simplifyBounded (outside/inside) rather than not at all
@@ -64,7 +94,7 @@ struct Built {
 };
 
 Built build(const TriMesh& reference, const ProxyGenOptions& o, const std::string& method,
-            json& params) {
+            json& params, const TimeBudget* budget) {
   Built b;
   if (o.kind == ProxyClass::kOutside) {
     b.bounded = true;
@@ -76,6 +106,7 @@ Built build(const TriMesh& reference, const ProxyGenOptions& o, const std::strin
       WrapOptions w;
       w.alpha = o.alpha.value_or(w.alpha);
       w.offset = o.offset.value_or(w.offset);
+      w.budget = budget;
       params["alpha"] = w.alpha;
       params["offset"] = w.offset;
       b.mesh = makeWrapProxy(reference, w);
@@ -87,13 +118,16 @@ Built build(const TriMesh& reference, const ProxyGenOptions& o, const std::strin
       InsideWrapOptions w;
       w.alpha = o.alpha.value_or(w.alpha);
       w.offset = o.offset.value_or(w.offset);
+      w.budget = budget;
       params["alpha"] = w.alpha;
       params["offset"] = w.offset;
       b.mesh = makeInsideWrapProxy(reference, w, &stats);
       b.extra["seeds"] = stats.seeds;
     } else {
       ErodeOptions e;
+      e.voxel = o.voxel.value_or(e.voxel);
       e.erosion = o.erosion.value_or(2 * e.voxel);
+      e.budget = budget;
       params["erosion"] = e.erosion;
       params["voxel"] = e.voxel;
       b.mesh = makeErodeProxy(reference, e, &stats);
@@ -103,6 +137,7 @@ Built build(const TriMesh& reference, const ProxyGenOptions& o, const std::strin
     GeneralOptions g;
     g.max_faces = o.max_faces;
     g.ratio = o.ratio.value_or(g.ratio);
+    g.budget = budget;
     params["ratio"] = g.ratio;
     if (method == "qem")
       b.mesh = simplifyQem(reference, g);
@@ -128,8 +163,12 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
   json report;
   json& seconds = report["seconds"] = json::object();
   StageTimer timer(seconds);
-  if (input.empty())
-    throw Error(input.source, "the mesh has no triangles", "there is nothing to build a proxy of");
+  checkOptionRanges(options);
+  // Before CGAL or OpenMesh see the mesh: they crash, abort or loop on some geometry that loads.
+  requireProxyGeometry(input, geometryNeed(options.kind, method),
+                       fmt::format("the {} {} proxy", method, proxyClassName(options.kind)));
+  const TimeBudget budget =
+      options.max_seconds > 0 ? TimeBudget(options.max_seconds, input.source) : TimeBudget();
 
   const MeshReport in_report = timer.run("validate_input", [&] { return validateMesh(input); });
   report["input"] = {{"path", input.source},
@@ -141,6 +180,7 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
   report["method"] = method;
   json& params = report["parameters"] = {
       {"max_faces", options.max_faces}, {"fill_holes", options.fill_holes}, {"seed", options.seed}};
+  if (options.max_seconds > 0) params["max_seconds"] = options.max_seconds;
 
   // The mesh the guarantee refers to: the input, or the input with its holes filled.
   TriMesh reference = input;
@@ -154,9 +194,12 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
     size_t holes = 0;
     reference = timer.run("fill_holes", [&] { return fillHoles(input, &holes); });
     report["holes_filled"] = holes;
+    budget.check("the hole filling");
   }
 
-  Built built = timer.run("build", [&] { return build(reference, options, method, params); });
+  Built built =
+      timer.run("build", [&] { return build(reference, options, method, params, &budget); });
+  budget.check("building the proxy");
   report.update(built.extra);
   report["faces_before_budget"] = built.mesh.numTriangles();
   // A proxy with more faces than its original saves nothing (a wrapped 2-triangle ground quad
@@ -196,6 +239,7 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
       s.max_faces = max_faces;
       s.side = options.kind == ProxyClass::kOutside ? BoundSide::kOutside : BoundSide::kInside;
       s.max_move_edges = move;
+      s.budget = &budget;
       proxy =
           timer.run("simplify", [&] { return simplifyBounded(built.mesh, s, &simplify_stats); });
     }
@@ -204,6 +248,7 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
       v.self_intersections = true;
       return validateMesh(proxy, v);
     });
+    budget.check("verifying the proxy");
     if (options.kind == ProxyClass::kGeneral) break;
     containment = timer.run("verify", [&] { return checkContainment(reference, proxy); });
     const bool ok = p_report.closed && p_report.manifold &&
@@ -218,6 +263,7 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
            {"self_intersecting_pairs", p_report.self_intersecting_pairs.value_or(0)},
            {"containment", containmentName(containment->verdict)}});
     if (ok || proxy.numTriangles() == built.mesh.numTriangles()) break;
+    budget.check("the face budget's retries");
   }
   if (built.bounded && max_faces > 0) report["budget_reached"] = simplify_stats.budget_reached;
 

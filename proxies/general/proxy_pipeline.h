@@ -14,6 +14,21 @@
 
 namespace proxyvis {
 
+// The accepted range of each size and budget (proxy-gen checks them when parsing; generateProxy
+// again, for other callers). Sizes are fractions of the bounding-box diagonal. Beyond these a
+// wrap or erosion would not finish in reasonable time and memory (an alpha of diag/2000 or an
+// offset of 10 diagonals needs gigabytes), or could not be represented in float.
+struct ParameterRange {
+  double lo, hi;
+  bool contains(double v) const { return v >= lo && v <= hi; }
+};
+inline constexpr ParameterRange kAlphaRange{1e-3, 1};
+inline constexpr ParameterRange kOffsetRange{1e-4, 1};
+inline constexpr ParameterRange kErosionRange{1e-3, 0.5};
+inline constexpr ParameterRange kRatioRange{1e-6, 1};
+inline constexpr ParameterRange kMaxSecondsRange{0.01, 7 * 24 * 3600};
+inline constexpr uint64_t kMaxFacesLimit = 1'000'000'000;
+
 struct ProxyGenOptions {
   ProxyClass kind = ProxyClass::kOutside;
   std::string method;            // empty = the kind's default: wrap, wrap, qem
@@ -24,9 +39,13 @@ struct ProxyGenOptions {
   // max(12, ratio x input faces) when max_faces is 0.
   std::optional<double> ratio;
   std::optional<double> erosion;  // erode: fraction of the diagonal (default 1/75)
+  std::optional<double> voxel;    // erode: voxel edge, fraction of the diagonal (default 1/150)
   bool fill_holes = false;        // inside: fill the holes of an open input first
   uint64_t seed = 0;              // sampling of the Hausdorff estimates
   uint64_t hausdorff_samples = 20000;
+  // Time budget for the whole generation (wrap, seed search, erosion, decimation, face budget
+  // poll it); 0 = none.
+  double max_seconds = 0;
 };
 
 // Methods accepted for a kind ("hull", "wrap" / "wrap", "erode" / "qem", "cgal-sms", "meshopt").
@@ -40,7 +59,9 @@ struct ProxyGenResult {
 
 // Builds and checks the proxy of `input` (report key "input.path" = input.source). Throws Error
 // on bad input or options (e.g. an open mesh for --kind inside without fill_holes, naming the
-// boundary edges), CheckFailed when an outside/inside proxy fails its guarantee. A general proxy
+// boundary edges; geometry the generator cannot handle, see proxies/limits/input_geometry.h; an
+// option outside its range; a spent max_seconds), CheckFailed when an outside/inside proxy fails
+// its guarantee. A general proxy
 // that is not closed/manifold/free of self-intersections is returned with verified = false.
 ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& options);
 

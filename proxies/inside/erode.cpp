@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "proxies/inside/inside_proxy.h"
+#include "proxies/limits/input_geometry.h"
 #include "util/error.h"
 
 namespace proxyvis {
@@ -31,7 +32,7 @@ struct Grid {
 // irrational fraction of a voxel so that they do not pass exactly through grid-aligned edges;
 // a column with an odd number of crossings (a ray grazing an edge) is left empty, which errs
 // on the inside.
-Grid voxelize(const TriMesh& mesh, double h) {
+Grid voxelize(const TriMesh& mesh, double h, const TimeBudget* budget) {
   const Bounds3f b = mesh.bounds();
   Grid g;
   g.h = h;
@@ -71,6 +72,7 @@ Grid voxelize(const TriMesh& mesh, double h) {
     }
   }
   g.in.assign(size_t(g.n[0]) * g.n[1] * g.n[2], 0);
+  checkBudget(budget, "the voxelisation");
   for (int k = 0; k < g.n[2]; ++k)
     for (int j = 0; j < g.n[1]; ++j) {
       std::vector<double>& xs = hits[size_t(k) * g.n[1] + j];
@@ -87,10 +89,11 @@ Grid voxelize(const TriMesh& mesh, double h) {
 
 // Erosion (keep = all) or dilation (keep = any) by a (2r+1)^3 cube, as three 1-D filters:
 // erosion keeps a voxel if every voxel within L∞ distance r is inside.
-void morph(Grid& g, int r, bool dilate) {
+void morph(Grid& g, int r, bool dilate, const TimeBudget* budget) {
   for (int axis = 0; axis < 3; ++axis) {
     std::vector<uint8_t> out(g.in.size(), 0);
-    for (int k = 0; k < g.n[2]; ++k)
+    for (int k = 0; k < g.n[2]; ++k) {
+      checkBudget(budget, "the erosion");
       for (int j = 0; j < g.n[1]; ++j)
         for (int i = 0; i < g.n[0]; ++i) {
           bool keep = !dilate;
@@ -101,6 +104,7 @@ void morph(Grid& g, int r, bool dilate) {
           }
           out[g.index(i, j, k)] = keep;
         }
+    }
     g.in.swap(out);
   }
 }
@@ -108,11 +112,12 @@ void morph(Grid& g, int r, bool dilate) {
 // Removes voxels until no 2x2x2 block holds a critical configuration: two face-diagonal voxels
 // without the other two of their square (edge case), or two antipodal voxels alone / the six
 // others without them (vertex case).
-void makeWellComposed(Grid& g) {
+void makeWellComposed(Grid& g, const TimeBudget* budget) {
   bool changed = true;
   while (changed) {
     changed = false;
-    for (int k = -1; k < g.n[2]; ++k)
+    for (int k = -1; k < g.n[2]; ++k) {
+      checkBudget(budget, "the erosion");
       for (int j = -1; j < g.n[1]; ++j)
         for (int i = -1; i < g.n[0]; ++i) {
           auto v = [&](int c) { return g.at(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1)); };
@@ -148,12 +153,13 @@ void makeWellComposed(Grid& g) {
             }
           }
         }
+    }
   }
 }
 
 // The voxel faces between inside and outside voxels, as two triangles each, sharing grid
 // corners; outward oriented.
-TriMesh extractBoundary(const Grid& g, const std::string& source) {
+TriMesh extractBoundary(const Grid& g, const std::string& source, const TimeBudget* budget) {
   TriMesh mesh;
   mesh.source = source;
   const int cn[3] = {g.n[0] + 1, g.n[1] + 1, g.n[2] + 1};
@@ -167,7 +173,8 @@ TriMesh extractBoundary(const Grid& g, const std::string& source) {
     }
     return id;
   };
-  for (int k = 0; k < g.n[2]; ++k)
+  for (int k = 0; k < g.n[2]; ++k) {
+    checkBudget(budget, "the erosion's surface extraction");
     for (int j = 0; j < g.n[1]; ++j)
       for (int i = 0; i < g.n[0]; ++i) {
         if (!g.at(i, j, k)) continue;
@@ -198,33 +205,36 @@ TriMesh extractBoundary(const Grid& g, const std::string& source) {
             }
           }
       }
+  }
   return mesh;
 }
 
 }  // namespace
 
 TriMesh makeErodeProxy(const TriMesh& input, const ErodeOptions& options, InsideStats* stats) {
-  if (!(options.voxel > 0) || !(options.erosion >= 0))
-    throw Error("", "voxel size must be positive and erosion non-negative",
-                "fractions of the diagonal");
-  if (input.empty()) throw Error(input.source, "cannot erode", "the mesh has no triangles");
+  // At most ~1000^3 voxels and an erosion no deeper than the mesh is wide.
+  if (!(options.voxel >= 1e-3 && options.voxel <= 1) ||
+      !(options.erosion >= 0 && options.erosion <= 1))
+    throw Error("", "the voxel size must be in [0.001, 1] and the erosion in [0, 1]",
+                "both are fractions of the diagonal");
+  requireProxyGeometry(input, GeometryNeed::kSolid, "an erosion proxy");
   const double diag = input.diagonal();
   const double h = options.voxel * diag;
-  Grid g = voxelize(input, h);
+  Grid g = voxelize(input, h, options.budget);
   const int r = std::max(1, int(std::ceil(options.erosion / options.voxel - 1e-9)));
   // Opening: erode by r + 1, dilate by 1. The result is a subset of the r-eroded set without
   // parts thinner than about 3 voxels, which the budgeted inward collapse would otherwise press
   // flat (its two sheets meeting = a self-intersection).
-  morph(g, r + 1, false);
-  morph(g, 1, true);
-  makeWellComposed(g);
+  morph(g, r + 1, false, options.budget);
+  morph(g, 1, true, options.budget);
+  makeWellComposed(g, options.budget);
   size_t voxels = 0;
   for (uint8_t v : g.in) voxels += v;
   if (stats) stats->voxels = voxels;
   if (voxels == 0)
     throw Error(input.source, fmt::format("nothing is left after eroding by {} voxels", r),
                 "the mesh is thinner than the erosion", "lower --erosion or the voxel size");
-  return extractBoundary(g, "eroded " + input.source);
+  return extractBoundary(g, "eroded " + input.source, options.budget);
 }
 
 }  // namespace proxyvis

@@ -5,6 +5,7 @@
 #include <cstddef>
 
 #include "mesh/tri_mesh.h"
+#include "proxies/limits/time_budget.h"
 
 namespace proxyvis {
 
@@ -17,11 +18,13 @@ struct InsideWrapOptions {
   // seeds reach thin parts that alpha-sized passages do not connect.
   int seed_grid = 40;
   size_t max_seeds = 400;
+  const TimeBudget* budget = nullptr;  // polled by the seed search and the wrap; null = no limit
 };
 
 struct ErodeOptions {
-  double voxel = 1.0 / 150;    // voxel edge length
-  double erosion = 1.0 / 150;  // erosion distance (rounded up to whole voxels, at least 1)
+  double voxel = 1.0 / 150;            // voxel edge length
+  double erosion = 1.0 / 150;          // erosion distance (rounded up to whole voxels, at least 1)
+  const TimeBudget* budget = nullptr;  // polled between voxel passes; null = no limit
 };
 
 struct InsideStats {
@@ -40,14 +43,17 @@ TriMesh fillHoles(const TriMesh& input, size_t* holes = nullptr);
 
 // Inner alpha-wrap from interior seeds (CGAL alpha_wrap_3 with seed_points). `input` must be
 // closed: otherwise throws Error naming the boundary edges and suggesting --fill-holes or
-// --kind outside. Throws Error when no interior point is deeper than the offset.
+// --kind outside. Throws Error when no interior point is deeper than the offset, when
+// requireProxyGeometry (proxies/limits) refuses the input, when the wrap's estimate exceeds
+// kMaxEstimatedWrapFaces, or when options.budget is spent.
 TriMesh makeInsideWrapProxy(const TriMesh& input, const InsideWrapOptions& options = {},
                             InsideStats* stats = nullptr);
 
 // Solid voxelisation (ray parity along x), erosion by a cube of ceil(erosion/voxel) voxels,
 // removal of voxels that would make the surface non-manifold, and the boundary of the voxel
 // set as a closed, outward oriented triangle mesh (not simplified: use simplifyBounded with
-// BoundSide::kInside). Throws Error when nothing is left after erosion.
+// BoundSide::kInside). Throws Error when nothing is left after erosion, when
+// requireProxyGeometry refuses the input, or when options.budget is spent.
 TriMesh makeErodeProxy(const TriMesh& input, const ErodeOptions& options = {},
                        InsideStats* stats = nullptr);
 

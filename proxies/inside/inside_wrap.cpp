@@ -12,10 +12,14 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "proxies/inside/inside_proxy.h"
+#include "proxies/limits/input_geometry.h"
 #include "proxies/outside/internal/cgal_weld.h"
+#include "proxies/outside/internal/wrap_budget.h"
+#include "proxies/outside/outside_proxy.h"
 #include "util/error.h"
 
 namespace proxyvis {
@@ -50,27 +54,53 @@ SurfaceMesh closedInput(const TriMesh& input, const char* method) {
   return sm;
 }
 
+// The faces whose corners are not collinear. CGAL's inside test retries a ray that hits a
+// degenerate face with another one, without end when every ray does (all faces degenerate);
+// a zero-area face bounds nothing, so leaving it out changes no answer.
+std::vector<SurfaceMesh::Face_index> nonDegenerateFaces(const SurfaceMesh& sm) {
+  std::vector<SurfaceMesh::Face_index> kept;
+  for (auto f : sm.faces()) {
+    const auto h = sm.halfedge(f);
+    if (!CGAL::collinear(sm.point(sm.source(h)), sm.point(sm.target(h)),
+                         sm.point(sm.target(sm.next(h)))))
+      kept.push_back(f);
+  }
+  return kept;
+}
+
 // Grid points inside the mesh whose distance to the surface is a local maximum over their 26
-// neighbours and exceeds min_depth; deepest first, at most max_seeds.
+// neighbours and exceeds min_depth; deepest first, at most max_seeds. The grid has at most
+// (seed_grid + 1)^3 points and the budget is polled for every slice of it.
 std::vector<Point3> findSeeds(const SurfaceMesh& sm, const InsideWrapOptions& options,
-                              double min_depth) {
-  Tree tree(faces(sm).first, faces(sm).second, sm);
+                              double min_depth, const std::string& source) {
+  const std::vector<SurfaceMesh::Face_index> kept = nonDegenerateFaces(sm);
+  if (kept.empty())
+    throw Error(source, "every face is degenerate (zero area)",
+                "the mesh encloses no volume to seed an inside wrap", "check the mesh");
+  Tree tree(kept.begin(), kept.end(), sm);
   tree.accelerate_distance_queries();
   Side side(tree);
   const CGAL::Bbox_3 box = PMP::bbox(sm);
   const double longest =
       std::max({box.xmax() - box.xmin(), box.ymax() - box.ymin(), box.zmax() - box.zmin()});
-  const double h = longest / std::max(options.seed_grid, 2);
-  const int n[3] = {int(std::ceil((box.xmax() - box.xmin()) / h)) + 1,
-                    int(std::ceil((box.ymax() - box.ymin()) / h)) + 1,
-                    int(std::ceil((box.zmax() - box.zmin()) / h)) + 1};
+  const int grid = std::clamp(options.seed_grid, 2, 200);
+  const double h = longest / grid;
+  if (!(h > 0)) throw Error(source, "the mesh has no extent", "there is no inside to seed");
+  const int n[3] = {std::min(grid, int(std::ceil((box.xmax() - box.xmin()) / h))) + 1,
+                    std::min(grid, int(std::ceil((box.ymax() - box.ymin()) / h))) + 1,
+                    std::min(grid, int(std::ceil((box.zmax() - box.zmin()) / h))) + 1};
   auto point = [&](int i, int j, int k) {
     return Point3(box.xmin() + (i + 0.5) * h, box.ymin() + (j + 0.5) * h,
                   box.zmin() + (k + 0.5) * h);
   };
   auto index = [&](int i, int j, int k) { return (size_t(k) * n[1] + j) * n[0] + i; };
   std::vector<double> depth(size_t(n[0]) * n[1] * n[2], 0.0);
+  std::atomic<bool> stopped{false};
   tbb::parallel_for(0, n[2], [&](int k) {
+    if (stopped || (options.budget && options.budget->expired())) {
+      stopped = true;
+      return;
+    }
     for (int j = 0; j < n[1]; ++j)
       for (int i = 0; i < n[0]; ++i) {
         const Point3 p = point(i, j, k);
@@ -78,6 +108,7 @@ std::vector<Point3> findSeeds(const SurfaceMesh& sm, const InsideWrapOptions& op
           depth[index(i, j, k)] = std::sqrt(tree.squared_distance(p));
       }
   });
+  checkBudget(options.budget, "the seed search of the inside wrap");
   std::vector<std::pair<double, Point3>> maxima;
   for (int k = 0; k < n[2]; ++k)
     for (int j = 0; j < n[1]; ++j)
@@ -139,19 +170,22 @@ TriMesh makeInsideWrapProxy(const TriMesh& input, const InsideWrapOptions& optio
   if (!(options.alpha > 0) || !(options.offset > 0))
     throw Error("", "alpha and offset must be positive fractions of the diagonal",
                 "alpha_wrap_3 is undefined otherwise");
+  requireProxyGeometry(input, GeometryNeed::kSolid, "an inside wrap");
+  requireWrapSize(input, options.alpha, options.offset, "the inside wrap");
   SurfaceMesh sm = closedInput(input, "wrap");
   const double diag = input.diagonal();
   const double offset = options.offset * diag;
-  std::vector<Point3> seeds = findSeeds(sm, options, 2 * offset);
+  std::vector<Point3> seeds = findSeeds(sm, options, 2 * offset, input.source);
   if (seeds.empty())
     throw Error(input.source, "no interior point is deeper than twice the offset",
                 "the inner wrap is carved from interior seeds", "lower --offset");
   if (stats) stats->seeds = seeds.size();
   SurfaceMesh wrap;
   // seed_points belongs to the SECOND (output) named-parameter pack: in the first it is
-  // silently ignored and the result is an outer wrap (measured with CGAL 5.5, issue #4).
+  // silently ignored and the result is an outer wrap (measured with CGAL 5.5).
+  cgal::WrapBudgetVisitor visitor(options.budget, kMaxEstimatedWrapFaces / 4, input.source);
   CGAL::alpha_wrap_3(sm, options.alpha * diag, offset, wrap, CGAL::parameters::default_values(),
-                     CGAL::parameters::seed_points(seeds));
+                     CGAL::parameters::seed_points(seeds).visitor(visitor));
   if (wrap.number_of_faces() == 0)
     throw Error(input.source, "the inner alpha wrap is empty", "no seed region could be carved",
                 "lower --alpha or --offset");

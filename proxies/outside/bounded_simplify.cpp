@@ -21,6 +21,7 @@
 #include <array>
 #include <cmath>
 
+#include "proxies/outside/internal/budget_stop.h"
 #include "proxies/outside/internal/cgal_mesh.h"
 #include "proxies/outside/internal/plane_lp.h"
 #include "util/error.h"
@@ -74,9 +75,13 @@ boost::optional<Point3> placeOutside(const Profile& profile, double max_move_edg
   return Point3((*x)[0], (*x)[1], (*x)[2]);
 }
 
+// Once the time budget is spent, no edge gets a placement: CGAL's initial pass over every edge
+// (an LP each) then ends quickly, and the stop predicate ends the collapses.
 struct OutsidePlacement {
   double max_move_edges;
+  const TimeBudget* budget;
   boost::optional<Point3> operator()(const Profile& profile) const {
+    if (budget && budget->expired()) return boost::none;
     return placeOutside(profile, max_move_edges);
   }
 };
@@ -187,13 +192,15 @@ TriMesh simplifyBounded(const TriMesh& mesh, const BoundedSimplifyOptions& optio
                 "the mesh is not a closed 2-manifold");
 
   // A closed triangle mesh has E = 3F/2 edges; CGAL's stop predicate counts edges.
-  SMS::Count_stop_predicate<SurfaceMesh> stop(options.max_faces * 3 / 2 + 1);
+  cgal::CountOrBudgetStop<SurfaceMesh> stop{
+      SMS::Count_stop_predicate<SurfaceMesh>(options.max_faces * 3 / 2 + 1), options.budget};
   CountCollapses visitor(&st.collapses);
   SMS::edge_collapse(sm, stop,
                      CGAL::parameters::get_cost(AddedVolumeCost())
-                         .get_placement(OutsidePlacement{options.max_move_edges})
+                         .get_placement(OutsidePlacement{options.max_move_edges, options.budget})
                          .filter(LocalIntersectionFilter())
                          .visitor(visitor));
+  checkBudget(options.budget, "the face budget's edge collapse");
   sm.collect_garbage();
   TriMesh out = cgal::fromSurfaceMesh(sm, mesh.source);
   if (inside) out = reversed(out);

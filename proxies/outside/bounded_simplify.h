@@ -7,6 +7,7 @@
 #include <cstddef>
 
 #include "mesh/tri_mesh.h"
+#include "proxies/limits/time_budget.h"
 
 namespace proxyvis {
 
@@ -18,6 +19,7 @@ struct BoundedSimplifyOptions {
   // A collapsed vertex may move at most this many edge lengths from the edge midpoint; keeps
   // new faces local so they do not cut through distant parts of the surface.
   double max_move_edges = 1.0;
+  const TimeBudget* budget = nullptr;  // polled between collapses; null = no limit
 };
 
 struct BoundedSimplifyStats {
@@ -27,7 +29,8 @@ struct BoundedSimplifyStats {
 };
 
 // `mesh` must be closed, 2-manifold and outward oriented (positive volume); otherwise throws
-// Error. Returns the simplified mesh; stats (optional) says how far it got.
+// Error, as when options.budget is spent. Returns the simplified mesh; stats (optional) says how
+// far it got.
 TriMesh simplifyBounded(const TriMesh& mesh, const BoundedSimplifyOptions& options,
                         BoundedSimplifyStats* stats = nullptr);
 

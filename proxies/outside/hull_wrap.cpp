@@ -6,7 +6,11 @@
 #include <cmath>
 #include <limits>
 
+#include <fmt/core.h>
+
+#include "proxies/limits/input_geometry.h"
 #include "proxies/outside/internal/cgal_mesh.h"
+#include "proxies/outside/internal/wrap_budget.h"
 #include "proxies/outside/outside_proxy.h"
 #include "util/error.h"
 
@@ -16,11 +20,6 @@ namespace {
 using cgal::Point3;
 using cgal::SurfaceMesh;
 using cgal::Vector3;
-
-void requireTriangles(const TriMesh& input, const char* what) {
-  if (input.empty())
-    throw Error(input.source, std::string("cannot build ") + what, "the mesh has no triangles");
-}
 
 // Scales the hull about its vertex centroid c so that every face plane moves outward by at
 // least `distance`: a plane at distance h from c moves by s·h, so s = distance / min h.
@@ -42,14 +41,20 @@ void pushHullOutward(SurfaceMesh& hull, double distance, const std::string& sour
   if (!(min_h > 0) || !std::isfinite(min_h))
     throw Error(source, "cannot build a convex hull proxy",
                 "the input is flat (its hull has no volume)");
+  // A hull far thinner than the push would be scaled by a huge factor (float overflow).
   const double s = 1 + distance / min_h;
+  if (!(s < 2))
+    throw Error(
+        source, "cannot build a convex hull proxy",
+        fmt::format("the hull is {:.3g} thick, too thin to push out by {:.3g}", min_h, distance),
+        "use --method wrap");
   for (auto v : hull.vertices()) hull.point(v) = c + (hull.point(v) - c) * s;
 }
 
 }  // namespace
 
 TriMesh makeHullProxy(const TriMesh& input, const HullOptions& options) {
-  requireTriangles(input, "a convex hull proxy");
+  requireProxyGeometry(input, GeometryNeed::kSolid, "a convex hull proxy");
   std::vector<Point3> points;
   points.reserve(input.numTriangles() * 3);
   for (const Triangle& t : input.triangles)
@@ -64,15 +69,47 @@ TriMesh makeHullProxy(const TriMesh& input, const HullOptions& options) {
   return cgal::fromSurfaceMesh(hull, "hull of " + input.source);
 }
 
+double estimateWrapFaces(const TriMesh& input, double alpha, double offset) {
+  Bounds3d box;
+  double area = 0;
+  for (const Triangle& t : input.triangles) {
+    const Vec3d a(input.vertices[t[0]]), b(input.vertices[t[1]]), c(input.vertices[t[2]]);
+    box.extend(a);
+    box.extend(b);
+    box.extend(c);
+    area += 0.5 * length(cross(b - a, c - a));
+  }
+  const double diag = box.diagonal();
+  const Vec3d e = box.extent() + Vec3d(2, 2, 2) * (offset * diag);
+  const double box_area = 2 * (e.x * e.y + e.y * e.z + e.z * e.x);
+  const double edge = alpha * diag;
+  // An equilateral triangle of edge `edge` covers 0.433 edge^2; count both sides of the input.
+  return (box_area + 2 * area) / (0.433 * edge * edge);
+}
+
+void requireWrapSize(const TriMesh& input, double alpha, double offset, const char* what) {
+  const double faces = estimateWrapFaces(input, alpha, offset);
+  if (!(faces <= kMaxEstimatedWrapFaces))
+    throw Error(input.source,
+                fmt::format("{} with alpha {:g} and offset {:g} would have about {:.3g} faces, "
+                            "more than {:g}",
+                            what, alpha, offset, faces, kMaxEstimatedWrapFaces),
+                "it would take too much memory and time",
+                "use a larger --alpha or a smaller --offset");
+}
+
 TriMesh makeWrapProxy(const TriMesh& input, const WrapOptions& options) {
-  requireTriangles(input, "an alpha-wrap proxy");
   if (!(options.alpha > 0) || !(options.offset > 0))
     throw Error("", "alpha and offset must be positive fractions of the diagonal",
                 "alpha_wrap_3 is undefined otherwise");
+  requireProxyGeometry(input, GeometryNeed::kSurface, "an outside wrap");
+  requireWrapSize(input, options.alpha, options.offset, "the outside wrap");
   const double diag = input.diagonal();
   cgal::Soup soup = cgal::toSoup(input);
   SurfaceMesh wrap;
-  CGAL::alpha_wrap_3(soup.points, soup.faces, options.alpha * diag, options.offset * diag, wrap);
+  cgal::WrapBudgetVisitor visitor(options.budget, kMaxEstimatedWrapFaces / 4, input.source);
+  CGAL::alpha_wrap_3(soup.points, soup.faces, options.alpha * diag, options.offset * diag, wrap,
+                     CGAL::parameters::default_values(), CGAL::parameters::visitor(visitor));
   if (wrap.number_of_faces() == 0)
     throw Error(input.source, "alpha wrap produced no surface", "the input may be degenerate");
   return cgal::fromSurfaceMesh(wrap, "wrap of " + input.source);

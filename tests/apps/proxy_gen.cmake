@@ -66,4 +66,24 @@ pg_test(outside_ratio_budget 0
   REGEX "\"max_faces_from_ratio\":348.*verified: +yes" FILE ${pg_dir}/bunny.ratio.ply)
 # Usage errors are one line naming the program, the flag and the rule.
 pg_test(negative_alpha 2 "${pg_data}/bunny.off --kind outside --alpha -1 -o ${pg_dir}/neg.ply"
-  REGEX "proxy-gen: error: --alpha: must be > 0, got -1" NO_FILE ${pg_dir}/neg.ply)
+  REGEX "proxy-gen: error: --alpha: must be in \\[0.001, 1\\], got -1" NO_FILE ${pg_dir}/neg.ply)
+
+# Scene mode with one mesh no generator can handle (coordinates near the float limit) beside a
+# good one: the bad mesh fails with its error on stderr, the good one gets its proxy, scene.json
+# is still written, and the exit code says that something failed.
+set(pg_tetra_faces "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n")
+file(WRITE ${pg_dir}/extreme/huge.off
+  "OFF\n4 4 0\n3e38 3e38 3e38\n-3e38 -3e38 3e38\n-3e38 3e38 -3e38\n3e38 -3e38 -3e38\n${pg_tetra_faces}")
+set(pg_scene_head "{\"camera\": {\"eye\": [0, 0, 3], \"look_at\": [0, 0, 0]}, \"lights\": [{\"type\": \"quad\", \"corner\": [-1, 2, -1], \"edge_u\": [2, 0, 0], \"edge_v\": [0, 0, 2], \"radiance\": [5, 5, 5]}], \"meshes\": ")
+file(WRITE ${pg_dir}/extreme/scene.json "${pg_scene_head}[{\"name\": \"huge\", \"file\": \"huge.off\"}, {\"name\": \"bunny\", \"file\": \"${pg_data}/bunny.off\"}]}\n")
+pg_test(scene_one_mesh_fails 2
+  "${pg_dir}/extreme/scene.json --kind outside --method hull --out-dir ${pg_dir}/extreme/out -q"
+  REGEX "== huge: FAILED.*== bunny.*verified: +yes.*scene with proxies.*proxy-gen: error: [^\n]*huge.off: coordinates reach 3e\\+38"
+  FILE "${pg_dir}/extreme/out/scene.json;${pg_dir}/extreme/out/bunny.outside.ply"
+  NO_FILE ${pg_dir}/extreme/out/huge.outside.ply)
+# A mesh name is not a path: "../../../x" becomes the file stem "_.._.._x" inside --out-dir.
+file(WRITE ${pg_dir}/dotdot/scene.json "${pg_scene_head}[{\"name\": \"../../../x\", \"file\": \"${pg_data}/bunny.off\"}]}\n")
+pg_test(scene_mesh_name_stays_in_out_dir 0
+  "${pg_dir}/dotdot/scene.json --kind outside --method hull --out-dir ${pg_dir}/dotdot/p -q"
+  FILE "${pg_dir}/dotdot/p/_.._.._x.outside.ply;${pg_dir}/dotdot/p/scene.json"
+  NO_FILE ${CMAKE_CURRENT_BINARY_DIR}/x.outside.ply)
