@@ -65,5 +65,28 @@ TEST(FuzzFindings, NegativeOffFaceCountIsRefused) {
             1u);
 }
 
+// fuzz_draco: a POSITION attribute of data type BOOL made Draco's converter load bytes like 63 as
+// bool (undefined behaviour; UBSan stops there).
+TEST(FuzzFindings, DracoBoolPositionsAreRefused) {
+  const std::string bytes =
+      std::string(
+          "DRACO\002\002\001\001\000\000\000\004\002\000\002\000\000\001\037\377\001\021\001\377"
+          "\000\000\001\000\013\003\002\000\000\000\000\377\377\377\200\077",
+          41) +
+      std::string(9, '\000') +
+      std::string(
+          "\001\001\000\000\021\001\377\002\001\001\240\240\240\240\240#\356u\000\001\000\000\000",
+          23) +
+      std::string(31, '\240') +
+      std::string(
+          "\002\000\214\005\206\000\260`"
+          "\000\000\000\000\377\377\377\200\000\000\000\000\000\077\000\000",
+          24) +
+      std::string(8, '\124') + std::string("\000\000", 2);
+  ASSERT_EQ(bytes.size(), 138u);
+  EXPECT_NE(refusal(bytes, "bool.drc").find("bool.drc: Draco POSITION attribute has data type 11"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace proxyvis
