@@ -256,6 +256,17 @@ void checkOff(const std::string& bytes, const std::string& file) {
   if (higher_dimension)
     throw Error(file, "4D or n-dimensional OFF ('" + magic + "')",
                 "only 3D positions can be loaded", "convert the mesh to plain OFF");
+  // OpenMesh takes the counts from after the keyword's line and ignores the rest of that line:
+  // counts there were checked here while OpenMesh read 12147483648 from the next line and added
+  // vertices for minutes (fuzz_off). Only BINARY or a comment may follow the keyword.
+  std::string rest;
+  std::getline(in, rest);
+  std::istringstream rest_words(rest);
+  for (std::string word; rest_words >> word && word[0] != '#';)
+    if (word != "BINARY")
+      throw Error(file, "text after the OFF keyword on its line",
+                  "the vertex and face counts are read from the next line",
+                  "put the counts on a line of their own");
   std::string tok;
   std::vector<std::string> counts;
   while (counts.size() < 2 && in >> tok) {

@@ -65,6 +65,22 @@ TEST(FuzzFindings, NegativeOffFaceCountIsRefused) {
             1u);
 }
 
+// fuzz_off: counts on the keyword's line passed the header check, but OpenMesh reads them from
+// the next line: here 12147483648, which it clamped and then added vertices for minutes.
+TEST(FuzzFindings, OffCountsOnTheKeywordLineAreRefused) {
+  const std::string bytes =
+      "OFF 0  0 0\n12147483648\n0 0 1\n3 0  3\n3 0  0\n0\n0 1 0\n0  0\n0  4\n";
+  ASSERT_EQ(bytes.size(), 61u);
+  EXPECT_NE(refusal(bytes, "counts.off").find("counts.off: text after the OFF keyword on its line"),
+            std::string::npos);
+  // The same count on its own line is checked.
+  EXPECT_NE(refusal("OFF\n12147483648 0 0\n0 0 1\n", "big.off").find("12147483648"),
+            std::string::npos);
+  EXPECT_EQ(parseMeshBytes("OFF # comment\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "c.off")
+                .triangles.size(),
+            1u);
+}
+
 // fuzz_draco: a POSITION attribute of data type BOOL made Draco's converter load bytes like 63 as
 // bool (undefined behaviour; UBSan stops there).
 TEST(FuzzFindings, DracoBoolPositionsAreRefused) {
