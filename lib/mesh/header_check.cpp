@@ -180,13 +180,13 @@ void checkPly(const std::string& bytes, const std::string& file) {
   }
 }
 
-// Walks the records of an ASCII OFF body from `pos` (just after the face count) and checks every
-// face's vertex count: OpenMesh reads it as unsigned, so a "-34" made it loop 4 billion times
-// pushing vertex handles (fuzz_off). Vertices are 3 values (+3 with N, +2 with ST), or a line
-// when colours (C) make their length vary; a face is its count, that many indices, and the rest
-// of the line (colours).
-void checkOffFaceCounts(const std::string& bytes, size_t pos, const std::string& magic, uint64_t nv,
-                        uint64_t nf, const std::string& file) {
+// Walks the records of an ASCII OFF body from `pos` (just after the face count) and bounds every
+// value among the faces: OpenMesh reads a face's vertex count as unsigned, so a "-34" made it
+// loop 4 billion times pushing vertex handles (fuzz_off, twice: after the first fix only counts
+// at the start of a line were checked). Vertices are 3 values (+3 with N, +2 with ST), or a line
+// when colours (C) make their length vary.
+void checkOffFaceValues(const std::string& bytes, size_t pos, const std::string& magic, uint64_t nv,
+                        const std::string& file) {
   auto skipSpace = [&] {
     while (pos < bytes.size()) {
       if (bytes[pos] == '#') {
@@ -221,22 +221,23 @@ void checkOffFaceCounts(const std::string& bytes, size_t pos, const std::string&
         if (nextToken().empty()) return;  // truncated: OpenMesh's own checks report it
     }
   }
-  for (uint64_t f = 0; f < nf; ++f) {
-    const std::string count = nextToken();
-    if (count.empty()) return;
+  // Faces: which token OpenMesh takes as a vertex count depends on how it reads colours, so
+  // every value from here on is bounded. Indices are below nv, colours at most 255, and a count
+  // at most the values that follow; nothing in this part is negative.
+  for (std::string value = nextToken(); !value.empty(); value = nextToken()) {
     const uint64_t left = (bytes.size() - pos) / 2 + 1;  // values that can still follow
-    if (count.size() > 9 || count.find_first_not_of("0123456789") != std::string::npos ||
-        std::stoull(count) > left) {
-      std::string shown = count.substr(0, 20);
+    const bool integer = value.find_first_not_of("0123456789") == std::string::npos;
+    if (value[0] == '-' ||
+        (integer &&
+         (value.size() > 12 || std::stoull(value) > std::max({nv, left, uint64_t(255)})))) {
+      std::string shown = value.substr(0, 20);
       for (char& ch : shown)
         if (static_cast<unsigned char>(ch) < 32 || static_cast<unsigned char>(ch) > 126) ch = '?';
-      throw Error(file, "face " + std::to_string(f) + " has a vertex count '" + shown + "'",
-                  "expected a non-negative integer no larger than the values that follow",
+      throw Error(file, "value '" + shown + "' among the faces",
+                  "face values are vertex counts, vertex indices below " + std::to_string(nv) +
+                      " or colours, none negative",
                   "the file is corrupt");
     }
-    for (uint64_t k = std::stoull(count); k > 0; --k)
-      if (nextToken().empty()) return;
-    skipLine();
   }
 }
 
@@ -289,7 +290,7 @@ void checkOff(const std::string& bytes, const std::string& file) {
   if (bytes.substr(0, bytes.find('\n')).find("BINARY") == std::string::npos) {
     checkAsciiNumbers(bytes, bytes.find(magic) + magic.size(), file, true);
     if (const std::streamoff after = in.tellg(); after > 0)
-      checkOffFaceCounts(bytes, size_t(after), magic, nv, nf, file);
+      checkOffFaceValues(bytes, size_t(after), magic, nv, file);
   }
 }
 

@@ -51,14 +51,19 @@ TEST(FuzzFindings, OffKeywordsAreExact) {
 }
 
 // fuzz_off: OpenMesh reads a face's vertex count as unsigned, so "-34" made it push 4 billion
-// vertex handles (a timeout, or 16 GB).
+// vertex handles (a timeout, or 16 GB). Found twice: a "-13" after a 10-vertex face too.
 TEST(FuzzFindings, NegativeOffFaceCountIsRefused) {
   const std::string bytes = "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n-34\n";
-  EXPECT_NE(refusal(bytes, "negative.off").find("negative.off: face 1 has a vertex count '-34'"),
+  EXPECT_NE(refusal(bytes, "negative.off").find("negative.off: value '-34' among the faces"),
             std::string::npos);
-  // Counts larger than what follows are refused the same way; colours after a face are fine.
+  const std::string second =
+      "OFF\n1 4 0\n0 0 0\n10 1 0\n0 0 1\n3 0 2 1\n3 0 -13\n3 4 3 2\n3 1 2 3\n";
+  ASSERT_EQ(second.size(), 61u);
+  EXPECT_NE(refusal(second, "second.off").find("value '-13' among the faces"), std::string::npos);
+  // Values larger than any index, colour or count that fits in what follows are refused too;
+  // colours after a face are fine.
   EXPECT_NE(refusal("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n900000 0 1 2\n", "big.off")
-                .find("face 0 has a vertex count '900000'"),
+                .find("value '900000' among the faces"),
             std::string::npos);
   EXPECT_EQ(parseMeshBytes("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 255 0 0\n", "c.off")
                 .triangles.size(),
