@@ -212,24 +212,30 @@ void checkOffFaceValues(const std::string& bytes, size_t pos, const std::string&
   const uint64_t per_vertex =
       3 + (magic.find('N') != std::string::npos ? 3 : 0) + (magic.compare(0, 2, "ST") == 0 ? 2 : 0);
   if (nextToken().empty()) return;  // the edge count
+  // Where the faces start, by values (3 per vertex, +3 with N, +2 with ST) and by lines (one
+  // vertex per line, which colours need): the earlier of the two, so that a vertex line with
+  // more or fewer values than expected cannot hide a face value from the check below.
+  const size_t vertices_start = pos;
+  for (uint64_t v = 0; v < nv && !colours; ++v)
+    for (uint64_t k = 0; k < per_vertex; ++k)
+      if (nextToken().empty()) return;  // truncated: OpenMesh's own checks report it
+  const size_t by_values = colours ? bytes.size() : pos;
+  pos = vertices_start;
   for (uint64_t v = 0; v < nv; ++v) {
-    if (colours) {
-      if (!skipSpace()) return;
-      skipLine();
-    } else {
-      for (uint64_t k = 0; k < per_vertex; ++k)
-        if (nextToken().empty()) return;  // truncated: OpenMesh's own checks report it
-    }
+    if (!skipSpace()) return;
+    skipLine();
   }
+  pos = std::min(pos, by_values);
   // Faces: which token OpenMesh takes as a vertex count depends on how it reads colours, so
   // every value from here on is bounded. Indices are below nv, colours at most 255, and a count
   // at most the values that follow; nothing in this part is negative.
   for (std::string value = nextToken(); !value.empty(); value = nextToken()) {
     const uint64_t left = (bytes.size() - pos) / 2 + 1;  // values that can still follow
-    const bool integer = value.find_first_not_of("0123456789") == std::string::npos;
+    // The digits OpenMesh's unsigned read would take: "40.51" is a count of 40.
+    const std::string digits = value.substr(0, value.find_first_not_of("0123456789"));
     if (value[0] == '-' ||
-        (integer &&
-         (value.size() > 12 || std::stoull(value) > std::max({nv, left, uint64_t(255)})))) {
+        (!digits.empty() &&
+         (digits.size() > 12 || std::stoull(digits) > std::max({nv, left, uint64_t(255)})))) {
       std::string shown = value.substr(0, 20);
       for (char& ch : shown)
         if (static_cast<unsigned char>(ch) < 32 || static_cast<unsigned char>(ch) > 126) ch = '?';

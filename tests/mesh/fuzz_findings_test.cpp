@@ -60,6 +60,13 @@ TEST(FuzzFindings, NegativeOffFaceCountIsRefused) {
       "OFF\n1 4 0\n0 0 0\n10 1 0\n0 0 1\n3 0 2 1\n3 0 -13\n3 4 3 2\n3 1 2 3\n";
   ASSERT_EQ(second.size(), 61u);
   EXPECT_NE(refusal(second, "second.off").find("value '-13' among the faces"), std::string::npos);
+  // Third time: a vertex line of 7 values moved where the check thought the faces start, and
+  // OpenMesh read the count 2147483648 from "02147483648.5".
+  const std::string third =
+      "OFF\n5 5 0\n0 0 0\n1 0 0\n1 1 0 0.5 1 0 0\n1 1 0\n0 1 0\n02147483648.5 0.5 1\n"
+      "4 0 1 2 3\n1\n40.51 2 31\n4 0 1 2 3\n";
+  EXPECT_NE(refusal(third, "third.off").find("value '02147483648.5' among the faces"),
+            std::string::npos);
   // Values larger than any index, colour or count that fits in what follows are refused too;
   // colours after a face are fine.
   EXPECT_NE(refusal("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n900000 0 1 2\n", "big.off")
