@@ -148,6 +148,26 @@ void decodeDraco(const std::string& bytes, const std::string& file, TriMesh& out
   const draco::PointAttribute* pos = mesh.GetNamedAttribute(draco::GeometryAttribute::POSITION);
   if (pos == nullptr || pos->num_components() < 3)
     throw Error(file, "Draco mesh has no 3D POSITION attribute", {}, "re-encode it with positions");
+  // Positions must be numbers: Draco's converter reads a BOOL attribute's bytes as bool, which is
+  // undefined behaviour for any byte but 0 and 1 (fuzz_draco, UBSan).
+  switch (pos->data_type()) {
+    case draco::DT_INT8:
+    case draco::DT_UINT8:
+    case draco::DT_INT16:
+    case draco::DT_UINT16:
+    case draco::DT_INT32:
+    case draco::DT_UINT32:
+    case draco::DT_INT64:
+    case draco::DT_UINT64:
+    case draco::DT_FLOAT32:
+    case draco::DT_FLOAT64:
+      break;
+    default:
+      throw Error(file,
+                  "Draco POSITION attribute has data type " +
+                      std::to_string(int(pos->data_type())) + ", not a number type",
+                  "positions must be integers or floats", "re-encode it with float positions");
+  }
   const uint32_t num_points = mesh.num_points();
   checkFaceCount(bytes, mesh.num_faces(), file);
 

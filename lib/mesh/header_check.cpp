@@ -331,13 +331,13 @@ void checkPly(const std::string& bytes, const std::string& file) {
   }
 }
 
-// Walks the records of an ASCII OFF body from `pos` (just after the face count) and checks every
-// face's vertex count: OpenMesh reads it as unsigned, so a "-34" made it loop 4 billion times
-// pushing vertex handles (fuzz_off). Vertices are 3 values (+3 with N, +2 with ST), or a line
-// when colours (C) make their length vary; a face is its count, that many indices, and the rest
-// of the line (colours).
-void checkOffFaceCounts(const std::string& bytes, size_t pos, const std::string& magic, uint64_t nv,
-                        uint64_t nf, const std::string& file) {
+// Walks the records of an ASCII OFF body from `pos` (just after the face count) and bounds every
+// value among the faces: OpenMesh reads a face's vertex count as unsigned, so a "-34" made it
+// loop 4 billion times pushing vertex handles (fuzz_off, twice: after the first fix only counts
+// at the start of a line were checked). Vertices are 3 values (+3 with N, +2 with ST), or a line
+// when colours (C) make their length vary.
+void checkOffFaceValues(const std::string& bytes, size_t pos, const std::string& magic, uint64_t nv,
+                        const std::string& file) {
   auto skipSpace = [&] {
     while (pos < bytes.size()) {
       if (bytes[pos] == '#') {
@@ -363,31 +363,38 @@ void checkOffFaceCounts(const std::string& bytes, size_t pos, const std::string&
   const uint64_t per_vertex =
       3 + (magic.find('N') != std::string::npos ? 3 : 0) + (magic.compare(0, 2, "ST") == 0 ? 2 : 0);
   if (nextToken().empty()) return;  // the edge count
+  // Where the faces start, by values (3 per vertex, +3 with N, +2 with ST) and by lines (one
+  // vertex per line, which colours need): the earlier of the two, so that a vertex line with
+  // more or fewer values than expected cannot hide a face value from the check below.
+  const size_t vertices_start = pos;
+  for (uint64_t v = 0; v < nv && !colours; ++v)
+    for (uint64_t k = 0; k < per_vertex; ++k)
+      if (nextToken().empty()) return;  // truncated: OpenMesh's own checks report it
+  const size_t by_values = colours ? bytes.size() : pos;
+  pos = vertices_start;
   for (uint64_t v = 0; v < nv; ++v) {
-    if (colours) {
-      if (!skipSpace()) return;
-      skipLine();
-    } else {
-      for (uint64_t k = 0; k < per_vertex; ++k)
-        if (nextToken().empty()) return;  // truncated: OpenMesh's own checks report it
-    }
+    if (!skipSpace()) return;
+    skipLine();
   }
-  for (uint64_t f = 0; f < nf; ++f) {
-    const std::string count = nextToken();
-    if (count.empty()) return;
+  pos = std::min(pos, by_values);
+  // Faces: which token OpenMesh takes as a vertex count depends on how it reads colours, so
+  // every value from here on is bounded. Indices are below nv, colours at most 255, and a count
+  // at most the values that follow; nothing in this part is negative.
+  for (std::string value = nextToken(); !value.empty(); value = nextToken()) {
     const uint64_t left = (bytes.size() - pos) / 2 + 1;  // values that can still follow
-    if (count.size() > 9 || count.find_first_not_of("0123456789") != std::string::npos ||
-        std::stoull(count) > left) {
-      std::string shown = count.substr(0, 20);
+    // The digits OpenMesh's unsigned read would take: "40.51" is a count of 40.
+    const std::string digits = value.substr(0, value.find_first_not_of("0123456789"));
+    if (value[0] == '-' ||
+        (!digits.empty() &&
+         (digits.size() > 12 || std::stoull(digits) > std::max({nv, left, uint64_t(255)})))) {
+      std::string shown = value.substr(0, 20);
       for (char& ch : shown)
         if (static_cast<unsigned char>(ch) < 32 || static_cast<unsigned char>(ch) > 126) ch = '?';
-      throw Error(file, "face " + std::to_string(f) + " has a vertex count '" + shown + "'",
-                  "expected a non-negative integer no larger than the values that follow",
+      throw Error(file, "value '" + shown + "' among the faces",
+                  "face values are vertex counts, vertex indices below " + std::to_string(nv) +
+                      " or colours, none negative",
                   "the file is corrupt");
     }
-    for (uint64_t k = std::stoull(count); k > 0; --k)
-      if (nextToken().empty()) return;
-    skipLine();
   }
 }
 
@@ -407,6 +414,17 @@ void checkOff(const std::string& bytes, const std::string& file) {
   if (higher_dimension)
     throw Error(file, "4D or n-dimensional OFF ('" + magic + "')",
                 "only 3D positions can be loaded", "convert the mesh to plain OFF");
+  // OpenMesh takes the counts from after the keyword's line and ignores the rest of that line:
+  // counts there were checked here while OpenMesh read 12147483648 from the next line and added
+  // vertices for minutes (fuzz_off). Only BINARY or a comment may follow the keyword.
+  std::string rest;
+  std::getline(in, rest);
+  std::istringstream rest_words(rest);
+  for (std::string word; rest_words >> word && word[0] != '#';)
+    if (word != "BINARY")
+      throw Error(file, "text after the OFF keyword on its line",
+                  "the vertex and face counts are read from the next line",
+                  "put the counts on a line of their own");
   std::string tok;
   std::vector<std::string> counts;
   while (counts.size() < 2 && in >> tok) {
@@ -438,7 +456,7 @@ void checkOff(const std::string& bytes, const std::string& file) {
                               (magic.substr(0, prefix_end).find("ST") != std::string::npos ? 2 : 0);
     if (eol != std::string::npos) checkOffRecordLines(bytes, eol + 1, nv, nf, min_values, file);
     if (const std::streamoff after = in.tellg(); after > 0)
-      checkOffFaceCounts(bytes, size_t(after), magic, nv, nf, file);
+      checkOffFaceValues(bytes, size_t(after), magic, nv, file);
   }
 }
 

@@ -31,7 +31,7 @@ std::mutex& openMeshMutex() {
 // our Error instead of stray lines on the terminal, and mutes its progress log ("[OBJWriter] :
 // write file"). The error stream's buffer is swapped for ours rather than its targets
 // disconnected and connected: OpenMesh's disconnect() drops a target without deleting it, which
-// leaked two 16-byte objects per file read (found by fuzz_obj's leak check).
+// leaked two 16-byte objects per file read (LeakSanitizer, in the fuzz build's mesh-info).
 class CapturedOmErr {
  public:
   CapturedOmErr() {

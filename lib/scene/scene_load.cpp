@@ -78,17 +78,21 @@ CameraDesc parseCamera(const Field& f) {
   // In double: a float length of [0, 1e-30, 0] underflows to 0.
   const double up_length =
       std::sqrt(double(c.up.x) * c.up.x + double(c.up.y) * c.up.y + double(c.up.z) * c.up.z);
+  // Without "up" the problem is reported at "camera", naming the default.
+  const bool has_up = f.has("up");
+  const Field up_field = has_up ? f["up"] : f;
+  const std::string up_name = has_up ? "up" : "the default up [0, 1, 0]";
   if (!(up_length >= kMinUpLength && up_length <= 1 / kMinUpLength))
-    f["up"].fail("length " + numberText(up_length) + " out of range",
-                 "up must be a direction of length in [" + numberText(kMinUpLength) + ", " +
-                     numberText(1 / kMinUpLength) + "]",
-                 "e.g. [0, 1, 0] for y up");
+    up_field.fail("length " + numberText(up_length) + " out of range",
+                  "up must be a direction of length in [" + numberText(kMinUpLength) + ", " +
+                      numberText(1 / kMinUpLength) + "]",
+                  "e.g. [0, 1, 0] for y up");
   const Vec3f dir = normalize(view), up_dir = c.up / float(up_length);
   if (!(length(cross(dir, up_dir)) > 1e-6f))
-    f["up"].fail("up is parallel to the view direction (look_at - eye)",
-                 "the image's vertical axis would be undefined",
-                 "choose an up vector that is not along the view, e.g. [0, 0, 1] when looking "
-                 "along y");
+    up_field.fail(up_name + " is parallel to the view direction (look_at - eye)",
+                  "the image's vertical axis would be undefined",
+                  "choose an up vector that is not along the view, e.g. [0, 0, 1] when looking "
+                  "along y");
   return c;
 }
 

@@ -51,18 +51,75 @@ TEST(FuzzFindings, OffKeywordsAreExact) {
 }
 
 // fuzz_off: OpenMesh reads a face's vertex count as unsigned, so "-34" made it push 4 billion
-// vertex handles (a timeout, or 16 GB).
+// vertex handles (a timeout, or 16 GB). Found twice: a "-13" after a 10-vertex face too.
+// Two checks guard OFF faces (record lines, then values among the faces); either may refuse
+// first, and its message must name the file and quote the bad value.
+bool namesFileAndValue(const std::string& message, const std::string& file,
+                       const std::string& value) {
+  return message.find(file + ": ") != std::string::npos && message.find(value) != std::string::npos;
+}
+
 TEST(FuzzFindings, NegativeOffFaceCountIsRefused) {
   const std::string bytes = "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n-34\n";
-  EXPECT_NE(refusal(bytes, "negative.off").find("negative.off: face vertex count '-34' on line 8"),
-            std::string::npos);
-  // Counts larger than what follows are refused the same way; colours after a face are fine.
-  EXPECT_NE(refusal("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n900000 0 1 2\n", "big.off")
-                .find("face line 6 lists fewer than its 900000 vertex indices"),
-            std::string::npos);
+  EXPECT_PRED3(namesFileAndValue, refusal(bytes, "negative.off"), "negative.off", "'-34'");
+  const std::string second =
+      "OFF\n1 4 0\n0 0 0\n10 1 0\n0 0 1\n3 0 2 1\n3 0 -13\n3 4 3 2\n3 1 2 3\n";
+  ASSERT_EQ(second.size(), 61u);
+  // Here the record check refuses earlier: "10 1 0" is a face line with too few indices.
+  EXPECT_PRED3(namesFileAndValue, refusal(second, "second.off"), "second.off", "10");
+  // Third time: a vertex line of 7 values moved where the check thought the faces start, and
+  // OpenMesh read the count 2147483648 from "02147483648.5".
+  const std::string third =
+      "OFF\n5 5 0\n0 0 0\n1 0 0\n1 1 0 0.5 1 0 0\n1 1 0\n0 1 0\n02147483648.5 0.5 1\n"
+      "4 0 1 2 3\n1\n40.51 2 31\n4 0 1 2 3\n";
+  EXPECT_PRED3(namesFileAndValue, refusal(third, "third.off"), "third.off", "'02147483648.5'");
+  // Values larger than any index, colour or count that fits in what follows are refused too;
+  // colours after a face are fine.
+  EXPECT_PRED3(namesFileAndValue,
+               refusal("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n900000 0 1 2\n", "big.off"), "big.off",
+               "900000");
   EXPECT_EQ(parseMeshBytes("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 255 0 0\n", "c.off")
                 .triangles.size(),
             1u);
+}
+
+// fuzz_off: counts on the keyword's line passed the header check, but OpenMesh reads them from
+// the next line: here 12147483648, which it clamped and then added vertices for minutes.
+TEST(FuzzFindings, OffCountsOnTheKeywordLineAreRefused) {
+  const std::string bytes =
+      "OFF 0  0 0\n12147483648\n0 0 1\n3 0  3\n3 0  0\n0\n0 1 0\n0  0\n0  4\n";
+  ASSERT_EQ(bytes.size(), 61u);
+  EXPECT_NE(refusal(bytes, "counts.off").find("counts.off: text after the OFF keyword on its line"),
+            std::string::npos);
+  // The same count on its own line is checked.
+  EXPECT_NE(refusal("OFF\n12147483648 0 0\n0 0 1\n", "big.off").find("12147483648"),
+            std::string::npos);
+  EXPECT_EQ(parseMeshBytes("OFF # comment\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "c.off")
+                .triangles.size(),
+            1u);
+}
+
+// fuzz_draco: a POSITION attribute of data type BOOL made Draco's converter load bytes like 63 as
+// bool (undefined behaviour; UBSan stops there).
+TEST(FuzzFindings, DracoBoolPositionsAreRefused) {
+  const std::string bytes =
+      std::string(
+          "DRACO\002\002\001\001\000\000\000\004\002\000\002\000\000\001\037\377\001\021\001\377"
+          "\000\000\001\000\013\003\002\000\000\000\000\377\377\377\200\077",
+          41) +
+      std::string(9, '\000') +
+      std::string(
+          "\001\001\000\000\021\001\377\002\001\001\240\240\240\240\240#\356u\000\001\000\000\000",
+          23) +
+      std::string(31, '\240') +
+      std::string(
+          "\002\000\214\005\206\000\260`"
+          "\000\000\000\000\377\377\377\200\000\000\000\000\000\077\000\000",
+          24) +
+      std::string(8, '\124') + std::string("\000\000", 2);
+  ASSERT_EQ(bytes.size(), 138u);
+  EXPECT_NE(refusal(bytes, "bool.drc").find("bool.drc: Draco POSITION attribute has data type 11"),
+            std::string::npos);
 }
 
 }  // namespace

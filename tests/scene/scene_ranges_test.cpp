@@ -83,6 +83,11 @@ TEST_F(SceneRanges, EachCameraProblemHasItsOwnMessage) {
   EXPECT_CONTAINS(errorFor("\"up\": [0, 1, 0]", "\"up\": [0, 2, 10]"),
                   "camera.up: up is parallel to the view direction");
   EXPECT_TRUE(loads("\"up\": [0, 1, 0]", "\"up\": [0, 1e-3, 0]"));
+  // Looking straight down with the default up: reported at "camera", not as a missing "up".
+  EXPECT_CONTAINS(
+      errorFor("\"eye\": [0, 1, 5], \"look_at\": [0, 0, 0], \"up\": [0, 1, 0],",
+               "\"eye\": [0, 5, 0], \"look_at\": [0, 0, 0],"),
+      "ranges.json: camera: the default up [0, 1, 0] is parallel to the view direction");
 }
 
 TEST_F(SceneRanges, FieldOfViewMustKeepItsTangentFinite) {
