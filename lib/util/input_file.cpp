@@ -1,5 +1,6 @@
 #include "util/input_file.h"
 
+#include <algorithm>
 #include <fstream>
 #include <mutex>
 #include <sstream>
@@ -23,8 +24,11 @@ std::vector<fs::path>& inputs() {
 void registerInput(const fs::path& path) {
   std::error_code ec;
   fs::path canonical = fs::weakly_canonical(path, ec);
+  const fs::path input = ec ? fs::absolute(path, ec) : canonical;
   std::lock_guard<std::mutex> lock(g_inputs_mutex);
-  inputs().push_back(ec ? fs::absolute(path, ec) : canonical);
+  // A long run reads the same files again (references, caches): remember each once.
+  if (std::find(inputs().begin(), inputs().end(), input) == inputs().end())
+    inputs().push_back(input);
 }
 
 bool isRegisteredInput(const fs::path& path) {

@@ -122,5 +122,16 @@ TEST(FuzzFindings, DracoBoolPositionsAreRefused) {
             std::string::npos);
 }
 
+// fuzz_off: BINARY anywhere on the keyword line (here in a comment) makes OpenMesh read binary
+// counts that no header check bounds; a 100-byte file allocated for seconds.
+TEST(FuzzFindings, BinaryOffIsRefused) {
+  std::string bytes = "OFF\t# made by hand BINARY\n";
+  bytes += std::string("\x7f\xff\xff\xff\x7f\xff\xff\xff\0\0\0\0", 12);
+  EXPECT_PRED3(namesFileAndValue, refusal(bytes, "binary.off"), "binary.off",
+               "binary OFF is not supported");
+  EXPECT_PRED3(namesFileAndValue, refusal("OFF BINARY\n3 1 0\n", "plain.off"), "plain.off",
+               "binary OFF is not supported");
+}
+
 }  // namespace
 }  // namespace proxyvis
