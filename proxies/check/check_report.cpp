@@ -2,11 +2,11 @@
 
 #include <fmt/core.h>
 
-#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "util/atomic_write.h"
 #include "util/error.h"
+#include "util/output_set.h"
 
 namespace proxyvis {
 
@@ -184,25 +184,25 @@ nlohmann::json toJson(const PairCheckReport& r) {
 
 void writeErrorSegmentsPly(const std::vector<ErrorSegment>& segments,
                            const std::filesystem::path& path) {
-  writeAtomically(path, [&](const std::filesystem::path& tmp) {
-    std::ofstream f(tmp);
-    if (!f) throw WriteError(path.string(), "cannot open for writing");
-    f << "ply\nformat ascii 1.0\ncomment proxy-check error segments: red = HM' (original blocks, "
-         "proxy misses), blue = MH' (original misses, proxy blocks)\n";
-    f << "element vertex " << 2 * segments.size()
-      << "\nproperty float x\nproperty float y\nproperty float z\n"
-         "property uchar red\nproperty uchar green\nproperty uchar blue\n";
-    f << "element edge " << segments.size()
-      << "\nproperty int vertex1\nproperty int vertex2\n"
-         "property uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n";
-    auto color = [](const ErrorSegment& s) { return s.hm ? "255 0 0" : "0 0 255"; };
-    for (const ErrorSegment& s : segments)
-      for (const Vec3f& p : {s.a, s.b}) f << fmt::format("{} {} {} {}\n", p.x, p.y, p.z, color(s));
-    for (size_t i = 0; i < segments.size(); ++i)
-      f << fmt::format("{} {} {}\n", 2 * i, 2 * i + 1, color(segments[i]));
-    f.flush();
-    if (!f) throw WriteError(path.string(), "write failed", "disk full or not writable");
-  });
+  std::string text =
+      "ply\nformat ascii 1.0\ncomment proxy-check error segments: red = HM' (original blocks, "
+      "proxy misses), blue = MH' (original misses, proxy blocks)\n";
+  text += fmt::format(
+      "element vertex {}\nproperty float x\nproperty float y\nproperty float z\n"
+      "property uchar red\nproperty uchar green\nproperty uchar blue\n",
+      2 * segments.size());
+  text += fmt::format(
+      "element edge {}\nproperty int vertex1\nproperty int vertex2\n"
+      "property uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n",
+      segments.size());
+  auto color = [](const ErrorSegment& s) { return s.hm ? "255 0 0" : "0 0 255"; };
+  for (const ErrorSegment& s : segments)
+    for (const Vec3f& p : {s.a, s.b}) text += fmt::format("{} {} {} {}\n", p.x, p.y, p.z, color(s));
+  for (size_t i = 0; i < segments.size(); ++i)
+    text += fmt::format("{} {} {}\n", 2 * i, 2 * i + 1, color(segments[i]));
+  // writeFileBytes reports the system's reason (no space, permission) for the path given.
+  writeAtomically(
+      path, [&](const std::filesystem::path& tmp) { writeFileBytes(tmp, text, path.string()); });
 }
 
 }  // namespace proxyvis
