@@ -93,14 +93,16 @@ int runScene(const Args& a, const CommonOptions& common) {
     inputs.push_back(mesh.file.string());
   }
   const std::vector<std::string> stems = proxyFileStems(names);
-  std::vector<OutputFlag> outputs;
-  for (const std::string& stem : stems)
-    outputs.push_back(
-        {"--out-dir", (fs::path(a.out_dir) / fmt::format("{}.{}.ply", stem, a.kind)).string()});
+  std::vector<fs::path> proxy_files;
+  std::vector<OutputFlag> planned;
+  for (const std::string& stem : stems) {
+    proxy_files.push_back(fs::path(a.out_dir) / fmt::format("{}.{}.ply", stem, a.kind));
+    planned.push_back({"--out-dir", proxy_files.back().string()});
+  }
   const fs::path scene_out = fs::path(a.out_dir) / "scene.json";
-  outputs.push_back({"--out-dir", scene_out.string()});
-  outputs.push_back({"--json", common.json_path});
-  checkOutputs(inputs, outputs);
+  planned.push_back({"--out-dir", scene_out.string()});
+  planned.push_back({"--json", common.json_path});
+  checkOutputs(inputs, planned);
   std::error_code ec;
   fs::create_directories(a.out_dir, ec);
   if (ec) throw WriteError(a.out_dir, "cannot create the output directory", ec.message());
@@ -112,7 +114,7 @@ int runScene(const Args& a, const CommonOptions& common) {
   Progress progress("proxy-gen", n, common.quiet);
   tbb::parallel_for(size_t(0), n, [&](size_t i) {
     const SceneMeshDesc& mesh = scene.meshes[i];
-    const fs::path& out = outputs[i];
+    const fs::path& out = proxy_files[i];
     try {
       ProxyGenOptions o = base;
       o.seed = hashKeys(common.seed, i);  // per-mesh stream: same result at any thread count

@@ -2,14 +2,7 @@
 # (support/run_app.cmake checks the exit code and that stdout+stderr match the regex).
 if(CMAKE_SCRIPT_MODE_FILE)
   # --json -: stdout is the JSON and nothing else (the report text went to stderr).
-  string(STRIP "${out}" json)
-  string(JSON type ERROR_VARIABLE bad TYPE "${json}")
-  if(bad OR NOT json MATCHES "^\\[.*\\]$")
-    message(FATAL_ERROR "stdout is not only JSON: ${bad}\nstdout:\n${out}")
-  endif()
-  if(NOT err MATCHES "triangles")
-    message(FATAL_ERROR "the report text is not on stderr:\n${err}")
-  endif()
+  expect_only_json_on_stdout("[" "]" "triangles")
   return()
 endif()
 
