@@ -62,6 +62,6 @@ bad_input_test(gen_json_is_input proxy-gen
   INPUTS @CORPUS@/gen_scene_own_dir/tetra.off WATCH @CORPUS@/gen_scene_own_dir TIMEOUT 20)
 bad_input_test(gen_out_dir_is_scene_dir proxy-gen
   "@CORPUS@/gen_scene_own_dir/scene.json --out-dir @CORPUS@/gen_scene_own_dir"
-  REGEX "gen_scene_own_dir/scene.json: this output is an input"
+  REGEX "gen_scene_own_dir/scene.json: --out-dir names the input"
   INPUTS @CORPUS@/gen_scene_own_dir/scene.json @CORPUS@/gen_scene_own_dir/tetra.off
   WATCH @CORPUS@/gen_scene_own_dir TIMEOUT 20)
