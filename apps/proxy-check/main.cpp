@@ -1,5 +1,5 @@
 // proxy-check: classifies a proxy against its original by sampled segments and by an exact
-// containment test, and reports both (DESIGN.md §1-2).
+// containment test, and reports both (docs/design.md).
 //
 //   proxy-check ORIGINAL PROXY [--rays N] [--seed S] [--expect outside|inside|general]
 //               [--json OUT] [--dump-errors FILE.ply]
@@ -131,7 +131,7 @@ int runScene(const Options& o) {
         po.distribution_note =
             "camera primary hits on the other objects (an object's own shadow rays use its "
             "original) to uniform light samples; a light sample inside the proxy would void the "
-            "outside guarantee (DESIGN.md 2, pitfall 2)";
+            "outside guarantee (docs/design.md, pitfall 2)";
       } else if (full) {
         po.generator =
             instanceSceneSegments(*full, scene, mesh_index, original.bounds(), o.common.seed);
@@ -140,7 +140,7 @@ int runScene(const Options& o) {
             "camera primary hits on the other objects to uniform light samples, each mapped into "
             "the object space of one instance of this mesh whose box it crosses";
       }
-      // Without --expect, the class the scene claims is what must hold (DESIGN.md §2 pitfall 4).
+      // Without --expect, the class the scene claims is what must hold (docs/design.md, pitfall 4).
       if (!po.expect && ref.verified_class) po.expect = ref.verified_class;
       const TriMesh proxy =
           scene_rays ? transformedMesh(loadMesh(ref.file), mesh.transform) : loadMesh(ref.file);

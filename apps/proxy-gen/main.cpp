@@ -1,5 +1,5 @@
 // proxy-gen: builds an outside, inside or general proxy of a mesh, or of every mesh of a scene,
-// verifies its guarantee and writes it (DESIGN.md §1). Thin CLI over
+// verifies its guarantee and writes it (docs/design.md). Thin CLI over
 // proxies/general/proxy_pipeline.h.
 #include <fmt/core.h>
 #include <tbb/parallel_for.h>

@@ -41,7 +41,7 @@ struct CompareOptions {
   std::string roulette_costs = "measured";
   // How instances are traced: "instanced" (one BVH per mesh), "flat" (every instance copied into
   // one BVH), "auto" (flat when the flattened originals and proxies stay under kAutoFlatTriangles:
-  // DESIGN.md §2b point 2, the fastest exact configuration that fits in memory).
+  // docs/design.md, costs point 2, the fastest exact configuration that fits in memory).
   std::string build = "auto";
   static constexpr uint64_t kAutoFlatTriangles = 8'000'000;
   CommonOptions common;

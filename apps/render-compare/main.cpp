@@ -1,7 +1,7 @@
 // render-compare: renders a scene with each visibility estimator at equal samples and at equal
 // time, scores every image against a converged `exact` reference (MSE, relMSE, efficiency
 // relative to exact, standard error over seeds) and writes the tables, images, heat-maps and an
-// HTML report. DESIGN.md §1 and §2 ("Error metrics"), §2b (what the baseline must be).
+// HTML report. docs/design.md ("Error metrics"), §2b (what the baseline must be).
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 
@@ -106,18 +106,19 @@ Report makeReport(const CompareOptions& o, const RenderScene& scene, const Refer
     report.notes.push_back(
         "No mesh of this scene has a proxy: every estimator traces the originals, so the "
         "comparison only measures estimator overhead (generate proxies with proxy-gen).");
-  // DESIGN.md §2b point 2: the exact baseline should be the fastest exact configuration.
+  // docs/design.md, costs point 2: the exact baseline should be the fastest exact configuration.
   const bool flat = scene.instancesFlattened() || desc.instances.empty();
   report.meta["scene_build"] = flat ? "flat" : "instanced";
   report.notes.push_back(
       desc.instances.empty()
           ? "Exact baseline: every mesh is flattened into one BVH (no instances), the fastest "
             "exact configuration."
-      : flat ? "Exact baseline: every instance is flattened into one BVH (--build), the fastest "
-               "exact configuration where it fits in memory (DESIGN.md §2b point 2); proxies "
-               "likewise. --build instanced gives the instanced tables."
-             : "Exact baseline: instanced meshes are traced as Embree instances (--build); "
-               "--build flat gives the flattened tables (faster where they fit in memory).");
+      : flat
+          ? "Exact baseline: every instance is flattened into one BVH (--build), the fastest "
+            "exact configuration where it fits in memory (docs/design.md, costs point 2); proxies "
+            "likewise. --build instanced gives the instanced tables."
+          : "Exact baseline: instanced meshes are traced as Embree instances (--build); "
+            "--build flat gives the flattened tables (faster where they fit in memory).");
   report.notes.push_back(
       o.fixed_costs
           ? "roulette uses the fixed costs of --roulette-costs: bit-reproducible."

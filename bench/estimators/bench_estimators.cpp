@@ -4,10 +4,10 @@
 // SyntheticTracer that charges each ray its class cost. Prints a table; never fails.
 //
 //   bench_estimators [--samples N]
-// Scenarios follow DESIGN.md §2b (foliage: c_o/c_p 1.2-2.5, P(MH') 0.16-0.28, V(1-V) ~0.05;
-// per-class costs) plus a cheap-proxy case (c_o/c_p = 10). Paper estimators get 16 probe rays
-// per shading point and 16 light samples per point (one probe per sample, each traced against
-// both); their closed-form rows use the true class probabilities (an oracle: free probes).
+// Scenarios follow docs/design.md, measured costs (foliage: c_o/c_p 1.2-2.5, P(MH') 0.16-0.28,
+// V(1-V) ~0.05; per-class costs) plus a cheap-proxy case (c_o/c_p = 10). Paper estimators get 16
+// probe rays per shading point and 16 light samples per point (one probe per sample, each traced
+// against both); their closed-form rows use the true class probabilities (an oracle: free probes).
 #include <fmt/core.h>
 
 #include <chrono>

@@ -1,7 +1,7 @@
 // bench_proxy_gen: every proxy-gen method on bunny, dragon and spot; prints a Markdown table of
 // faces, volume ratio, sampled Hausdorff distances (fractions of the diagonal), whether the
 // guarantee was verified, and seconds to generate (build + budget) and to verify. Targets from
-// issue #4 (dragon, 2 threads): outside wrap + 2 % budget ratio <= 1.25 in <= 5 s, inside wrap
+// the project (dragon, 2 threads): outside wrap + 2 % budget ratio <= 1.25 in <= 5 s, inside wrap
 // at 2 % ratio >= 0.75 in <= 15 s, hull <= 0.3 s, QEM to 1 % <= 1 s. Never fails on speed.
 #include <fmt/core.h>
 #include <CLI/CLI.hpp>

@@ -1,5 +1,5 @@
-// bench_render: where a render's time goes, per scene (DESIGN.md §2b point 4), and whether the
-// renderer's shadow rays cost what Embree costs (target: within 10 % of a bare loop).
+// bench_render: where a render's time goes, per scene (docs/design.md, costs point 4), and whether
+// the renderer's shadow rays cost what Embree costs (target: within 10 % of a bare loop).
 //   primary ns/px    primary ray + shading-point setup, per pixel
 //   sampling ns/smp  light sampling (segment + weight), per light sample
 //   shadow ns/seg    the visibility phase with an exact estimator (one rtcOccluded1 per segment

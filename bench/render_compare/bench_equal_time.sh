@@ -1,6 +1,6 @@
 #!/bin/sh
-# Equal-time tables of all six estimators on dragon-plane and the foliage scene (issue #6
-# targets), plus the oracle ceiling of DESIGN.md §2b point 3 for each scene.
+# Equal-time tables of all six estimators on dragon-plane and the foliage scene (equal-time
+# targets), plus the oracle ceiling of docs/design.md, costs point 3 for each scene.
 #   bench/render_compare/bench_equal_time.sh [BUILD_DIR] [OUT_DIR]
 # Environment: SECONDS_PER_RENDER (default 4), SEEDS (3), KIND (outside), SPP (4,16),
 # EXTRA (more render-compare flags, e.g. "--width 96 --height 96"), PROXY_FLAGS_<scene> (proxy-gen
@@ -28,7 +28,8 @@ for scene in dragon-plane foliage; do
     ${EXTRA:-}
   echo
   if [ "$scene" = foliage ]; then
-    # DESIGN.md §2b point 2: both exact baselines; the table above uses --build auto (flat here).
+    # docs/design.md, costs point 2: both exact baselines; the table above uses --build auto
+    # (flat here).
     echo "## $scene: exact with instanced BVHs (--build instanced), same budget"
     echo
     "$bin/render-compare" "$dir/proxies/scene.json" --out "$dir/report-instanced" --quiet \

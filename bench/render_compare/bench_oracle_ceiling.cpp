@@ -1,4 +1,4 @@
-// The ceiling of DESIGN.md §2b point 3: how much more efficient than exact visibility any
+// The ceiling of docs/design.md, costs point 3: how much more efficient than exact visibility any
 // estimator built on these proxies can be, given what the scene measures.
 //
 // For P passes of one light sample per pixel (the renderer's own segments, passSegments()), every

@@ -1,6 +1,6 @@
 // Shadow-segment throughput of the lib/trace wrapper next to a bare Embree rtcOccluded1 loop on the
-// same segments with the same tbb::parallel_for structure (issue #3). Endpoints are uniform in a
-// box around the scene: incoherent rays, the distribution of the issue's reference numbers
+// same segments with the same tbb::parallel_for structure. Endpoints are uniform in a
+// box around the scene: incoherent rays, the distribution of the reference numbers
 // (dragon 6.7 Mrays/s, dragon x1000 instanced 3.9 Mrays/s, 2 threads, Embree 3.13.5).
 //
 // Columns: bare = own Embree scene (default flags and build quality) traced by rtcOccluded1;

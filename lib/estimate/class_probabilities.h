@@ -1,5 +1,5 @@
 #pragma once
-// The four ray classes of DESIGN.md §2 and the quantities the paper derives from them.
+// The four ray classes of docs/design.md and the quantities the paper derives from them.
 // Billen, Lagae, Dutre, "Probabilistic Visibility Estimation using Geometry Proxies", CGF 33(4)
 // (EGSR 2014). V = visibility against the original, V' = against the proxy (1 = unoccluded):
 //   HH' (V=0,V'=0), HM' (V=0,V'=1), MH' (V=1,V'=0), MM' (V=1,V'=1).

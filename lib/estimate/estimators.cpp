@@ -1,4 +1,4 @@
-// The six runtime estimators of issue #6 over the per-sample templates of sample_estimators.h.
+// The six runtime estimators over the per-sample templates of sample_estimators.h.
 // Each draws one uniform number per segment from the caller's Rng (exact and culling draw none)
 // and counts every traced ray.
 #include <algorithm>

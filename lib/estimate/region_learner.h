@@ -1,5 +1,5 @@
 #pragma once
-// Per-region learning for the roulette estimator (DESIGN.md §2 "Statistics without probe rays",
+// Per-region learning for the roulette estimator (docs/design.md "Statistics without probe rays",
 // §2b "decide per region"). A region is a screen tile x light (x whether the shading point's
 // object has a proxy, in the renderer). Each pass, every region runs in one of two modes, frozen
 // in beginPass() from the statistics of earlier passes only (so the choice is independent of the

@@ -1,13 +1,13 @@
 #pragma once
-// Correction by roulette (DESIGN.md §2): always trace the proxy; where its answer can be wrong,
+// Correction by roulette (docs/design.md): always trace the proxy; where its answer can be wrong,
 // trace the original with probability q_i (i = V'):
 //   V' = 0:  V~ = V / q0 with probability q0, else 0
 //   V' = 1:  V~ = 1 - (1 - V) / q1 with probability q1, else 1
 // Unbiased for any q_i > 0 where the error class (MH' for i = 0, HM' for i = 1) is possible.
 //   Var  = V(1-V) + P(MH')(1/q0 - 1) + P(HM')(1/q1 - 1)
 //   Cost = c_s + sum_i P(V'=i) (c_p|i + q_i c_o|i)     (c_s = ClassCosts::per_sample)
-// Costs are per class of V' (DESIGN.md §2b: where the proxy blocks, both rays cost several times
-// more than where it does not; one average cost overstates the gain).
+// Costs are per class of V' (docs/design.md, measured costs: where the proxy blocks, both rays cost
+// several times more than where it does not; one average cost overstates the gain).
 #include "estimate/class_probabilities.h"
 
 namespace proxyvis {
@@ -17,8 +17,8 @@ struct ClassCosts {
   double proxy[2] = {1, 1};     // c_p | V' = 0, c_p | V' = 1
   double original[2] = {1, 1};  // c_o | V' = 0, c_o | V' = 1
   // Paid by every light sample whatever the estimator: light sampling, shading, accumulation,
-  // the primary ray's share (DESIGN.md §2b point 4). Added to both exact and roulette costs; the
-  // larger it is, the more variance matters against ray savings.
+  // the primary ray's share (docs/design.md, costs point 4). Added to both exact and roulette
+  // costs; the larger it is, the more variance matters against ray savings.
   double per_sample = 0;
 };
 

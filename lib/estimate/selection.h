@@ -1,6 +1,6 @@
 #pragma once
 // The paper's selection estimator (Billen et al. 2014, §4) and its probabilities, with the
-// variance corrected as in DESIGN.md §2. Per light sample, pick one term:
+// variance corrected as in docs/design.md. Per light sample, pick one term:
 //   with p0:  V' / p0                     (proxy term; traces the proxy)
 //   with p+:  V (1 - V') / p+             (MH' correction; proxy first, original only if V' = 0)
 //   with p-: -V' (1 - V) / p-             (HM' correction; proxy first, original only if V' = 1)

@@ -10,7 +10,7 @@
 //                                          // num_points, probes_per_point, q_min, fixed_costs
 //   for each pass k: e->beginPass(k); parallel: e->estimate(query, rng, out, counts); e->endPass();
 //   e->learnedSummary() for the report.
-// The estimators (DESIGN.md §2; math in class_probabilities.h, selection.h, roulette.h):
+// The estimators (docs/design.md; math in class_probabilities.h, selection.h, roulette.h):
 //   exact          original only.
 //   culling        proxy pre-test where the verified class guarantees the answer; a general
 //                  proxy guarantees nothing, so culling is exact there (proxy not traced).
@@ -88,7 +88,7 @@ struct ShadingPointQuery {
 struct EstimatorSetup {
   EstimatorKind kind = EstimatorKind::kExact;
   // Verified class of the scene's proxies; only a verified class lets an estimator drop a
-  // correction branch (DESIGN.md pitfall 4).
+  // correction branch (docs/design.md, pitfall 4).
   ProxyClass proxy_class = ProxyClass::kGeneral;
   uint32_t num_regions = 1;
   int probes_per_point = 16;  // paper-optimal / paper-cost

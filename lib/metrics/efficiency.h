@@ -1,5 +1,5 @@
 #pragma once
-// Efficiency of an estimator = 1 / (MSE · time) (Veach's efficiency; DESIGN.md §2), and
+// Efficiency of an estimator = 1 / (MSE · time) (Veach's efficiency; docs/design.md), and
 // statistics over K independent seeds.
 #include <span>
 

@@ -1,5 +1,5 @@
 #pragma once
-// Image error metrics of DESIGN.md §2 ("Error metrics"), on plain float buffers so that
+// Image error metrics of docs/design.md ("Error metrics"), on plain float buffers so that
 // pv_metrics needs neither the renderer nor OpenImageIO. Images are row-major, interleaved
 // channels, linear radiance; the image and its reference must have the same size.
 #include <cstddef>

@@ -147,7 +147,7 @@ std::unique_ptr<RenderScene> loadRenderScene(const SceneDesc& desc,
   }
   scene->epsilon_ = std::max(1e-6f, 2e-5f * scene->originals_->bounds().diagonal());
 
-  // The class the estimators may rely on, after the light checks of DESIGN.md pitfall 2.
+  // The class the estimators may rely on, after the light checks of docs/design.md, pitfall 2.
   std::vector<Bounds3f> light_bounds;
   for (const AreaLightDesc& l : desc.lights) {
     Bounds3f b;
@@ -178,7 +178,7 @@ std::unique_ptr<RenderScene> loadRenderScene(const SceneDesc& desc,
         if (!warned[o.mesh])
           scene->warnings_.push_back(fmt::format(
               "mesh '{}': light {} may reach inside the bounds of its {} {}; the {} guarantee "
-              "needs the light outside (DESIGN.md pitfall 2): treated as general",
+              "needs the light outside (docs/design.md, pitfall 2): treated as general",
               mesh.name, l, c == ProxyClass::kOutside ? "proxy" : "original",
               ref.file.filename().string(), proxyClassName(c)));
         c = ProxyClass::kGeneral;

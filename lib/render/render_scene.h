@@ -7,8 +7,8 @@
 //     original where a mesh has no proxy).
 //   - selfScene(mesh): one mesh's original in its object space, for the self-shadowing rule.
 // Every object (a placed mesh or one instance) has a user id = its index in objects(), which
-// Hit::user_id returns and the self-shadowing rule ignores (DESIGN.md pitfall 1): a shading point
-// on object A traces A's original and the proxies of everything else.
+// Hit::user_id returns and the self-shadowing rule ignores (docs/design.md, pitfall 1): a shading
+// point on object A traces A's original and the proxies of everything else.
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -32,8 +32,8 @@ struct RenderSceneOptions {
   // proxy is skipped (the original is its own exact proxy), with a warning. True keeps it.
   bool keep_larger_proxies = false;
   // Instances copied into one flattened BVH (originals and proxies alike) instead of Embree
-  // instances of one BVH per mesh: faster to trace (DESIGN.md §2b: ecosys 78 ns flattened vs
-  // 140 ns instanced) at the memory of every instance's triangles.
+  // instances of one BVH per mesh: faster to trace (docs/design.md, measured costs: ecosys 78 ns
+  // flattened vs 140 ns instanced) at the memory of every instance's triangles.
   bool flatten_instances = false;
   // Otherwise, flatten when the flattened originals and proxies together have at most this many
   // triangles (0 = never): the fastest exact configuration that fits in memory.
@@ -109,7 +109,7 @@ class RenderScene {
 };
 
 // Loads every mesh and proxy (loadMesh), builds the Embree scenes and checks the lights against
-// the proxies (DESIGN.md pitfall 2: an outside proxy guarantees no HM' segments only if the
+// the proxies (docs/design.md, pitfall 2: an outside proxy guarantees no HM' segments only if the
 // light is outside it; an inside proxy guarantees no MH' only if the light is outside the
 // original). The check is conservative: a light whose bounding box overlaps the proxy's (outside)
 // or the original's (inside) world bounding box downgrades the scene's class to general, with a

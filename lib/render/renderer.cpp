@@ -2,7 +2,7 @@
 // phases over screen tiles, timed separately: (A) light sampling, producing one segment and
 // weight per light sample; (B) visibility estimation, where the estimator decides which rays to
 // trace, and accumulation. Separating them lets render-compare and bench_render report shading
-// cost and shadow-ray cost apart (DESIGN.md §2b, point 4).
+// cost and shadow-ray cost apart (docs/design.md, measured costs, point 4).
 #include "render/renderer.h"
 
 #include <tbb/enumerable_thread_specific.h>

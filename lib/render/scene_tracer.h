@@ -1,7 +1,7 @@
 #pragma once
 // The renderer's SegmentTracer: V and V' for shadow segments leaving one object, with the
-// self-shadowing rule of DESIGN.md pitfall 1. A shading point on object A lies on (or inside) A's
-// outside proxy, so its segments would always "hit" it. Instead V' for A's segments is
+// self-shadowing rule of docs/design.md, pitfall 1. A shading point on object A lies on (or inside)
+// A's outside proxy, so its segments would always "hit" it. Instead V' for A's segments is
 //     V' = [segment misses every other object's proxy]  and  [segment misses A's original],
 // traced as proxies() ignoring A's user id, then A's original in object space. V stays the
 // segment against all originals. The classes keep their guarantees: with outside proxies, V' = 1

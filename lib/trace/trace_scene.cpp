@@ -1,7 +1,7 @@
 // Queries on a committed Embree scene: rtcOccluded1 / rtcIntersect1 per segment. Batches run
 // rtcOccluded1 inside tbb::parallel_for over chunks: for incoherent shadow rays this measured as
-// fast as rtcOccluded1M and 8/16-wide packets (issue #3), and it keeps every answer a function of
-// its segment alone, whatever the thread count.
+// fast as rtcOccluded1M and 8/16-wide packets (bench_trace), and it keeps every answer a function
+// of its segment alone, whatever the thread count.
 #include <embree3/rtcore.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>

@@ -4,7 +4,7 @@
 
 namespace proxyvis {
 
-// Class of a proxy relative to its original (DESIGN.md §2): outside = contains it (no HM'
+// Class of a proxy relative to its original (docs/design.md): outside = contains it (no HM'
 // rays), inside = contained in it (no MH' rays), general = both error kinds possible.
 enum class ProxyClass { kOutside, kInside, kGeneral };
 

@@ -1,6 +1,6 @@
 #pragma once
 // The four visibility classes of shadow segments against an original P and a proxy P'
-// (DESIGN.md §2): HH' (both block), HM' (P blocks, P' misses), MH' (P misses, P' blocks),
+// (docs/design.md): HH' (both block), HM' (P blocks, P' misses), MH' (P misses, P' blocks),
 // MM' (both miss), what the estimators derive from their counts, and the proxy class they show.
 #include <cstdint>
 #include <optional>
@@ -52,7 +52,7 @@ SampledClass sampledClass(const ClassCounts& c);
 
 // The sampled class contradicts the exact verdict when the verdict rules out an error class
 // that the segments show: `contains` rules out HM', `contained` rules out MH'. Such a
-// contradiction means a tracing or tolerance bug (or a segment end inside the proxy, DESIGN.md §2
+// contradiction means a tracing or tolerance bug (or a segment end inside the proxy, docs/design.md
 // pitfall 2). Returns the explanation, or nothing when they agree.
 std::optional<std::string> sampledExactMismatch(const ClassCounts& c, ContainmentVerdict exact);
 

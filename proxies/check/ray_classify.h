@@ -17,7 +17,7 @@ namespace proxyvis {
 using SegmentGenerator = std::function<bool(uint64_t index, Segment& out)>;
 
 // Both ends independent and uniform on the sphere (center, radius). If the sphere encloses both
-// meshes, both ends lie outside both, as the outside/inside guarantees require (DESIGN.md §2
+// meshes, both ends lie outside both, as the outside/inside guarantees require (docs/design.md
 // pitfall 2). Segment `index` uses Rng(seed, index).
 Segment sphereSegment(const Vec3f& center, float radius, uint64_t seed, uint64_t index);
 

@@ -13,7 +13,7 @@ namespace proxyvis {
 
 // `full` holds every object of the scene (user id = mesh index). Primary hits on geometry whose
 // user id is `exclude_user_id` are skipped (the generator returns false): the renderer traces an
-// object's own shadow rays against its original, never its proxy (DESIGN.md §2 pitfall 1).
+// object's own shadow rays against its original, never its proxy (docs/design.md, pitfall 1).
 // Throws Error if the scene has no lights. `full` and `scene` must outlive the generator.
 SegmentGenerator sceneSegments(const TraceScene& full, const SceneDesc& scene,
                                uint32_t exclude_user_id, uint64_t seed);

@@ -1,5 +1,5 @@
 #pragma once
-// Inside proxies: closed meshes contained in a closed input (no MH' rays, DESIGN.md §2). Sizes
+// Inside proxies: closed meshes contained in a closed input (no MH' rays, docs/design.md). Sizes
 // are fractions of the input's bounding-box diagonal. These functions only build; the caller
 // (proxies/general/proxy_pipeline.h) verifies containment exactly before anything is written.
 #include <cstddef>

@@ -1,5 +1,5 @@
 #pragma once
-// Outside proxies: closed meshes that contain the input (no HM' rays, DESIGN.md §2). Sizes are
+// Outside proxies: closed meshes that contain the input (no HM' rays, docs/design.md). Sizes are
 // fractions of the input's bounding-box diagonal. These functions only build; the caller
 // (proxies/general/proxy_pipeline.h) verifies the guarantee exactly before anything is written.
 #include <cstddef>

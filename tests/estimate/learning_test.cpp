@@ -30,8 +30,8 @@ ClassCosts costs(double cp0, double cp1, double co0, double co1) {
 }
 
 TEST(Decision, ExactWhereErrorsExceedExactVarianceAndProxyCostsTheSame) {
-  // DESIGN.md §2b foliage-like: the proxy says visible for 80 % at the original's cost; blocked
-  // segments cost 100 (proxy) and 250 (original), and 35 % of them are visible:
+  // docs/design.md, measured costs foliage-like: the proxy says visible for 80 % at the original's
+  // cost; blocked segments cost 100 (proxy) and 250 (original), and 35 % of them are visible:
   // P(MH') = 0.07 > V(1-V) = 0.05.
   const ClassProbabilities c{0.13, 0.0, 0.07, 0.80};
   RouletteModel m = RouletteModel::fromPoint(c, costs(100, 60, 250, 60));

@@ -1,5 +1,5 @@
 // Roulette correction: measured variance and rays against the closed forms, and the optimal q
-// against a grid search of Var x Cost (DESIGN.md §2).
+// against a grid search of Var x Cost (docs/design.md).
 #include "estimate/roulette.h"
 
 #include <gtest/gtest.h>
@@ -58,7 +58,8 @@ TEST(Roulette, MeasuredVarianceAndRaysMatchClosedForms) {
   }
 }
 
-// Models spanning the measured ranges of DESIGN.md §2b and beyond, with per-class costs.
+// Models spanning the measured ranges of docs/design.md, measured costs and beyond, with per-class
+// costs.
 std::vector<std::pair<RouletteModel, ProxyClass>> randomModels() {
   std::vector<std::pair<RouletteModel, ProxyClass>> out;
   Rng rng(kSeed, 1);
@@ -154,7 +155,8 @@ TEST(Roulette, PerSampleCostEntersBothCosts) {
 }
 
 TEST(Roulette, ErrorsAboveExactVarianceGiveCulling) {
-  // DESIGN.md §2b foliage: P(MH') = 0.2 > V(1-V) = 0.0475 -> q0 = 1 (plain culling).
+  // docs/design.md, measured costs foliage: P(MH') = 0.2 > V(1-V) = 0.0475 -> q0 = 1 (plain
+  // culling).
   const ClassProbabilities c{0.05, 0.0, 0.20, 0.75};
   const RouletteModel m = RouletteModel::fromPoint(c, ClassCosts{});
   const RouletteQ q = optimalRouletteQ(m, ProxyClass::kOutside, 0.05);

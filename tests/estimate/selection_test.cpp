@@ -1,5 +1,5 @@
 // The paper's selection estimator: measured variance against the corrected closed form
-// (DESIGN.md §2), the slides' misprint rejected, and the optimal probabilities against a grid.
+// (docs/design.md), the slides' misprint rejected, and the optimal probabilities against a grid.
 #include "estimate/selection.h"
 
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
-// RenderScene: the self-shadowing rule (DESIGN.md pitfall 1), the light checks (pitfall 2), the
-// proxy class the estimators are told, proxy selection, instances.
+// RenderScene: the self-shadowing rule (docs/design.md, pitfall 1), the light checks (pitfall 2),
+// the proxy class the estimators are told, proxy selection, instances.
 #include <gtest/gtest.h>
 
 #include "render/render_scene.h"
