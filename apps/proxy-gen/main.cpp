@@ -12,6 +12,7 @@
 #include "mesh/mesh_io.h"
 #include "output_paths.h"
 #include "proxies/general/proxy_pipeline.h"
+#include "proxies/general/written_class.h"
 #include "scene/scene_desc.h"
 #include "util/app_main.h"
 #include "util/error.h"
@@ -53,6 +54,16 @@ ProxyGenOptions toOptions(const Args& a, const CommonOptions& common) {
   return o;
 }
 
+// A proxy written with another class than the kind asked for (e.g. general for --fill-holes:
+// the guarantee would hold only for the hole-filled mesh) gets one note line on stderr.
+void noteWrittenClass(const json& report, const std::string& file) {
+  const auto reason = report.find("class_reason");
+  if (reason == report.end()) return;
+  std::fprintf(stderr, "proxy-gen: note: %s: written as class %s, not %s: %s\n", file.c_str(),
+               report.value("class", "general").c_str(), report.value("kind", "").c_str(),
+               reason->get<std::string>().c_str());
+}
+
 // The JSON goes to --json, put in place after the files staged in `outputs` that it describes;
 // the human summary to stdout, or to stderr when stdout carries JSON.
 void emit(const json& report, const std::string& summary, const CommonOptions& common,
@@ -71,7 +82,11 @@ int runMesh(const Args& a, const CommonOptions& common) {
   const TriMesh input = loadMesh(a.input);
   ProxyGenResult result = generateProxy(input, toOptions(a, common));
   OutputSet outputs(MissingFolders::kCreate);
-  addMeshOutput(outputs, result.proxy, a.output);
+  // The file must hold the very mesh that was verified: Draco without quantization.
+  SaveOptions save;
+  save.draco_quantization = 0;
+  addMeshOutput(outputs, result.proxy, a.output, save);
+  noteWrittenClass(result.report, a.input);
   result.report["output"] = a.output;
   result.report["output_sha256"] = outputs.sha256Of(a.output);
   emit(result.report, formatProxyReport(result.report), common, outputs);
@@ -136,8 +151,10 @@ int runScene(const Args& a, const CommonOptions& common) {
           ref.kind = a.kind;
           ref.method = r.report["method"].get<std::string>();
           ref.file = fs::absolute(out);
-          if (r.verified) {  // the hash says which file content the class was proven for
-            ref.verified_class = base.kind;
+          // The class the report writes (general when proven only for a stand-in of the
+          // input); the hash says which file content it was proven for.
+          if (const std::optional<ProxyClass> c = writtenClass(r.report)) {
+            ref.verified_class = c;
             ref.sha256 = sha256OfFile(out);
           }
           refs[i] = ref;
@@ -180,6 +197,7 @@ int runScene(const Args& a, const CommonOptions& common) {
       summary += fmt::format("== {}: no proxy ({})\n", scene.meshes[i].name, skipped[i]);
       continue;
     }
+    noteWrittenClass(reports[i], scene.meshes[i].file.string());
     summary += fmt::format("== {}\n{}", scene.meshes[i].name, formatProxyReport(reports[i]));
     auto& proxies = scene.meshes[i].proxies;
     std::erase_if(proxies, [&](const ProxyRef& p) { return p.kind == a.kind; });

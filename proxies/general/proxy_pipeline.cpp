@@ -9,8 +9,10 @@
 #include "proxies/check/containment.h"
 #include "proxies/check/mesh_distance.h"
 #include "proxies/general/general_proxy.h"
+#include "proxies/general/written_class.h"
 #include "proxies/inside/inside_proxy.h"
 #include "proxies/limits/input_geometry.h"
+#include "proxies/limits/parity_solid.h"
 #include "proxies/limits/time_budget.h"
 #include "proxies/outside/bounded_simplify.h"
 #include "proxies/outside/outside_proxy.h"
@@ -171,29 +173,29 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
       options.max_seconds > 0 ? TimeBudget(options.max_seconds, input.source) : TimeBudget();
 
   const MeshReport in_report = timer.run("validate_input", [&] { return validateMesh(input); });
-  report["input"] = {{"path", input.source},
-                     {"faces", in_report.faces},
-                     {"closed", in_report.closed},
-                     {"manifold", in_report.manifold},
-                     {"boundary_edges", in_report.boundary_edges}};
+  report["input"] = {
+      {"path", input.source},           {"faces", in_report.faces},
+      {"closed", in_report.closed},     {"watertight", in_report.watertight},
+      {"manifold", in_report.manifold}, {"boundary_edges", in_report.boundary_edges}};
   report["kind"] = proxyClassName(options.kind);
   report["method"] = method;
   json& params = report["parameters"] = {
       {"max_faces", options.max_faces}, {"fill_holes", options.fill_holes}, {"seed", options.seed}};
   if (options.max_seconds > 0) params["max_seconds"] = options.max_seconds;
 
-  // The mesh the guarantee refers to: the input, or the input with its holes filled.
+  // The mesh the proxy is built and verified against: the input, which for inside needs only to
+  // bound a volume by ray parity (watertight, non-manifold edges allowed); or the input with its
+  // holes filled, a stand-in for which no class holds (written_class.h).
   TriMesh reference = input;
-  if (options.kind == ProxyClass::kInside && !in_report.closed) {
+  std::optional<std::string> stand_in;
+  if (options.kind == ProxyClass::kInside && !in_report.watertight) {
     if (!options.fill_holes)
-      throw Error(input.source,
-                  fmt::format("{} boundary edges, {} non-manifold edges", in_report.boundary_edges,
-                              in_report.non_manifold_edges),
-                  "an inside proxy needs a closed mesh: an open surface has no inside",
-                  "try --fill-holes, or --kind outside");
+      throw noInteriorError(input.source, in_report.boundary_edges, in_report.odd_edges,
+                            "an inside proxy");
     size_t holes = 0;
     reference = timer.run("fill_holes", [&] { return fillHoles(input, &holes); });
     report["holes_filled"] = holes;
+    stand_in = filledHolesReason(in_report.boundary_edges, holes);
     budget.check("the hole filling");
   }
 
@@ -215,8 +217,6 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
     params["max_faces_auto"] = max_faces;
   }
 
-  const double ref_volume = reference.signedVolume();
-  const bool ref_closed = options.kind == ProxyClass::kInside || in_report.closed;
   const ContainmentVerdict expected = options.kind == ProxyClass::kOutside
                                           ? ContainmentVerdict::kContains
                                           : ContainmentVerdict::kContained;
@@ -279,12 +279,19 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
   }
   report["faces"] = proxy.numTriangles();
   report["verified"] = verified;
-  report["class"] = verified ? json(proxyClassName(options.kind)) : json(nullptr);
+  setWrittenClass(report, options.kind, verified, stand_in);
+  if (stand_in && containment) report["checks"]["containment_against"] = "the hole-filled input";
 
   timer.run("metrics", [&] {
     const double diag = reference.diagonal();
-    report["volume_ratio"] = (ref_closed && p_report.closed && ref_volume > 0)
-                                 ? json(proxy.signedVolume() / ref_volume)
+    // A closed manifold input's own signed volume (cheap); by ray parity for a watertight
+    // non-manifold input or the hole-filled stand-in (proxies/limits/parity_solid.h).
+    const std::optional<double> ref_volume = !(in_report.watertight || stand_in) ? std::nullopt
+                                             : in_report.closed
+                                                 ? std::optional<double>(reference.signedVolume())
+                                                 : parityVolume(reference);
+    report["volume_ratio"] = (ref_volume && p_report.closed && *ref_volume > 0)
+                                 ? json(proxy.signedVolume() / *ref_volume)
                                  : json(nullptr);
     report["hausdorff_proxy_to_original"] =
         sampledOneSidedDistance(proxy, reference, options.hausdorff_samples, options.seed) / diag;
@@ -321,7 +328,9 @@ std::string formatProxyReport(const json& r) {
   std::string s;
   s += fmt::format("input:      {} ({} faces, {})\n", r["input"]["path"].get<std::string>(),
                    r["input"]["faces"].get<uint64_t>(),
-                   r["input"]["closed"].get<bool>() ? "closed" : "open");
+                   r["input"]["closed"].get<bool>()        ? "closed"
+                   : r["input"].value("watertight", false) ? "watertight, non-manifold"
+                                                           : "open");
   s += fmt::format("proxy:      {} / {}, {} faces (before budget {})\n",
                    r["kind"].get<std::string>(), r["method"].get<std::string>(),
                    r["faces"].get<uint64_t>(), r["faces_before_budget"].get<uint64_t>());
@@ -332,6 +341,9 @@ std::string formatProxyReport(const json& r) {
                    num(r["hausdorff_original_to_proxy"], "{:.5f}"));
   s += fmt::format("checks:     {}\n", r["checks"].dump());
   s += fmt::format("verified:   {}\n", r["verified"].get<bool>() ? "yes" : "NO");
+  if (r.contains("class_reason"))
+    s += fmt::format("class:      {} ({})\n", r["class"].get<std::string>(),
+                     r["class_reason"].get<std::string>());
   std::string secs;
   for (const auto& [k, v] : r["seconds"].items())
     secs += fmt::format("{}{} {:.3f}", secs.empty() ? "" : ", ", k, v.get<double>());
