@@ -20,11 +20,17 @@ struct BoundedSimplifyOptions {
   // new faces local so they do not cut through distant parts of the surface.
   double max_move_edges = 1.0;
   const TimeBudget* budget = nullptr;  // polled between collapses; null = no limit
+  // The input the result must keep containing (kOutside) or stay inside of (kInside). With it,
+  // a collapse may also move the surface toward the input, tested against the input itself
+  // (proxies/outside/internal/input_bound.h): much tighter at small budgets. Null = every
+  // collapse keeps the mesh nested in the previous one (progressive hulls).
+  const TriMesh* bound = nullptr;
 };
 
 struct BoundedSimplifyStats {
   size_t faces_before = 0, faces_after = 0;
   size_t collapses = 0;
+  size_t relaxed = 0;  // vertex moves of the relaxation toward the input (with options.bound)
   bool budget_reached = false;  // false when no admissible collapse was left before the budget
 };
 
