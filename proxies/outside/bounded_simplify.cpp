@@ -46,8 +46,11 @@ constexpr size_t kBoundPhaseFactor = 4;
 // so it starts at most this many faces above the budget's floor (the dragon's 2 % budget of
 // 2,000 faces gets the relaxation only; its nested result is already within the targets).
 constexpr size_t kMaxTightFaces = 1500;
-// Relaxation passes after the budget is reached; the last ones gain little.
+// Relaxation passes after the budget is reached; the last ones gain little. Its test against
+// the mesh itself scans every face: quadratic, so it runs up to kMaxRelaxFaces (the dragon's
+// 2 % budget, ~0.2 s there).
 constexpr int kRelaxSweeps = 4;
+constexpr size_t kMaxRelaxFaces = 3000;
 
 Vec3d toVec(const Point3& p) {
   return {p.x(), p.y(), p.z()};
@@ -251,7 +254,9 @@ class Placer {
     };
     std::vector<Ranked> ranked;
     for (size_t i = 0; i < candidates.size(); ++i) {
-      const Vec3d x = cgal::roundToFloat(candidates[i]);
+      // Only tested points are rounded: the nested phase keeps its exact LP point, as it
+      // always has (its outputs are unchanged by the input bound's arrival).
+      const Vec3d x = bound_ ? cgal::roundToFloat(candidates[i]) : candidates[i];
       if (star.keepsOrientation(x)) ranked.push_back({star.addedVolume(x), x, nested && i == 0});
     }
     std::stable_sort(ranked.begin(), ranked.end(),
@@ -312,10 +317,12 @@ struct MeshFilter {
 // Cost = volume added by the collapse (negative when it cuts a corner, which only the input
 // bound allows): cheap collapses first, the progressive-hull order.
 struct AddedVolumeCost {
+  bool signed_volume;  // false: clamped at 0 (nested collapses: negative only by rounding)
   boost::optional<double> operator()(const Profile& profile,
                                      const boost::optional<Point3>& placement) const {
     if (!placement) return boost::none;
-    return Star(profile).addedVolume(toVec(*placement));
+    const double added = Star(profile).addedVolume(toVec(*placement));
+    return signed_volume ? added : std::max(0.0, added);
   }
 };
 
@@ -340,7 +347,7 @@ void collapse(SurfaceMesh& sm, size_t max_faces, const BoundedSimplifyOptions& o
   CollapseVisitor visitor(collapses, global ? &*global : nullptr);
   const Placer placer(options.max_move_edges, options.budget, bound, global ? &*global : nullptr);
   SMS::edge_collapse(sm, stop,
-                     CGAL::parameters::get_cost(AddedVolumeCost())
+                     CGAL::parameters::get_cost(AddedVolumeCost{bound != nullptr})
                          .get_placement(PlacementPolicy{&placer})
                          .filter(MeshFilter{&placer})
                          .visitor(visitor));
@@ -385,11 +392,14 @@ TriMesh simplifyBounded(const TriMesh& mesh, const BoundedSimplifyOptions& optio
     // as tight as the input test all the way (its gain comes in the last collapses) and several
     // times faster. Tests that see only the neighbourhood cannot rule out every crossing of
     // the mesh with itself: a result that has one falls back to the previous stage.
-    const cgal::InputBound bound(*options.bound);
     const size_t phase1 = std::min(kBoundPhaseFactor * options.max_faces,
                                    std::max(options.max_faces, kMaxTightFaces));
     if (sm.number_of_faces() > phase1) collapse(sm, phase1, options, nullptr, &st.collapses);
     sm.collect_garbage();
+    // A large budget the nested phase met: neither phase 2 nor the relaxation pays there.
+    if (sm.number_of_faces() <= options.max_faces && sm.number_of_faces() > kMaxRelaxFaces)
+      return finish(cgal::fromSurfaceMesh(sm, mesh.source));
+    const cgal::InputBound bound(*options.bound);
     SurfaceMesh nested = sm;
     collapse(sm, options.max_faces, options, &bound, &st.collapses);
     sm.collect_garbage();
@@ -399,6 +409,7 @@ TriMesh simplifyBounded(const TriMesh& mesh, const BoundedSimplifyOptions& optio
       sm.collect_garbage();
     }
     TriMesh out = cgal::fromSurfaceMesh(sm, mesh.source);
+    if (out.numTriangles() > kMaxRelaxFaces) return finish(std::move(out));
     TriMesh relaxed = out;
     st.relaxed = cgal::relaxTowardInput(relaxed, bound, kRelaxSweeps, options.budget);
     checkBudget(options.budget, "the face budget's relaxation");
