@@ -401,9 +401,11 @@ TriMesh simplifyBounded(const TriMesh& mesh, const BoundedSimplifyOptions& optio
       return finish(cgal::fromSurfaceMesh(sm, mesh.source));
     const cgal::InputBound bound(*options.bound);
     SurfaceMesh nested = sm;
-    collapse(sm, options.max_faces, options, &bound, &st.collapses);
-    sm.collect_garbage();
-    if (PMP::does_self_intersect(sm)) {
+    if (sm.number_of_faces() > options.max_faces) {
+      collapse(sm, options.max_faces, options, &bound, &st.collapses);
+      sm.collect_garbage();
+    }
+    if (sm.number_of_faces() < nested.number_of_faces() && PMP::does_self_intersect(sm)) {
       sm = nested;
       collapse(sm, options.max_faces, options, nullptr, &st.collapses);
       sm.collect_garbage();
