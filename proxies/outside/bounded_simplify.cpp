@@ -8,6 +8,10 @@
 //
 // CGAL Surface_mesh_simplification drives the collapses (priority queue, link condition); our
 // placement solves the LP and refuses the collapse when it is infeasible or flips a face.
+//
+// Given the input itself (options.bound), the last collapses may also move the surface toward
+// it, tested exactly against the input (internal/input_bound.h), and a relaxation moves the
+// vertices of the result inward (internal/relax_toward_input.h): docs/proxy_tightness.md.
 #include "proxies/outside/bounded_simplify.h"
 
 #include <CGAL/Surface_mesh_simplification/Edge_collapse_visitor_base.h>
@@ -43,8 +47,9 @@ using Profile = SMS::Edge_profile<SurfaceMesh>;
 // ones from there (see simplifyBounded).
 constexpr size_t kBoundPhaseFactor = 4;
 // The tight phase tests every new face against every face of the mesh (box-culled): quadratic,
-// so it starts at most this many faces above the budget's floor (the dragon's 2 % budget of
-// 2,000 faces gets the relaxation only; its nested result is already within the targets).
+// so it starts at no more than this many faces, or at the budget when that is larger (the
+// dragon's 2 % budget of 2,000 faces gets the relaxation only; nesting meets its targets).
+// Where nesting stalls above it (an erosion's staircase), the tight phase starts there.
 constexpr size_t kMaxTightFaces = 1500;
 // Relaxation passes after the budget is reached; the last ones gain little. Its test against
 // the mesh itself scans every face: quadratic, so it runs up to kMaxRelaxFaces (the dragon's

@@ -3,7 +3,9 @@
 // itself: every accepted collapse produces a mesh that contains the previous one (kOutside, the
 // progressive hulls of Sander et al., "Silhouette clipping", SIGGRAPH 2000) or is contained in it
 // (kInside, the mirror image). Budget proxies thus keep their outside/inside guarantee, up to
-// float rounding and far-away self-intersections, which the caller's exact check catches.
+// float rounding and far-away self-intersections, which the caller's exact check catches. With
+// the input as options.bound, the last collapses are tested against the input instead and may
+// cut volume (docs/proxy_tightness.md).
 #include <cstddef>
 
 #include "mesh/tri_mesh.h"
