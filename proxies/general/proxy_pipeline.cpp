@@ -240,6 +240,7 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
       s.side = options.kind == ProxyClass::kOutside ? BoundSide::kOutside : BoundSide::kInside;
       s.max_move_edges = move;
       s.budget = &budget;
+      s.bound = &reference;  // lets collapses move toward the input: tighter at small budgets
       proxy =
           timer.run("simplify", [&] { return simplifyBounded(built.mesh, s, &simplify_stats); });
     }
