@@ -1,0 +1,243 @@
+#include "proxies/general/budget_ladder.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "proxies/general/budget_shapes.h"
+#include "proxies/general/general_proxy.h"
+#include "proxies/outside/outside_proxy.h"
+#include "util/error.h"
+
+namespace proxyvis {
+namespace {
+
+using json = nlohmann::json;
+
+ContainmentVerdict expectedVerdict(ProxyClass kind) {
+  return kind == ProxyClass::kOutside ? ContainmentVerdict::kContains
+                                      : ContainmentVerdict::kContained;
+}
+
+bool withinBudget(const BudgetContext& ctx, const VerifiedCandidate& c) {
+  return ctx.max_faces == 0 || c.faces() <= ctx.max_faces;
+}
+
+// Larger is tighter: the volume for inside proxies, minus the volume outside, minus the face
+// count for general proxies (closed and clean ones first).
+double tightness(const BudgetContext& ctx, const VerifiedCandidate& c) {
+  switch (ctx.options.kind) {
+    case ProxyClass::kOutside:
+      return -c.mesh.signedVolume();
+    case ProxyClass::kInside:
+      return c.mesh.signedVolume();
+    default:
+      return (c.ok ? 1e18 : 0) - double(c.faces());
+  }
+}
+
+void record(const BudgetContext& ctx, const VerifiedCandidate& c) {
+  json entry = {{"source", c.source}, {"faces", c.faces()}, {"verified", c.ok}};
+  const double ref_volume = ctx.reference.signedVolume();
+  if (c.ok && c.report.closed && ref_volume > 0)
+    entry["volume_ratio"] = c.mesh.signedVolume() / ref_volume;
+  ctx.report["budget_ladder"].push_back(std::move(entry));
+}
+
+// Coarser versions of the method's own size parameter: 2, 4 and 8 times, within its range.
+std::vector<ProxyGenOptions> coarserOptions(const BudgetContext& ctx) {
+  std::vector<ProxyGenOptions> out;
+  const ProxyGenOptions& o = ctx.options;
+  for (double factor : {2.0, 4.0, 8.0}) {
+    ProxyGenOptions c = o;
+    if (ctx.method == "wrap") {
+      const double alpha = o.alpha.value_or(1.0 / 50) * factor;
+      if (!kAlphaRange.contains(alpha)) break;
+      c.alpha = alpha;
+    } else if (ctx.method == "erode") {
+      const double voxel = o.voxel.value_or(1.0 / 150) * factor;
+      if (voxel > 1.0 / 20) break;  // coarser grids erode away most of the volume
+      c.voxel = voxel;
+      c.erosion = o.erosion.value_or(2.0 / 150);
+    } else {
+      break;
+    }
+    out.push_back(c);
+  }
+  return out;
+}
+
+std::string coarserName(const BudgetContext& ctx, const ProxyGenOptions& c) {
+  return ctx.method == "wrap" ? fmt::format("wrap alpha {:.4g}", *c.alpha)
+                              : fmt::format("erode voxel {:.4g}", *c.voxel);
+}
+
+}  // namespace
+
+VerifiedCandidate verifyCandidate(const BudgetContext& ctx, TriMesh mesh, std::string source) {
+  VerifiedCandidate c;
+  c.source = std::move(source);
+  c.mesh = std::move(mesh);
+  c.stats.faces_before = c.stats.faces_after = c.faces();
+  c.stats.budget_reached = withinBudget(ctx, c);
+  c.report = ctx.timer.run("verify", [&] {
+    ValidationOptions v;
+    v.self_intersections = true;
+    return validateMesh(c.mesh, v);
+  });
+  ctx.budget.check("verifying the proxy");
+  c.ok = c.report.closed && c.report.manifold && c.report.self_intersecting_pairs.value_or(1) == 0;
+  if (ctx.options.kind != ProxyClass::kGeneral) {
+    c.containment =
+        ctx.timer.run("verify", [&] { return checkContainment(ctx.reference, c.mesh); });
+    c.ok = c.ok && c.containment->verdict == expectedVerdict(ctx.options.kind);
+  }
+  return c;
+}
+
+VerifiedCandidate reduceAndVerify(const BudgetContext& ctx, const TriMesh& built,
+                                  std::string source, bool allow_unreduced) {
+  const bool reduce = ctx.max_faces > 0 && built.numTriangles() > ctx.max_faces;
+  std::vector<double> moves = reduce ? std::vector<double>{1.0, 0.5} : std::vector<double>{};
+  if (allow_unreduced || !reduce) moves.push_back(0.0);
+  VerifiedCandidate c;
+  for (size_t i = 0; i < moves.size(); ++i) {
+    const double move = moves[i];
+    TriMesh proxy = built;
+    BoundedSimplifyStats stats;
+    stats.faces_before = stats.faces_after = built.numTriangles();
+    if (move > 0) {
+      BoundedSimplifyOptions s;
+      s.max_faces = ctx.max_faces;
+      s.side = ctx.options.kind == ProxyClass::kOutside ? BoundSide::kOutside : BoundSide::kInside;
+      s.max_move_edges = move;
+      s.budget = &ctx.budget;
+      proxy = ctx.timer.run("simplify", [&] { return simplifyBounded(built, s, &stats); });
+    }
+    c = verifyCandidate(ctx, std::move(proxy), source);
+    c.stats = stats;
+    c.stats.budget_reached = withinBudget(ctx, c);
+    if (reduce)
+      ctx.report["budget_attempts"].push_back(
+          {{"source", source},
+           {"max_move_edges", move},
+           {"faces", c.faces()},
+           {"closed", c.report.closed},
+           {"manifold", c.report.manifold},
+           {"self_intersecting_pairs", c.report.self_intersecting_pairs.value_or(0)},
+           {"containment", c.containment ? containmentName(c.containment->verdict) : "n/a"}});
+    if (c.ok || move == 0) break;
+    // A proxy neither inside nor around the reference, or one the test cannot decide, is not
+    // the collapse's doing: a gentler collapse would fail the same way.
+    const ContainmentVerdict v =
+        c.containment ? c.containment->verdict : ContainmentVerdict::kIntersecting;
+    if (v == ContainmentVerdict::kDisjoint || v == ContainmentVerdict::kUndecidable) {
+      if (moves.back() != 0.0) break;
+      i = moves.size() - 2;  // straight to the unreduced proxy
+    }
+    ctx.budget.check("the face budget's retries");
+  }
+  return c;
+}
+
+LadderResult climbBudgetLadder(const BudgetContext& ctx, const VerifiedCandidate& primary) {
+  LadderResult result;
+  std::optional<VerifiedCandidate>& best = result.within;
+  auto consider = [&](VerifiedCandidate c) {
+    record(ctx, c);
+    const bool usable = ctx.options.kind == ProxyClass::kGeneral || c.ok;
+    if (!usable) return false;
+    if (!withinBudget(ctx, c)) {
+      if (!result.smallest || c.faces() < result.smallest->faces()) result.smallest = std::move(c);
+      return false;
+    }
+    if (!best || tightness(ctx, c) > tightness(ctx, *best)) best = std::move(c);
+    return true;
+  };
+  consider(primary);
+  const TriMesh& ref = ctx.reference;
+  const bool outside = ctx.options.kind == ProxyClass::kOutside;
+  if (best && primary.ok) {
+    // At small budgets a box can be tighter than the reduced proxy: it is cheap to build, and
+    // verified only when its volume beats the proxy's.
+    if (!outside || ctx.max_faces < kBoxFaces) return result;
+    TriMesh box = enclosingBox(ref);
+    if (box.signedVolume() < best->mesh.signedVolume())
+      consider(verifyCandidate(ctx, std::move(box), "box"));
+    return result;
+  }
+
+  if (ctx.options.kind == ProxyClass::kGeneral) {
+    // The decimators stall above the budget on soups of many small closed parts (each needs 4
+    // faces at least): meshoptimizer's simplifier, then its sloppy one, merges parts.
+    GeneralOptions g;
+    g.max_faces = ctx.max_faces;
+    g.budget = &ctx.budget;
+    TriMesh m = ctx.timer.run("budget_ladder", [&] { return simplifyMeshopt(ctx.input, g); });
+    consider(verifyCandidate(ctx, std::move(m), "meshopt"));
+    return result;
+  }
+
+  // A closed surface has at least 4 faces: below that nothing can succeed, only the
+  // tetrahedron is built, to say what the smallest proxy is.
+  if (ctx.max_faces >= kMinClosedFaces) {
+    for (const ProxyGenOptions& c : coarserOptions(ctx)) {
+      ctx.budget.check("the face budget's fallbacks");
+      const TriMesh coarse = ctx.timer.run("budget_ladder", [&] { return ctx.rebuild(c); });
+      if (consider(reduceAndVerify(ctx, coarse, coarserName(ctx, c), false))) break;
+    }
+    if (outside && ctx.method != "hull") {
+      const TriMesh hull = ctx.timer.run("budget_ladder", [&] { return makeHullProxy(ref); });
+      consider(reduceAndVerify(ctx, hull, "hull", false));
+    }
+  }
+  std::optional<InteriorBall> ball;
+  if (!outside) ball = ctx.timer.run("budget_ladder", [&] { return deepestInteriorPoint(ref); });
+  if (ctx.max_faces >= kBoxFaces || ctx.max_faces < kMinClosedFaces) {
+    if (outside)
+      consider(verifyCandidate(ctx, enclosingBox(ref), "box"));
+    else if (ball)
+      consider(verifyCandidate(ctx, inscribedBox(*ball, ref.source), "box"));
+  }
+  if (outside)
+    consider(verifyCandidate(ctx, enclosingTetrahedron(ref), "tetrahedron"));
+  else if (ball)
+    consider(verifyCandidate(ctx, inscribedTetrahedron(*ball, ref.source), "tetrahedron"));
+  return result;
+}
+
+void throwBudgetNotMet(const BudgetContext& ctx, size_t smallest) {
+  const std::string kind = proxyClassName(ctx.options.kind);
+  const std::string what =
+      smallest > 0
+          ? fmt::format("budget of {} faces not met: the smallest verified {} proxy has {} faces",
+                        ctx.max_faces, kind, smallest)
+          : fmt::format("budget of {} faces not met: no {} proxy within it passed the checks",
+                        ctx.max_faces, kind);
+  std::string why;
+  if (ctx.options.kind != ProxyClass::kGeneral && ctx.max_faces < kMinClosedFaces)
+    why = fmt::format("a closed surface needs at least {}", kMinClosedFaces);
+  else if (ctx.options.kind == ProxyClass::kGeneral)
+    why = "neither the decimation nor meshoptimizer reached it";
+  else
+    why = fmt::format(
+        "the {} proxy and its fallbacks (coarser sizes, {}box, tetrahedron) could not be reduced "
+        "further while keeping the guarantee",
+        ctx.method, ctx.options.kind == ProxyClass::kOutside ? "convex hull, " : "");
+  const std::string todo =
+      smallest > ctx.max_faces
+          ? fmt::format("use --max-faces {} or more, or --budget soft to write the larger proxy",
+                        smallest)
+          : "use a larger --max-faces, or --budget soft to write the larger proxy";
+  throw CheckFailed(ctx.input.source, what, why, todo);
+}
+
+std::string tuningFlags(ProxyClass kind, const std::string& method) {
+  if (method == "wrap") return "--alpha/--offset";
+  if (method == "erode") return "--erosion/--voxel";
+  if (kind == ProxyClass::kGeneral) return "--ratio/--max-faces";
+  return "";
+}
+
+}  // namespace proxyvis
