@@ -96,14 +96,16 @@ VerifiedCandidate verifyCandidate(const BudgetContext& ctx, TriMesh mesh, std::s
   return c;
 }
 
+bool inputIsTheProblem(const VerifiedCandidate& c) {
+  if (c.ok || !c.containment) return false;
+  const ContainmentVerdict v = c.containment->verdict;
+  return v == ContainmentVerdict::kDisjoint || v == ContainmentVerdict::kUndecidable;
+}
+
 VerifiedCandidate reduceAndVerify(const BudgetContext& ctx, const TriMesh& built,
                                   std::string source, bool allow_unreduced) {
   const bool reduce = ctx.max_faces > 0 && built.numTriangles() > ctx.max_faces;
-  std::vector<double> moves = reduce ? std::vector<double>{1.0, 0.5} : std::vector<double>{};
-  if (allow_unreduced || !reduce) moves.push_back(0.0);
-  VerifiedCandidate c;
-  for (size_t i = 0; i < moves.size(); ++i) {
-    const double move = moves[i];
+  auto attempt = [&](double move) {
     TriMesh proxy = built;
     BoundedSimplifyStats stats;
     stats.faces_before = stats.faces_after = built.numTriangles();
@@ -115,7 +117,7 @@ VerifiedCandidate reduceAndVerify(const BudgetContext& ctx, const TriMesh& built
       s.budget = &ctx.budget;
       proxy = ctx.timer.run("simplify", [&] { return simplifyBounded(built, s, &stats); });
     }
-    c = verifyCandidate(ctx, std::move(proxy), source);
+    VerifiedCandidate c = verifyCandidate(ctx, std::move(proxy), source);
     c.stats = stats;
     c.stats.budget_reached = withinBudget(ctx, c);
     if (reduce)
@@ -127,18 +129,23 @@ VerifiedCandidate reduceAndVerify(const BudgetContext& ctx, const TriMesh& built
            {"manifold", c.report.manifold},
            {"self_intersecting_pairs", c.report.self_intersecting_pairs.value_or(0)},
            {"containment", c.containment ? containmentName(c.containment->verdict) : "n/a"}});
-    if (c.ok || move == 0) break;
-    // A proxy neither inside nor around the reference, or one the test cannot decide, is not
-    // the collapse's doing: a gentler collapse would fail the same way.
-    const ContainmentVerdict v =
-        c.containment ? c.containment->verdict : ContainmentVerdict::kIntersecting;
-    if (v == ContainmentVerdict::kDisjoint || v == ContainmentVerdict::kUndecidable) {
-      if (moves.back() != 0.0) break;
-      i = moves.size() - 2;  // straight to the unreduced proxy
-    }
     ctx.budget.check("the face budget's retries");
+    return c;
+  };
+  if (!reduce) return attempt(0);
+  // The unreduced proxy first (a check costs a fraction of a collapse): when it is not inside /
+  // around the reference at all, no collapse can fix that, and the run fails at once.
+  std::optional<VerifiedCandidate> unreduced;
+  if (allow_unreduced) {
+    unreduced = attempt(0);
+    if (inputIsTheProblem(*unreduced)) return std::move(*unreduced);
   }
-  return c;
+  std::optional<VerifiedCandidate> last;
+  for (double move : {1.0, 0.5}) {
+    last = attempt(move);
+    if (last->ok || inputIsTheProblem(*last)) return std::move(*last);
+  }
+  return unreduced ? std::move(*unreduced) : std::move(*last);
 }
 
 LadderResult climbBudgetLadder(const BudgetContext& ctx, const VerifiedCandidate& primary) {
@@ -156,6 +163,7 @@ LadderResult climbBudgetLadder(const BudgetContext& ctx, const VerifiedCandidate
     return true;
   };
   consider(primary);
+  if (inputIsTheProblem(primary)) return result;
   const TriMesh& ref = ctx.reference;
   const bool outside = ctx.options.kind == ProxyClass::kOutside;
   if (best && primary.ok) {

@@ -51,8 +51,8 @@ VerifiedCandidate verifyCandidate(const BudgetContext& ctx, TriMesh mesh, std::s
 // Reduces `built` to the budget with the containment-preserving collapse (outside/inside) and
 // verifies it. A collapse can still let faces cut through a distant part of the surface; then
 // the budget is retried with collapses kept closer to their edges, and, when `allow_unreduced`,
-// last without simplification. A failure simplification cannot cause (a containment verdict
-// of 'disjoint' or 'undecidable') skips the retries. Each attempt goes to
+// the unreduced proxy is returned (it is checked first: when it is 'disjoint' from the reference
+// or 'undecidable', no collapse can help and it is returned at once). Each attempt goes to
 // report["budget_attempts"].
 VerifiedCandidate reduceAndVerify(const BudgetContext& ctx, const TriMesh& built,
                                   std::string source, bool allow_unreduced);
@@ -68,6 +68,10 @@ struct LadderResult {
 // that is tighter (outside, budgets of 12 faces or more). Records every candidate
 // in report["budget_ladder"].
 LadderResult climbBudgetLadder(const BudgetContext& ctx, const VerifiedCandidate& primary);
+
+// A failure no reduction or fallback can fix: the proxy is neither inside nor around the
+// reference, or the test cannot decide (the reference bounds no consistent volume).
+bool inputIsTheProblem(const VerifiedCandidate& c);
 
 // The Error (exit 1) of a budget that was asked for and not met: one line saying what was
 // reached and why. `smallest` is the fewest faces of any verified candidate (0 = none).

@@ -290,7 +290,12 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
     throw CheckFailed(input.source,
                       fmt::format("the {} {} proxy failed its guarantee: {}", method,
                                   proxyClassName(options.kind), what),
-                      "it is not written", failureAdvice(options.kind, method));
+                      inputIsTheProblem(chosen)
+                          ? "it is not written: the input bounds no consistent volume "
+                            "(non-manifold or self-intersecting parts)"
+                          : "it is not written",
+                      inputIsTheProblem(chosen) ? "repair the mesh, or use --kind outside"
+                                                : failureAdvice(options.kind, method));
   }
   return {std::move(chosen.mesh), verified, std::move(report)};
 }
