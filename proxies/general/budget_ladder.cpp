@@ -215,6 +215,16 @@ LadderResult climbBudgetLadder(const BudgetContext& ctx, const VerifiedCandidate
   return result;
 }
 
+void failBelowClosedMinimum(const BudgetContext& ctx) {
+  VerifiedCandidate tet;
+  if (ctx.options.kind == ProxyClass::kOutside) {
+    tet = verifyCandidate(ctx, enclosingTetrahedron(ctx.reference), "tetrahedron");
+  } else if (const auto ball = deepestInteriorPoint(ctx.reference)) {
+    tet = verifyCandidate(ctx, inscribedTetrahedron(*ball, ctx.reference.source), "tetrahedron");
+  }
+  throwBudgetNotMet(ctx, tet.ok ? tet.faces() : 0);
+}
+
 void throwBudgetNotMet(const BudgetContext& ctx, size_t smallest) {
   const std::string kind = proxyClassName(ctx.options.kind);
   const std::string what =

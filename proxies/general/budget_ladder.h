@@ -77,6 +77,11 @@ bool inputIsTheProblem(const VerifiedCandidate& c);
 // reached and why. `smallest` is the fewest faces of any verified candidate (0 = none).
 [[noreturn]] void throwBudgetNotMet(const BudgetContext& ctx, size_t smallest);
 
+// A hard budget below 4 faces (outside/inside): no closed surface meets it. Verifies the
+// tetrahedron, the smallest proxy there is, without building the method's proxy, and throws
+// what throwBudgetNotMet throws.
+[[noreturn]] void failBelowClosedMinimum(const BudgetContext& ctx);
+
 // The flags that tune `method` of `kind`, for the advice of a failure message ("--alpha/--offset"
 // for the wraps, "--erosion/--voxel" for erode; empty for the hull).
 std::string tuningFlags(ProxyClass kind, const std::string& method);

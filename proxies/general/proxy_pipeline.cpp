@@ -10,6 +10,7 @@
 #include "proxies/check/containment.h"
 #include "proxies/check/mesh_distance.h"
 #include "proxies/general/budget_ladder.h"
+#include "proxies/general/budget_shapes.h"
 #include "proxies/general/general_proxy.h"
 #include "proxies/inside/inside_proxy.h"
 #include "proxies/limits/input_geometry.h"
@@ -182,6 +183,14 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
     budget.check("the hole filling");
   }
 
+  auto rebuild = [&](const ProxyGenOptions& o) {
+    json unused;
+    return build(reference, o, method, unused, &budget).mesh;
+  };
+  if (options.kind != ProxyClass::kGeneral && options.hard_budget && options.max_faces > 0 &&
+      options.max_faces < kMinClosedFaces)
+    failBelowClosedMinimum(
+        {input, reference, options, method, options.max_faces, budget, timer, report, rebuild});
   Built built =
       timer.run("build", [&] { return build(reference, options, method, params, &budget); });
   budget.check("building the proxy");
@@ -214,18 +223,7 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
 
   const double ref_volume = reference.signedVolume();
   const bool ref_closed = options.kind == ProxyClass::kInside || in_report.closed;
-  BudgetContext ctx{input,
-                    reference,
-                    options,
-                    method,
-                    max_faces,
-                    budget,
-                    timer,
-                    report,
-                    [&](const ProxyGenOptions& o) {
-                      json unused;
-                      return build(reference, o, method, unused, &budget).mesh;
-                    }};
+  BudgetContext ctx{input, reference, options, method, max_faces, budget, timer, report, rebuild};
   VerifiedCandidate chosen = options.kind == ProxyClass::kGeneral
                                  ? verifyCandidate(ctx, std::move(built.mesh), method)
                                  : reduceAndVerify(ctx, built.mesh, method, true);
