@@ -75,6 +75,13 @@ std::string coarserName(const BudgetContext& ctx, const ProxyGenOptions& c) {
 
 }  // namespace
 
+size_t requestedFaces(const ProxyGenOptions& options, const TriMesh& input) {
+  if (options.max_faces > 0) return options.max_faces;
+  if (options.ratio)
+    return std::max<size_t>(kBoxFaces, size_t(*options.ratio * input.numTriangles()));
+  return 0;
+}
+
 VerifiedCandidate verifyCandidate(const BudgetContext& ctx, TriMesh mesh, std::string source) {
   VerifiedCandidate c;
   c.source = std::move(source);

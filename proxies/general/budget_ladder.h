@@ -44,6 +44,10 @@ struct BudgetContext {
   std::function<TriMesh(const ProxyGenOptions&)> rebuild;
 };
 
+// The face budget the caller gave for an outside/inside proxy, known before it is built:
+// max_faces, else max(12, ratio x input faces); 0 = none.
+size_t requestedFaces(const ProxyGenOptions& options, const TriMesh& input);
+
 // Checks `mesh` as a proxy of the context's kind (validation with self-intersections; for
 // outside/inside the exact containment test against the reference).
 VerifiedCandidate verifyCandidate(const BudgetContext& ctx, TriMesh mesh, std::string source);

@@ -111,8 +111,13 @@ Built build(const TriMesh& reference, const ProxyGenOptions& o, const std::strin
       b.extra["seeds"] = stats.seeds;
     } else {
       ErodeOptions e;
-      e.voxel = o.voxel.value_or(e.voxel);
       e.erosion = o.erosion.value_or(2 * e.voxel);
+      // A small budget needs no fine grid: the collapse to it costs in proportion to the voxel
+      // surface and removes the detail anyway.
+      const size_t faces = requestedFaces(o, reference);
+      e.voxel = o.voxel     ? *o.voxel
+                : faces > 0 ? erodeVoxelForBudget(reference, faces, e.voxel, e.erosion)
+                            : e.voxel;
       e.budget = budget;
       params["erosion"] = e.erosion;
       params["voxel"] = e.voxel;
