@@ -140,10 +140,12 @@ VerifiedCandidate reduceAndVerify(const BudgetContext& ctx, const TriMesh& built
     return c;
   };
   if (!reduce) return attempt(0);
-  // The unreduced proxy first (a check costs a fraction of a collapse): when it is not inside /
-  // around the reference at all, no collapse can fix that, and the run fails at once.
+  // Inside, the unreduced proxy first (a check costs a fraction of a collapse): an input that
+  // bounds no consistent volume gives a proxy that is not inside it at all, no collapse can fix
+  // that, and the run fails at once. (An outside wrap or hull contains its input by
+  // construction; it is checked unreduced only when every reduction failed.)
   std::optional<VerifiedCandidate> unreduced;
-  if (allow_unreduced) {
+  if (allow_unreduced && ctx.options.kind == ProxyClass::kInside) {
     unreduced = attempt(0);
     if (inputIsTheProblem(*unreduced)) return std::move(*unreduced);
   }
@@ -152,7 +154,8 @@ VerifiedCandidate reduceAndVerify(const BudgetContext& ctx, const TriMesh& built
     last = attempt(move);
     if (last->ok || inputIsTheProblem(*last)) return std::move(*last);
   }
-  return unreduced ? std::move(*unreduced) : std::move(*last);
+  if (unreduced) return std::move(*unreduced);
+  return allow_unreduced ? attempt(0) : std::move(*last);
 }
 
 LadderResult climbBudgetLadder(const BudgetContext& ctx, const VerifiedCandidate& primary) {
@@ -184,8 +187,19 @@ LadderResult climbBudgetLadder(const BudgetContext& ctx, const VerifiedCandidate
   }
 
   if (ctx.options.kind == ProxyClass::kGeneral) {
-    // The decimators stall above the budget on soups of many small closed parts (each needs 4
-    // faces at least): meshoptimizer's simplifier, then its sloppy one, merges parts.
+    if (best) return result;  // general proxies are not compared: within the budget is enough
+    // A decimator a few faces short of the budget (its checks refused the last collapses) is
+    // asked once more for as many fewer faces as it missed by.
+    const size_t over = primary.faces() - ctx.max_faces;
+    if (over * 10 <= ctx.max_faces && ctx.max_faces > over + kMinClosedFaces) {
+      ProxyGenOptions again = ctx.options;
+      again.max_faces = ctx.max_faces - over - 1;
+      TriMesh m = ctx.timer.run("budget_ladder", [&] { return ctx.rebuild(again); });
+      if (consider(verifyCandidate(ctx, std::move(m), ctx.method + " (lower target)")))
+        return result;
+    }
+    // The decimators stall far above the budget on soups of many small closed parts (each needs
+    // 4 faces at least): meshoptimizer's simplifier, then its sloppy one, merges parts.
     GeneralOptions g;
     g.max_faces = ctx.max_faces;
     g.budget = &ctx.budget;

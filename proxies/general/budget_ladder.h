@@ -55,9 +55,9 @@ VerifiedCandidate verifyCandidate(const BudgetContext& ctx, TriMesh mesh, std::s
 // Reduces `built` to the budget with the containment-preserving collapse (outside/inside) and
 // verifies it. A collapse can still let faces cut through a distant part of the surface; then
 // the budget is retried with collapses kept closer to their edges, and, when `allow_unreduced`,
-// the unreduced proxy is returned (it is checked first: when it is 'disjoint' from the reference
-// or 'undecidable', no collapse can help and it is returned at once). Each attempt goes to
-// report["budget_attempts"].
+// the unreduced proxy is returned (inside, it is checked first: when it is 'disjoint' from the
+// reference or 'undecidable', no collapse can help and it is returned at once). Each attempt
+// goes to report["budget_attempts"].
 VerifiedCandidate reduceAndVerify(const BudgetContext& ctx, const TriMesh& built,
                                   std::string source, bool allow_unreduced);
 
