@@ -250,7 +250,8 @@ int main(int argc, char** argv) {
                  "erode: erosion distance as a fraction of the diagonal (default 2 voxels)")
       ->check(numberIn(kErosionRange.lo, kErosionRange.hi));
   app.add_option("--voxel", a.voxel,
-                 "erode: voxel edge as a fraction of the diagonal (default 1/150)")
+                 "erode: voxel edge as a fraction of the diagonal (default 1/150; with a face "
+                 "budget, coarser: about 100 voxel faces per budget face)")
       ->check(numberIn(kVoxelRange.lo, kVoxelRange.hi));
   app.add_flag("--fill-holes", a.fill_holes, "inside: fill the holes of an open input first");
   addCommonOptions(app, common);

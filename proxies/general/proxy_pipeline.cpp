@@ -316,7 +316,7 @@ std::string formatProxyReport(const json& r) {
       r["method"].get<std::string>(), r["faces"].get<uint64_t>(),
       r["faces_before_budget"].get<uint64_t>(),
       r.contains("budget_fallback")
-          ? fmt::format(", budget met by the fallback: {}", r["budget_fallback"].get<std::string>())
+          ? fmt::format(", from the budget fallback: {}", r["budget_fallback"].get<std::string>())
           : "");
   if (r.contains("budget_reached") && !r["budget_reached"].get<bool>())
     s += "budget:     NOT reached (--budget soft, or no budget was asked for)\n";
