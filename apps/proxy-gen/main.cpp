@@ -234,7 +234,7 @@ int main(int argc, char** argv) {
   app.add_option("--budget", a.budget,
                  "hard: a --max-faces/--ratio that no verified proxy meets ends the run with exit "
                  "code 1 and nothing written; soft: write the smallest verified proxy anyway "
-                 "(\"budget_reached\": false in the JSON)")
+                 "(\"budget_reached\": false in the JSON); see docs/budgets.md")
       ->check(CLI::IsMember({"hard", "soft"}))
       ->capture_default_str();
   app.add_option("--max-seconds", a.max_seconds,
@@ -247,7 +247,7 @@ int main(int argc, char** argv) {
                  "a face budget relative to each mesh (for scenes), used when --max-faces is 0")
       ->check(numberIn(kRatioRange.lo, kRatioRange.hi));
   app.add_option("--erosion", a.erosion,
-                 "erode: erosion distance as a fraction of the diagonal (default 2 voxels)")
+                 "erode: erosion distance as a fraction of the diagonal (default 1/75)")
       ->check(numberIn(kErosionRange.lo, kErosionRange.hi));
   app.add_option("--voxel", a.voxel,
                  "erode: voxel edge as a fraction of the diagonal (default 1/150; with a face "
