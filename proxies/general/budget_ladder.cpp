@@ -45,21 +45,22 @@ void record(const BudgetContext& ctx, const VerifiedCandidate& c) {
   ctx.report["budget_ladder"].push_back(std::move(entry));
 }
 
-// Coarser versions of the method's own size parameter: 2, 4 and 8 times, within its range.
+// Coarser versions of the size the method's proxy was built with (report "parameters"): 2, 4
+// and 8 times, within its range.
 std::vector<ProxyGenOptions> coarserOptions(const BudgetContext& ctx) {
   std::vector<ProxyGenOptions> out;
-  const ProxyGenOptions& o = ctx.options;
+  const json& used = ctx.report["parameters"];
   for (double factor : {2.0, 4.0, 8.0}) {
-    ProxyGenOptions c = o;
-    if (ctx.method == "wrap") {
-      const double alpha = o.alpha.value_or(1.0 / 50) * factor;
+    ProxyGenOptions c = ctx.options;
+    if (ctx.method == "wrap" && used.contains("alpha")) {
+      const double alpha = used["alpha"].get<double>() * factor;
       if (!kAlphaRange.contains(alpha)) break;
       c.alpha = alpha;
-    } else if (ctx.method == "erode") {
-      const double voxel = o.voxel.value_or(1.0 / 150) * factor;
+    } else if (ctx.method == "erode" && used.contains("voxel")) {
+      const double voxel = used["voxel"].get<double>() * factor;
       if (voxel > 1.0 / 20) break;  // coarser grids erode away most of the volume
       c.voxel = voxel;
-      c.erosion = o.erosion.value_or(2.0 / 150);
+      c.erosion = used["erosion"].get<double>();
     } else {
       break;
     }
@@ -104,9 +105,9 @@ VerifiedCandidate verifyCandidate(const BudgetContext& ctx, TriMesh mesh, std::s
 }
 
 bool inputIsTheProblem(const VerifiedCandidate& c) {
-  if (c.ok || !c.containment) return false;
-  const ContainmentVerdict v = c.containment->verdict;
-  return v == ContainmentVerdict::kDisjoint || v == ContainmentVerdict::kUndecidable;
+  // 'disjoint': both closed, no intersection, neither inside the other. ('undecidable' means an
+  // open proxy: the proxy's fault, which a fallback may not share.)
+  return !c.ok && c.containment && c.containment->verdict == ContainmentVerdict::kDisjoint;
 }
 
 VerifiedCandidate reduceAndVerify(const BudgetContext& ctx, const TriMesh& built,

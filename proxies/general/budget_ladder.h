@@ -56,7 +56,7 @@ VerifiedCandidate verifyCandidate(const BudgetContext& ctx, TriMesh mesh, std::s
 // verifies it. A collapse can still let faces cut through a distant part of the surface; then
 // the budget is retried with collapses kept closer to their edges, and, when `allow_unreduced`,
 // the unreduced proxy is returned (inside, it is checked first: when it is 'disjoint' from the
-// reference or 'undecidable', no collapse can help and it is returned at once). Each attempt
+// reference, no collapse can help and it is returned at once). Each attempt
 // goes to report["budget_attempts"].
 VerifiedCandidate reduceAndVerify(const BudgetContext& ctx, const TriMesh& built,
                                   std::string source, bool allow_unreduced);
@@ -73,8 +73,8 @@ struct LadderResult {
 // in report["budget_ladder"].
 LadderResult climbBudgetLadder(const BudgetContext& ctx, const VerifiedCandidate& primary);
 
-// A failure no reduction or fallback can fix: the proxy is neither inside nor around the
-// reference, or the test cannot decide (the reference bounds no consistent volume).
+// A failure no reduction or fallback can fix: the closed proxy is neither inside nor around the
+// reference ('disjoint': the reference bounds no consistent volume).
 bool inputIsTheProblem(const VerifiedCandidate& c);
 
 // The Error (exit 1) of a budget that was asked for and not met: one line saying what was
