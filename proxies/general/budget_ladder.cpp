@@ -164,7 +164,8 @@ LadderResult climbBudgetLadder(const BudgetContext& ctx, const VerifiedCandidate
   std::optional<VerifiedCandidate>& best = result.within;
   auto consider = [&](VerifiedCandidate c) {
     record(ctx, c);
-    const bool usable = ctx.options.kind == ProxyClass::kGeneral || c.ok;
+    // (A simplifier that left no face at all has made no proxy.)
+    const bool usable = (ctx.options.kind == ProxyClass::kGeneral || c.ok) && c.faces() > 0;
     if (!usable) return false;
     if (!withinBudget(ctx, c)) {
       if (!result.smallest || c.faces() < result.smallest->faces()) result.smallest = std::move(c);
