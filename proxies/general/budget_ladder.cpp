@@ -162,6 +162,19 @@ VerifiedCandidate reduceAndVerify(const BudgetContext& ctx, const TriMesh& built
 LadderResult climbBudgetLadder(const BudgetContext& ctx, const VerifiedCandidate& primary) {
   LadderResult result;
   std::optional<VerifiedCandidate>& best = result.within;
+  // A fallback that cannot be built for this input (the hull of a flat mesh) is skipped; a spent
+  // time budget still ends the run.
+  auto attempt = [&](auto&& make) -> std::optional<VerifiedCandidate> {
+    try {
+      return make();
+    } catch (const CheckFailed&) {
+      throw;
+    } catch (const Error& e) {
+      if (ctx.budget.expired()) throw;
+      ctx.report["budget_ladder"].push_back({{"skipped", e.what()}});
+      return std::nullopt;
+    }
+  };
   auto consider = [&](VerifiedCandidate c) {
     record(ctx, c);
     // (A simplifier that left no face at all has made no proxy.)
@@ -215,12 +228,18 @@ LadderResult climbBudgetLadder(const BudgetContext& ctx, const VerifiedCandidate
   if (ctx.max_faces >= kMinClosedFaces) {
     for (const ProxyGenOptions& c : coarserOptions(ctx)) {
       ctx.budget.check("the face budget's fallbacks");
-      const TriMesh coarse = ctx.timer.run("budget_ladder", [&] { return ctx.rebuild(c); });
-      if (consider(reduceAndVerify(ctx, coarse, coarserName(ctx, c), false))) break;
+      std::optional<VerifiedCandidate> coarse = attempt([&] {
+        const TriMesh m = ctx.timer.run("budget_ladder", [&] { return ctx.rebuild(c); });
+        return reduceAndVerify(ctx, m, coarserName(ctx, c), false);
+      });
+      if (coarse && consider(std::move(*coarse))) break;
     }
     if (outside && ctx.method != "hull") {
-      const TriMesh hull = ctx.timer.run("budget_ladder", [&] { return makeHullProxy(ref); });
-      consider(reduceAndVerify(ctx, hull, "hull", false));
+      std::optional<VerifiedCandidate> hull = attempt([&] {
+        const TriMesh m = ctx.timer.run("budget_ladder", [&] { return makeHullProxy(ref); });
+        return reduceAndVerify(ctx, m, "hull", false);
+      });
+      if (hull) consider(std::move(*hull));
     }
   }
   std::optional<InteriorBall> ball;

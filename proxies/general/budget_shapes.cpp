@@ -35,6 +35,8 @@ struct Frame {
 
 // The frame of CGAL's optimal oriented bounding box (deterministic seed).
 Frame boxFrame(const TriMesh& input) {
+  // CGAL needs 4 points (and says so on stderr otherwise): a smaller input keeps the axes.
+  if (input.vertices.size() < 4) return Frame();
   std::vector<Point3> points;
   points.reserve(input.vertices.size());
   for (const Vec3f& v : input.vertices) points.emplace_back(v.x, v.y, v.z);
