@@ -192,9 +192,9 @@ LadderResult climbBudgetLadder(const BudgetContext& ctx, const VerifiedCandidate
   const TriMesh& ref = ctx.reference;
   const bool outside = ctx.options.kind == ProxyClass::kOutside;
   if (best && primary.ok) {
-    // At small budgets a box can be tighter than the reduced proxy: it is cheap to build, and
-    // verified only when its volume beats the proxy's.
-    if (!outside || ctx.max_faces < kBoxFaces) return result;
+    // At budgets of 12 to 48 faces a box can be tighter than the reduced proxy: it is cheap to
+    // build, and verified only when its volume beats the proxy's.
+    if (!outside || ctx.max_faces < kBoxFaces || ctx.max_faces > 4 * kBoxFaces) return result;
     TriMesh box = enclosingBox(ref);
     if (box.signedVolume() < best->mesh.signedVolume())
       consider(verifyCandidate(ctx, std::move(box), "box"));

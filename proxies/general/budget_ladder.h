@@ -69,7 +69,7 @@ struct LadderResult {
 };
 
 // When `primary` is not a verified proxy within the budget, the fallbacks; when it is, a box
-// that is tighter (outside, budgets of 12 faces or more). Records every candidate
+// that is tighter (outside, budgets of 12 to 48 faces). Records every candidate
 // in report["budget_ladder"].
 LadderResult climbBudgetLadder(const BudgetContext& ctx, const VerifiedCandidate& primary);
 
