@@ -140,3 +140,11 @@ pb_test(scene_budget_fails_per_mesh 1
   "${pb_dir}/scene/scene.json --kind outside --method hull --max-faces 3 --out-dir ${pb_dir}/scene/out -q"
   REGEX "proxy-gen: error: [^\n]*tet_fin.off: budget of 3 faces not met.*proxy-gen: error: [^\n]*soup.off: budget of 3 faces not met"
   FILE ${pb_dir}/scene/out/scene.json NO_FILE ${pb_dir}/scene/out/soup.outside.ply)
+# One mesh fails (the fin: no consistent volume, exit 1), the other meets its 2 % budget and is
+# written; the run's exit code is 1.
+file(WRITE ${pb_dir}/scene2/scene.json "{\"camera\": {\"eye\": [0, 0, 3], \"look_at\": [0, 0, 0]}, \"lights\": [{\"type\": \"quad\", \"corner\": [-1, 2, -1], \"edge_u\": [2, 0, 0], \"edge_v\": [0, 0, 2], \"radiance\": [5, 5, 5]}], \"meshes\": [{\"name\": \"fin\", \"file\": \"${pb_dir}/tet_fin.off\"}, {\"name\": \"bunny\", \"file\": \"${pb_bunny}\"}]}\n")
+pb_test(scene_one_fails_others_go_on 1
+  "${pb_dir}/scene2/scene.json --kind inside --method erode --fill-holes --ratio 0.02 --out-dir ${pb_dir}/scene2/out -q"
+  REGEX "== fin: FAILED.*== bunny.*verified: +yes.*proxy-gen: error: [^\n]*tet_fin.off: the erode inside proxy failed"
+  FILE "${pb_dir}/scene2/out/scene.json;${pb_dir}/scene2/out/bunny.inside.ply"
+  NO_FILE ${pb_dir}/scene2/out/fin.inside.ply TIMEOUT 300)
