@@ -244,7 +244,7 @@ LadderResult climbBudgetLadder(const BudgetContext& ctx, const VerifiedCandidate
   }
   std::optional<InteriorBall> ball;
   if (!outside) ball = ctx.timer.run("budget_ladder", [&] { return deepestInteriorPoint(ref); });
-  if (ctx.max_faces >= kBoxFaces || ctx.max_faces < kMinClosedFaces) {
+  if (ctx.max_faces >= kBoxFaces) {
     if (outside)
       consider(verifyCandidate(ctx, enclosingBox(ref), "box"));
     else if (ball)
