@@ -30,7 +30,8 @@ namespace {
 
 struct Args {
   std::string input, output, out_dir, kind = "outside", method;
-  std::optional<double> alpha, offset, ratio, erosion;
+  std::optional<double> alpha, offset, ratio, erosion, voxel;
+  std::string budget = "hard";
   size_t max_faces = 0;
   double max_seconds = 600;
   bool fill_holes = false;
@@ -47,6 +48,8 @@ ProxyGenOptions toOptions(const Args& a, const CommonOptions& common) {
   o.offset = a.offset;
   o.ratio = a.ratio;
   o.erosion = a.erosion;
+  o.voxel = a.voxel;
+  o.hard_budget = a.budget == "hard";
   o.max_faces = a.max_faces;
   o.fill_holes = a.fill_holes;
   o.seed = common.seed;
@@ -242,11 +245,19 @@ int main(int argc, char** argv) {
       ->check(numberIn(kAlphaRange.lo, kAlphaRange.hi));
   app.add_option("--offset", a.offset, "wrap: offset as a fraction of the diagonal (default 1/600)")
       ->check(numberIn(kOffsetRange.lo, kOffsetRange.hi));
-  app.add_option(
-         "--max-faces", a.max_faces,
-         "Face budget; outside/inside keep their guarantee while reducing (0 = none, but an "
-         "outside/inside proxy with more faces than the input is reduced to the input's count)")
+  app.add_option("--max-faces", a.max_faces,
+                 "Face budget (0 = none). Outside/inside proxies keep their guarantee while "
+                 "reducing; when the method's proxy cannot be reduced to it, coarser sizes, the "
+                 "convex hull (outside), a box (12 faces) and a tetrahedron (4 faces) are tried "
+                 "and the tightest verified one is kept. Without a budget an outside/inside proxy "
+                 "with more faces than the input is reduced to the input's count, as a goal")
       ->check(integerIn(0, kMaxFacesLimit));
+  app.add_option("--budget", a.budget,
+                 "hard: a --max-faces/--ratio that no verified proxy meets ends the run with exit "
+                 "code 1 and nothing written; soft: write the smallest verified proxy anyway "
+                 "(\"budget_reached\": false in the JSON); see docs/budgets.md")
+      ->check(CLI::IsMember({"hard", "soft"}))
+      ->capture_default_str();
   app.add_option("--max-seconds", a.max_seconds,
                  "Time budget per mesh: a wrap, erosion or decimation still running after it is "
                  "stopped and the mesh fails (exit code 2), nothing is written")
@@ -259,6 +270,10 @@ int main(int argc, char** argv) {
   app.add_option("--erosion", a.erosion,
                  "erode: erosion distance as a fraction of the diagonal (default 1/75)")
       ->check(numberIn(kErosionRange.lo, kErosionRange.hi));
+  app.add_option("--voxel", a.voxel,
+                 "erode: voxel edge as a fraction of the diagonal (default 1/150; with a face "
+                 "budget, coarser: about 100 voxel faces per budget face)")
+      ->check(numberIn(kVoxelRange.lo, kVoxelRange.hi));
   app.add_flag("--fill-holes", a.fill_holes, "inside: fill the holes of an open input first");
   addCommonOptions(app, common);
   return runApp(app, argc, argv, common, [&] {

@@ -50,6 +50,13 @@ TriMesh fillHoles(const TriMesh& input, size_t* holes = nullptr);
 TriMesh makeInsideWrapProxy(const TriMesh& input, const InsideWrapOptions& options = {},
                             InsideStats* stats = nullptr);
 
+// The voxel edge (fraction of the diagonal) for an erosion that will be reduced to `max_faces`:
+// `voxel`, or coarser so that the voxel surface (about twice the input's area over the voxel
+// face) has at most kErodeFacesPerBudgetFace x max_faces faces, then fine enough to divide
+// `erosion` (which is rounded up to whole voxels); never coarser than 1/30.
+inline constexpr double kErodeFacesPerBudgetFace = 100;
+double erodeVoxelForBudget(const TriMesh& input, size_t max_faces, double voxel, double erosion);
+
 // Solid voxelisation (ray parity along x), erosion by a cube of ceil(erosion/voxel) voxels,
 // removal of voxels that would make the surface non-manifold, and the boundary of the voxel
 // set as a closed, outward oriented triangle mesh (not simplified: use simplifyBounded with
