@@ -180,7 +180,8 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
   TriMesh reference = input;
   std::optional<std::string> stand_in;
   if (options.kind == ProxyClass::kInside && !in_report.watertight) {
-    if (!options.fill_holes)
+    // Filling holes closes boundary edges; edges with an odd number of faces stay as they are.
+    if (!options.fill_holes || in_report.boundary_edges == 0)
       throw noInteriorError(input.source, in_report.boundary_edges, in_report.odd_edges,
                             "an inside proxy");
     size_t holes = 0;

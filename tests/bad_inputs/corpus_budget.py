@@ -1,10 +1,8 @@
 """Meshes for the face-budget cases: a closed mesh of 180 faces (a UV sphere) whose outside wrap
-has thousands of faces, and a tetrahedron with a fin on one edge (a non-manifold edge; with its
-holes filled it bounds no consistent volume).
+has thousands of faces.
 
 Before the budget was enforced, the sphere's wrap with --max-faces 3 was written with 16 k faces
-and exit code 0; the fin's erosion ran for 10-29 s before failing with advice about --alpha and
---offset, which erode does not read.
+and exit code 0.
 """
 import math
 import pathlib
@@ -41,6 +39,3 @@ def build(out: pathlib.Path, data: pathlib.Path) -> None:
     del data
     vertices, faces = uv_sphere(10, 10)  # 10 + 160 + 10 = 180 faces, outward
     write_off(out / "budget_sphere_180.off", vertices, faces)
-    write_off(out / "budget_tet_fin.off",
-              [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1), (1, 1, 0.5)],
-              [(0, 2, 1), (0, 1, 3), (0, 3, 2), (1, 2, 3), (1, 4, 2)])
