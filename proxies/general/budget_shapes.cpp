@@ -13,6 +13,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "proxies/outside/internal/cgal_weld.h"
 
@@ -55,6 +56,20 @@ Frame boxFrame(const TriMesh& input) {
 
 // Outward margin in world units: the requested fraction of the diagonal, and at least a few
 // float ulps of the largest coordinate (the corners are rounded to float).
+// The input's bounding box in the frame's coordinates.
+std::pair<Vec3d, Vec3d> extentInFrame(const TriMesh& input, const Frame& f) {
+  const double inf = std::numeric_limits<double>::infinity();
+  Vec3d lo(inf, inf, inf), hi(-inf, -inf, -inf);
+  for (const Vec3f& v : input.vertices) {
+    const Vec3d q = f.toFrame(Vec3d(v));
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], q[a]);
+      hi[a] = std::max(hi[a], q[a]);
+    }
+  }
+  return {lo, hi};
+}
+
 double worldMargin(const TriMesh& input, double margin) {
   double max_abs = 0;
   for (const Vec3f& v : input.vertices)
@@ -125,15 +140,7 @@ double tetVolume(const std::array<Vec3d, 4>& p) {
 TriMesh enclosingBox(const TriMesh& input, double margin) {
   const Frame f = boxFrame(input);
   const double m = worldMargin(input, margin);
-  const double inf = std::numeric_limits<double>::infinity();
-  Vec3d lo(inf, inf, inf), hi(-inf, -inf, -inf);
-  for (const Vec3f& v : input.vertices) {
-    const Vec3d q = f.toFrame(Vec3d(v));
-    for (int a = 0; a < 3; ++a) {
-      lo[a] = std::min(lo[a], q[a]);
-      hi[a] = std::max(hi[a], q[a]);
-    }
-  }
+  auto [lo, hi] = extentInFrame(input, f);
   for (int a = 0; a < 3; ++a) {
     lo[a] -= m;
     hi[a] += m;
@@ -148,15 +155,7 @@ TriMesh enclosingTetrahedron(const TriMesh& input, double margin) {
   for (const Frame& f : {boxFrame(input), Frame()}) {
     // Extents in the frame: the regular tetrahedron's normals, and the same stretched to the
     // box's proportions (an affine image of the regular one, for elongated inputs).
-    const double inf = std::numeric_limits<double>::infinity();
-    Vec3d lo(inf, inf, inf), hi(-inf, -inf, -inf);
-    for (const Vec3f& v : input.vertices) {
-      const Vec3d q = f.toFrame(Vec3d(v));
-      for (int a = 0; a < 3; ++a) {
-        lo[a] = std::min(lo[a], q[a]);
-        hi[a] = std::max(hi[a], q[a]);
-      }
-    }
+    const auto [lo, hi] = extentInFrame(input, f);
     const Vec3d extent = hi - lo;
     const double emax = std::max({extent.x, extent.y, extent.z});
     for (bool stretched : {false, true})
@@ -169,7 +168,7 @@ TriMesh enclosingTetrahedron(const TriMesh& input, double margin) {
           k = normalize(f.toWorld(k * flip));
         }
         std::array<double, 4> d;
-        d.fill(-inf);
+        d.fill(-std::numeric_limits<double>::infinity());
         for (const Vec3f& v : input.vertices)
           for (int i = 0; i < 4; ++i) d[i] = std::max(d[i], dot(n[i], Vec3d(v)));
         for (double& di : d) di += m;
