@@ -22,6 +22,9 @@ ChildResult runChild(const std::vector<std::string>& argv, double time_limit) {
   if (pid < 0) throw Error("", "cannot start a child process", "fork failed");
   if (pid == 0) {
     dup2(pipe_fds[1], STDOUT_FILENO);
+    // Library chatter (OpenMesh's add_face warnings) would interleave with the table.
+    const int null_fd = open("/dev/null", O_WRONLY);
+    if (null_fd >= 0) dup2(null_fd, STDERR_FILENO);
     close(pipe_fds[0]);
     close(pipe_fds[1]);
     std::vector<char*> args;

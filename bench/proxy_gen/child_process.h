@@ -16,7 +16,8 @@ struct ChildResult {
   long peak_rss_kb = 0;    // ru_maxrss of the child
 };
 
-// argv[0] is the program path. The child is killed (SIGKILL) after `time_limit` seconds.
+// argv[0] is the program path; the child's stderr is discarded. It is killed (SIGKILL) after
+// `time_limit` seconds.
 ChildResult runChild(const std::vector<std::string>& argv, double time_limit);
 
 }  // namespace proxyvis::bench
