@@ -153,6 +153,7 @@ MeshReport validateMesh(const TriMesh& mesh, const ValidationOptions& options) {
     ++distinct_edges;
     r.boundary_edges += (end - begin) == 1;
     r.non_manifold_edges += (end - begin) > 2;
+    r.odd_edges += (end - begin) > 2 && (end - begin) % 2 == 1;
     begin = end;
   }
   // Components share a (welded) vertex, as in the MANIFEST: a pinched vertex joins its fans.
@@ -167,6 +168,7 @@ MeshReport validateMesh(const TriMesh& mesh, const ValidationOptions& options) {
   r.non_manifold_vertices = countNonManifoldVertices(tris);
 
   r.closed = !tris.empty() && r.boundary_edges == 0 && r.non_manifold_edges == 0;
+  r.watertight = !tris.empty() && r.boundary_edges == 0 && r.odd_edges == 0;
   r.manifold = r.non_manifold_edges == 0 && r.non_manifold_vertices == 0;
   if (r.closed && r.manifold) {
     const int64_t v = std::count(used.begin(), used.end(), 1);

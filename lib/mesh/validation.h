@@ -28,10 +28,14 @@ struct MeshReport {
   uint64_t boundary_edges = 0;         // edges with one face
   uint64_t non_manifold_edges = 0;     // edges with more than two faces
   uint64_t non_manifold_vertices = 0;  // vertices whose faces form more than one fan
+  uint64_t odd_edges = 0;              // non-manifold edges with an odd number (3, 5, ...) of faces
   bool closed = false;                 // no boundary and no non-manifold edges
-  bool manifold = false;               // no non-manifold edges or vertices
-  std::optional<int64_t> genus;        // closed manifold meshes only
-  std::optional<double> volume;        // closed meshes only
+  // Every edge has an even number of faces (closed, or non-manifold edges with 4, 6, ... faces):
+  // the surface bounds a volume by ray parity (proxies/limits/parity_solid.h).
+  bool watertight = false;
+  bool manifold = false;                            // no non-manifold edges or vertices
+  std::optional<int64_t> genus;                     // closed manifold meshes only
+  std::optional<double> volume;                     // closed meshes only
   std::optional<uint64_t> self_intersecting_pairs;  // only when requested
 };
 

@@ -19,7 +19,9 @@ nlohmann::json toJson(const MeshReport& r) {
       {"boundary_edges", r.boundary_edges},
       {"non_manifold_edges", r.non_manifold_edges},
       {"non_manifold_vertices", r.non_manifold_vertices},
+      {"odd_edges", r.odd_edges},
       {"closed", r.closed},
+      {"watertight", r.watertight},
       {"manifold", r.manifold},
   };
   if (r.bounds.empty())
@@ -55,7 +57,10 @@ std::string formatReport(const MeshReport& r, const std::string& title) {
   line("boundary edges", std::to_string(r.boundary_edges));
   line("non-manifold edges", std::to_string(r.non_manifold_edges));
   line("non-manifold vertices", std::to_string(r.non_manifold_vertices));
+  line("odd edges", fmt::format("{} (3, 5, ... faces)", r.odd_edges));
   line("closed", r.closed ? "yes" : "no");
+  line("watertight",
+       r.watertight ? "yes (bounds a volume by ray parity)" : "no (a boundary or odd edge)");
   line("manifold", r.manifold ? "yes" : "no");
   line("genus", r.genus ? std::to_string(*r.genus) : "- (not a closed manifold)");
   line("volume", r.volume ? fmt::format("{:.6g}", *r.volume) : "- (not closed)");

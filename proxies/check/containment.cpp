@@ -2,23 +2,25 @@
 //
 // Method (all predicates exact: CGAL Exact_predicates_inexact_constructions_kernel):
 //  1. Each mesh becomes a repaired polygon soup (exactly equal positions welded, faces with a
-//     repeated corner and duplicated faces dropped) and, when it is a closed surface, a
-//     Surface_mesh for point location.
+//     repeated corner and duplicated faces dropped: the same point set) for the intersection test,
+//     and a ray-parity solid (proxies/limits/parity_solid.h) for point location. A surface is
+//     closed when every welded edge has an even number of faces: a closed manifold, or a
+//     watertight surface with non-manifold edges (four faces meeting at an edge), whose inside is
+//     the set of points a ray leaves after an odd number of crossings. Point location counts
+//     crossings with the input's own triangles, so no repaired or re-meshed copy stands in for
+//     the input.
 //  2. Surface intersection: box_intersection_d (Zomorodian & Edelsbrunner, "Fast software for
 //     box intersections", SoCG 2000) pairs faces whose boxes overlap, then an exact
 //     triangle-triangle test. Touching counts as intersecting.
 //  3. Without a surface intersection every connected piece of one surface lies entirely inside or
 //     entirely outside the other solid, so point location of every vertex (Side_of_triangle_mesh:
-//     ray parity on an AABB tree) settles contains / contained / disjoint. Testing every vertex,
+//     ray parity on an AABB tree of the input's triangles) settles contains / contained /
+//     disjoint. Testing every vertex,
 //     not one, also handles several components and cavities.
 #include "proxies/check/containment.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
-#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
-#include <CGAL/Side_of_triangle_mesh.h>
-#include <CGAL/Surface_mesh.h>
 #include <CGAL/box_intersection_d.h>
 #include <fmt/core.h>
 
@@ -28,6 +30,7 @@
 #include <optional>
 #include <vector>
 
+#include "proxies/limits/internal/parity_solid_mesh.h"
 #include "util/error.h"
 
 namespace proxyvis {
@@ -38,8 +41,6 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = Kernel::Point_3;
 using Segment3 = Kernel::Segment_3;
 using Triangle3 = Kernel::Triangle_3;
-using SurfaceMesh = CGAL::Surface_mesh<Point>;
-using SideOfMesh = CGAL::Side_of_triangle_mesh<SurfaceMesh, Kernel>;
 using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::size_t>;
 namespace PMP = CGAL::Polygon_mesh_processing;
 
@@ -47,8 +48,8 @@ namespace PMP = CGAL::Polygon_mesh_processing;
 struct ExactMesh {
   std::vector<Point> points;
   std::vector<std::array<std::size_t, 3>> faces;
-  bool closed = false;
-  SurfaceMesh surface;  // filled only when closed
+  bool closed = false;        // every welded edge has an even number of faces
+  parity::ParitySolid solid;  // the same triangles, for point location by ray parity
 };
 
 ExactMesh prepare(const TriMesh& mesh, const char* role) {
@@ -75,14 +76,10 @@ ExactMesh prepare(const TriMesh& mesh, const char* role) {
   if (polygons.empty())
     throw Error(mesh.source, fmt::format("the {} has only degenerate triangles", role),
                 "containment needs a surface");
-  // Closed = every edge shared by exactly two consistently orientable faces. orient_polygon_soup
-  // splits non-manifold or non-orientable spots, which then show up as boundary edges.
-  std::vector<Point> oriented_points = m.points;
-  std::vector<std::vector<std::size_t>> oriented = polygons;
-  PMP::orient_polygon_soup(oriented_points, oriented);
-  PMP::polygon_soup_to_polygon_mesh(oriented_points, oriented, m.surface);
-  m.closed = CGAL::is_closed(m.surface);
-  if (!m.closed) m.surface.clear();
+  // Closed = bounds a volume by ray parity. Built from the unrepaired triangles: duplicated faces
+  // count modulo 2 there, which repair_polygon_soup's merge would not respect.
+  m.solid = parity::makeParitySolid(mesh);
+  m.closed = m.solid.watertight();
   m.faces.reserve(polygons.size());
   for (const auto& p : polygons) m.faces.push_back({p[0], p[1], p[2]});
   return m;
@@ -153,7 +150,7 @@ struct InsideCount {
 };
 
 InsideCount countInside(const ExactMesh& m, const ExactMesh& solid) {
-  SideOfMesh side(solid.surface);
+  const parity::ParityLocator side(solid.solid.mesh);
   InsideCount c;
   c.total = m.points.size();
   for (const Point& p : m.points) {
@@ -195,11 +192,13 @@ ContainmentResult checkContainment(const TriMesh& original, const TriMesh& proxy
   ExactMesh p = prepare(proxy, "proxy");
   r.original_closed = o.closed;
   r.proxy_closed = p.closed;
+  if (o.closed) r.original_volume = parity::signedVolume(o.solid.mesh);
+  if (p.closed) r.proxy_volume = parity::signedVolume(p.solid.mesh);
   if (!p.closed) {
     r.verdict = ContainmentVerdict::kUndecidable;
     r.detail =
-        "the proxy is not closed (boundary or non-manifold edges): it has no inside, so "
-        "containment is undefined";
+        "the proxy is not closed (a boundary edge, or an edge with an odd number of faces): it "
+        "has no inside, so containment is undefined";
     return r;
   }
   IntersectionSummary s = intersectSurfaces(o, p);

@@ -1,8 +1,13 @@
 #pragma once
 // Exact containment of two triangle meshes (CGAL, exact predicates): does the proxy contain the
-// original (an outside proxy), is it contained in it (an inside proxy), or neither?
-// Owned by the proxy-check work; proxy-gen calls it to verify a proxy before writing it.
+// original (an outside proxy), is it contained in it (an inside proxy), or neither? "Closed" means
+// bounds a volume by ray parity: every edge, after welding equal positions, has an even number of
+// faces (a closed manifold, or a watertight surface with non-manifold edges;
+// docs/proxy_classes.md). Both meshes are tested as given: no repaired or hole-filled copy stands
+// in for either. Owned by the proxy-check work; proxy-gen calls it to verify a proxy before writing
+// it.
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "mesh/tri_mesh.h"
@@ -23,7 +28,9 @@ struct ContainmentResult {
   ContainmentVerdict verdict = ContainmentVerdict::kUndecidable;
   bool proxy_closed = false, original_closed = false;
   uint64_t intersecting_face_pairs = 0;  // 0 unless kIntersecting (may stop counting early)
-  std::string detail;                    // human-readable reason, e.g. where they intersect
+  // The volume each closed mesh bounds by ray parity (proxies/limits/parity_solid.h).
+  std::optional<double> original_volume, proxy_volume;
+  std::string detail;  // human-readable reason, e.g. where they intersect
 };
 
 // For an open original, "contains" means: no surface intersection and every original vertex

@@ -51,6 +51,9 @@ PairCheckReport checkPair(const TriMesh& original, const TriMesh& proxy,
   r.exact_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   r.original = summarizeMesh(original, r.exact.original_closed);
   r.proxy = summarizeMesh(proxy, r.exact.proxy_closed);
+  // The volume a closed mesh bounds by ray parity, whatever its faces' orientation or manifoldness.
+  if (r.exact.original_volume) r.original.volume = std::abs(*r.exact.original_volume);
+  if (r.exact.proxy_volume) r.proxy.volume = std::abs(*r.exact.proxy_volume);
   // Distances use their own streams so they never shift the segment streams.
   r.distance_original_to_proxy =
       sampledOneSidedDistance(original, proxy, options.distance_samples, hashKeys(options.seed, 1));

@@ -14,6 +14,7 @@
 #include <optional>
 
 #include "proxies/general/general_proxy.h"
+#include "proxies/general/openmesh_faces.h"
 #include "proxies/general/qem_decimater.h"
 #include "proxies/limits/input_geometry.h"
 #include "util/error.h"
@@ -92,9 +93,9 @@ TriMesh simplifyQem(const TriMesh& input, const GeneralOptions& options, QemStat
   vh.reserve(welded.vertices.size());
   for (const Vec3f& v : welded.vertices) vh.push_back(om.add_vertex(OmMesh::Point(v.x, v.y, v.z)));
   // A triangle whose corners welded into fewer than three vertices has no edge to collapse, and
-  // OpenMesh asserts on it.
-  for (const Triangle& t : welded.triangles)
-    if (t[0] != t[1] && t[1] != t[2] && t[0] != t[2]) om.add_face(vh[t[0]], vh[t[1]], vh[t[2]]);
+  // OpenMesh asserts on it: skipped. Faces at non-manifold edges and vertices go on copies of
+  // their vertices (OpenMesh would drop them with a warning on stderr).
+  addFacesSplittingComplex(om, vh, welded.triangles);
   if (om.n_faces() == 0)
     throw Error(input.source, "cannot build a qem proxy",
                 "no triangle could be added to a half-edge mesh (all degenerate or non-manifold)",

@@ -2,15 +2,20 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
 #include "mesh/validation.h"
 #include "proxies/check/containment.h"
 #include "proxies/check/mesh_distance.h"
+#include "proxies/general/budget_ladder.h"
+#include "proxies/general/budget_shapes.h"
 #include "proxies/general/general_proxy.h"
+#include "proxies/general/written_class.h"
 #include "proxies/inside/inside_proxy.h"
 #include "proxies/limits/input_geometry.h"
+#include "proxies/limits/parity_solid.h"
 #include "proxies/limits/time_budget.h"
 #include "proxies/outside/bounded_simplify.h"
 #include "proxies/outside/outside_proxy.h"
@@ -20,31 +25,6 @@ namespace proxyvis {
 namespace {
 
 using json = nlohmann::json;
-
-class StageTimer {
- public:
-  explicit StageTimer(json& seconds) : seconds_(seconds) {}
-  template <typename F>
-  auto run(const char* stage, F&& f) {
-    const auto start = std::chrono::steady_clock::now();
-    auto finish = [&] {
-      const double s =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      seconds_[stage] = seconds_.value(stage, 0.0) + s;
-    };
-    if constexpr (std::is_void_v<decltype(f())>) {
-      f();
-      finish();
-    } else {
-      auto r = f();
-      finish();
-      return r;
-    }
-  }
-
- private:
-  json& seconds_;
-};
 
 std::string resolveMethod(const ProxyGenOptions& options) {
   const std::vector<std::string>& methods = proxyMethods(options.kind);
@@ -70,6 +50,7 @@ void checkOptionRanges(const ProxyGenOptions& o) {
   check(o.alpha, kAlphaRange, "--alpha");
   check(o.offset, kOffsetRange, "--offset");
   check(o.erosion, kErosionRange, "--erosion");
+  check(o.voxel, kVoxelRange, "--voxel");
   check(o.ratio, kRatioRange, "--ratio");
   if (o.max_faces > kMaxFacesLimit)
     throw Error("",
@@ -85,6 +66,13 @@ GeometryNeed geometryNeed(ProxyClass kind, const std::string& method) {
   if (kind == ProxyClass::kInside) return GeometryNeed::kSolid;
   if (kind == ProxyClass::kOutside && method == "hull") return GeometryNeed::kSolid;
   return GeometryNeed::kSurface;
+}
+
+// The advice of a failed guarantee names only flags the method reads.
+std::string failureAdvice(ProxyClass kind, const std::string& method) {
+  const std::string flags = tuningFlags(kind, method);
+  return flags.empty() ? "try --method wrap, or a larger --max-faces"
+                       : fmt::format("try other {}, or a larger --max-faces", flags);
 }
 
 struct Built {
@@ -125,8 +113,13 @@ Built build(const TriMesh& reference, const ProxyGenOptions& o, const std::strin
       b.extra["seeds"] = stats.seeds;
     } else {
       ErodeOptions e;
-      e.voxel = o.voxel.value_or(e.voxel);
       e.erosion = o.erosion.value_or(2 * e.voxel);
+      // A small budget needs no fine grid: the collapse to it costs in proportion to the voxel
+      // surface and removes the detail anyway.
+      const size_t faces = requestedFaces(o, reference);
+      e.voxel = o.voxel     ? *o.voxel
+                : faces > 0 ? erodeVoxelForBudget(reference, faces, e.voxel, e.erosion)
+                            : e.voxel;
       e.budget = budget;
       params["erosion"] = e.erosion;
       params["voxel"] = e.voxel;
@@ -171,32 +164,41 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
       options.max_seconds > 0 ? TimeBudget(options.max_seconds, input.source) : TimeBudget();
 
   const MeshReport in_report = timer.run("validate_input", [&] { return validateMesh(input); });
-  report["input"] = {{"path", input.source},
-                     {"faces", in_report.faces},
-                     {"closed", in_report.closed},
-                     {"manifold", in_report.manifold},
-                     {"boundary_edges", in_report.boundary_edges}};
+  report["input"] = {
+      {"path", input.source},           {"faces", in_report.faces},
+      {"closed", in_report.closed},     {"watertight", in_report.watertight},
+      {"manifold", in_report.manifold}, {"boundary_edges", in_report.boundary_edges}};
   report["kind"] = proxyClassName(options.kind);
   report["method"] = method;
   json& params = report["parameters"] = {
       {"max_faces", options.max_faces}, {"fill_holes", options.fill_holes}, {"seed", options.seed}};
   if (options.max_seconds > 0) params["max_seconds"] = options.max_seconds;
 
-  // The mesh the guarantee refers to: the input, or the input with its holes filled.
+  // The mesh the proxy is built and verified against: the input, which for inside needs only to
+  // bound a volume by ray parity (watertight, non-manifold edges allowed); or the input with its
+  // holes filled, a stand-in for which no class holds (written_class.h).
   TriMesh reference = input;
-  if (options.kind == ProxyClass::kInside && !in_report.closed) {
-    if (!options.fill_holes)
-      throw Error(input.source,
-                  fmt::format("{} boundary edges, {} non-manifold edges", in_report.boundary_edges,
-                              in_report.non_manifold_edges),
-                  "an inside proxy needs a closed mesh: an open surface has no inside",
-                  "try --fill-holes, or --kind outside");
+  std::optional<std::string> stand_in;
+  if (options.kind == ProxyClass::kInside && !in_report.watertight) {
+    // Filling holes closes boundary edges; edges with an odd number of faces stay as they are.
+    if (!options.fill_holes || in_report.boundary_edges == 0)
+      throw noInteriorError(input.source, in_report.boundary_edges, in_report.odd_edges,
+                            "an inside proxy");
     size_t holes = 0;
     reference = timer.run("fill_holes", [&] { return fillHoles(input, &holes); });
     report["holes_filled"] = holes;
+    stand_in = filledHolesReason(in_report.boundary_edges, holes);
     budget.check("the hole filling");
   }
 
+  auto rebuild = [&](const ProxyGenOptions& o) {
+    json unused;
+    return build(reference, o, method, unused, &budget).mesh;
+  };
+  if (options.kind != ProxyClass::kGeneral && options.hard_budget && options.max_faces > 0 &&
+      options.max_faces < kMinClosedFaces)
+    failBelowClosedMinimum(
+        {input, reference, options, method, options.max_faces, budget, timer, report, rebuild});
   Built built =
       timer.run("build", [&] { return build(reference, options, method, params, &budget); });
   budget.check("building the proxy");
@@ -215,57 +217,40 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
     params["max_faces_auto"] = max_faces;
   }
 
-  const double ref_volume = reference.signedVolume();
-  const bool ref_closed = options.kind == ProxyClass::kInside || in_report.closed;
+  // General proxies: the simplifier's own target is the budget.
+  if (options.kind == ProxyClass::kGeneral) {
+    GeneralOptions g;
+    g.max_faces = options.max_faces;
+    g.ratio = options.ratio.value_or(g.ratio);
+    max_faces = generalTargetFaces(input, g);
+  }
+  // Only a budget the user gave (--max-faces, --ratio) fails the run when it is not met; the
+  // automatic ones (the input's count, general's default ratio) are goals.
+  const bool user_budget = options.max_faces > 0 || options.ratio.has_value();
+  params["budget"] = options.hard_budget ? "hard" : "soft";
+
+  BudgetContext ctx{input, reference, options, method, max_faces, budget, timer, report, rebuild};
+  VerifiedCandidate chosen = options.kind == ProxyClass::kGeneral
+                                 ? verifyCandidate(ctx, std::move(built.mesh), method)
+                                 : reduceAndVerify(ctx, built.mesh, method, true);
+  if (max_faces > 0) {
+    LadderResult ladder = climbBudgetLadder(ctx, chosen);
+    if (!ladder.within && ladder.smallest && user_budget && options.hard_budget)
+      throwBudgetNotMet(ctx, ladder.smallest->faces());
+    // Soft or automatic budgets keep the smallest verified proxy when none meets them.
+    std::optional<VerifiedCandidate>& better = ladder.within ? ladder.within : ladder.smallest;
+    if (better && (better->faces() <= chosen.faces() || !chosen.ok)) {
+      if (better->source != chosen.source) report["budget_fallback"] = better->source;
+      chosen = std::move(*better);
+    }
+  }
+  if (max_faces > 0) report["budget_reached"] = chosen.faces() <= max_faces;
+  const TriMesh& proxy = chosen.mesh;
+  const MeshReport& p_report = chosen.report;
+  const std::optional<ContainmentResult>& containment = chosen.containment;
   const ContainmentVerdict expected = options.kind == ProxyClass::kOutside
                                           ? ContainmentVerdict::kContains
                                           : ContainmentVerdict::kContained;
-
-  // Budget, then checks. A bounded collapse can still let new faces cut through a thin, distant
-  // part of the surface, or pinch two sheets together; then the budget is retried with collapses
-  // kept closer to their edges, and last without simplification (budget_reached = false).
-  TriMesh proxy;
-  MeshReport p_report;
-  std::optional<ContainmentResult> containment;
-  BoundedSimplifyStats simplify_stats;
-  const double move_limits[] = {1.0, 0.5, 0.0};
-  for (double move : move_limits) {
-    proxy = built.mesh;
-    simplify_stats = {};
-    simplify_stats.faces_after = proxy.numTriangles();
-    simplify_stats.budget_reached = max_faces == 0 || proxy.numTriangles() <= max_faces;
-    if (built.bounded && max_faces > 0 && move > 0) {
-      BoundedSimplifyOptions s;
-      s.max_faces = max_faces;
-      s.side = options.kind == ProxyClass::kOutside ? BoundSide::kOutside : BoundSide::kInside;
-      s.max_move_edges = move;
-      s.budget = &budget;
-      proxy =
-          timer.run("simplify", [&] { return simplifyBounded(built.mesh, s, &simplify_stats); });
-    }
-    p_report = timer.run("verify", [&] {
-      ValidationOptions v;
-      v.self_intersections = true;
-      return validateMesh(proxy, v);
-    });
-    budget.check("verifying the proxy");
-    if (options.kind == ProxyClass::kGeneral) break;
-    containment = timer.run("verify", [&] { return checkContainment(reference, proxy); });
-    const bool ok = p_report.closed && p_report.manifold &&
-                    p_report.self_intersecting_pairs.value_or(1) == 0 &&
-                    containment->verdict == expected;
-    if (built.bounded && max_faces > 0)
-      report["budget_attempts"].push_back(
-          {{"max_move_edges", move},
-           {"faces", proxy.numTriangles()},
-           {"closed", p_report.closed},
-           {"manifold", p_report.manifold},
-           {"self_intersecting_pairs", p_report.self_intersecting_pairs.value_or(0)},
-           {"containment", containmentName(containment->verdict)}});
-    if (ok || proxy.numTriangles() == built.mesh.numTriangles()) break;
-    budget.check("the face budget's retries");
-  }
-  if (built.bounded && max_faces > 0) report["budget_reached"] = simplify_stats.budget_reached;
 
   const uint64_t si = p_report.self_intersecting_pairs.value_or(0);
   report["checks"] = {{"closed", p_report.closed},
@@ -279,12 +264,19 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
   }
   report["faces"] = proxy.numTriangles();
   report["verified"] = verified;
-  report["class"] = verified ? json(proxyClassName(options.kind)) : json(nullptr);
+  setWrittenClass(report, options.kind, verified, stand_in);
+  if (stand_in && containment) report["checks"]["containment_against"] = "the hole-filled input";
 
   timer.run("metrics", [&] {
     const double diag = reference.diagonal();
-    report["volume_ratio"] = (ref_closed && p_report.closed && ref_volume > 0)
-                                 ? json(proxy.signedVolume() / ref_volume)
+    // A closed manifold input's own signed volume (cheap); by ray parity for a watertight
+    // non-manifold input or the hole-filled stand-in (proxies/limits/parity_solid.h).
+    const std::optional<double> ref_volume = !(in_report.watertight || stand_in) ? std::nullopt
+                                             : in_report.closed
+                                                 ? std::optional<double>(reference.signedVolume())
+                                                 : parityVolume(reference);
+    report["volume_ratio"] = (ref_volume && p_report.closed && *ref_volume > 0)
+                                 ? json(proxy.signedVolume() / *ref_volume)
                                  : json(nullptr);
     report["hausdorff_proxy_to_original"] =
         sampledOneSidedDistance(proxy, reference, options.hausdorff_samples, options.seed) / diag;
@@ -309,9 +301,14 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
     throw CheckFailed(input.source,
                       fmt::format("the {} {} proxy failed its guarantee: {}", method,
                                   proxyClassName(options.kind), what),
-                      "it is not written", "try other --alpha/--offset, or a larger --max-faces");
+                      inputIsTheProblem(chosen)
+                          ? "it is not written: the input bounds no consistent volume "
+                            "(non-manifold or self-intersecting parts)"
+                          : "it is not written",
+                      inputIsTheProblem(chosen) ? "repair the mesh, or use --kind outside"
+                                                : failureAdvice(options.kind, method));
   }
-  return {std::move(proxy), verified, std::move(report)};
+  return {std::move(chosen.mesh), verified, std::move(report)};
 }
 
 std::string formatProxyReport(const json& r) {
@@ -321,10 +318,18 @@ std::string formatProxyReport(const json& r) {
   std::string s;
   s += fmt::format("input:      {} ({} faces, {})\n", r["input"]["path"].get<std::string>(),
                    r["input"]["faces"].get<uint64_t>(),
-                   r["input"]["closed"].get<bool>() ? "closed" : "open");
-  s += fmt::format("proxy:      {} / {}, {} faces (before budget {})\n",
-                   r["kind"].get<std::string>(), r["method"].get<std::string>(),
-                   r["faces"].get<uint64_t>(), r["faces_before_budget"].get<uint64_t>());
+                   r["input"]["closed"].get<bool>()        ? "closed"
+                   : r["input"].value("watertight", false) ? "watertight, non-manifold"
+                                                           : "open");
+  s += fmt::format(
+      "proxy:      {} / {}, {} faces (before budget {}){}\n", r["kind"].get<std::string>(),
+      r["method"].get<std::string>(), r["faces"].get<uint64_t>(),
+      r["faces_before_budget"].get<uint64_t>(),
+      r.contains("budget_fallback")
+          ? fmt::format(", from the budget fallback: {}", r["budget_fallback"].get<std::string>())
+          : "");
+  if (r.contains("budget_reached") && !r["budget_reached"].get<bool>())
+    s += "budget:     NOT reached (--budget soft, or no budget was asked for)\n";
   s += fmt::format("parameters: {}\n", r["parameters"].dump());
   s += fmt::format("volume ratio: {}\n", num(r["volume_ratio"], "{:.4f}"));
   s += fmt::format("hausdorff (fraction of diagonal): proxy->original {}, original->proxy {}\n",
@@ -332,6 +337,9 @@ std::string formatProxyReport(const json& r) {
                    num(r["hausdorff_original_to_proxy"], "{:.5f}"));
   s += fmt::format("checks:     {}\n", r["checks"].dump());
   s += fmt::format("verified:   {}\n", r["verified"].get<bool>() ? "yes" : "NO");
+  if (r.contains("class_reason"))
+    s += fmt::format("class:      {} ({})\n", r["class"].get<std::string>(),
+                     r["class_reason"].get<std::string>());
   std::string secs;
   for (const auto& [k, v] : r["seconds"].items())
     secs += fmt::format("{}{} {:.3f}", secs.empty() ? "" : ", ", k, v.get<double>());

@@ -25,6 +25,7 @@ struct ParameterRange {
 inline constexpr ParameterRange kAlphaRange{1e-3, 1};
 inline constexpr ParameterRange kOffsetRange{1e-4, 1};
 inline constexpr ParameterRange kErosionRange{1e-3, 0.5};
+inline constexpr ParameterRange kVoxelRange{2e-3, 0.25};
 inline constexpr ParameterRange kRatioRange{1e-6, 1};
 inline constexpr ParameterRange kMaxSecondsRange{0.01, 7 * 24 * 3600};
 inline constexpr uint64_t kMaxFacesLimit = 1'000'000'000;
@@ -41,7 +42,11 @@ struct ProxyGenOptions {
   std::optional<double> erosion;  // erode: fraction of the diagonal (default 1/75)
   std::optional<double> voxel;    // erode: voxel edge, fraction of the diagonal (default 1/150)
   bool fill_holes = false;        // inside: fill the holes of an open input first
-  uint64_t seed = 0;              // sampling of the Hausdorff estimates
+  // A face budget the caller gave (max_faces, ratio) that no verified proxy meets: true = throw
+  // CheckFailed saying what was reached (nothing is written), false = return the proxy with
+  // report "budget_reached": false. Budgets not asked for never throw (docs/budgets.md).
+  bool hard_budget = true;
+  uint64_t seed = 0;  // sampling of the Hausdorff estimates
   uint64_t hausdorff_samples = 20000;
   // Time budget for the whole generation (wrap, seed search, erosion, decimation, face budget
   // poll it); 0 = none.
@@ -57,11 +62,13 @@ struct ProxyGenResult {
   nlohmann::json report;  // see formatProxyReport for the keys
 };
 
-// Builds and checks the proxy of `input` (report key "input.path" = input.source). Throws Error
+// Builds and checks the proxy of `input` (report key "input.path" = input.source); a face budget
+// that the built proxy misses is met by the fallbacks of proxies/general/budget_ladder.h when
+// any of them can. Throws Error
 // on bad input or options (e.g. an open mesh for --kind inside without fill_holes, naming the
 // boundary edges; geometry the generator cannot handle, see proxies/limits/input_geometry.h; an
 // option outside its range; a spent max_seconds), CheckFailed when an outside/inside proxy fails
-// its guarantee. A general proxy
+// its guarantee or a hard budget is not met. A general proxy
 // that is not closed/manifold/free of self-intersections is returned with verified = false.
 ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& options);
 

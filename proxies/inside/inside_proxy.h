@@ -41,13 +41,21 @@ size_t countBoundaryEdges(const TriMesh& input);
 // receives the number of holes filled.
 TriMesh fillHoles(const TriMesh& input, size_t* holes = nullptr);
 
-// Inner alpha-wrap from interior seeds (CGAL alpha_wrap_3 with seed_points). `input` must be
-// closed: otherwise throws Error naming the boundary edges and suggesting --fill-holes or
-// --kind outside. Throws Error when no interior point is deeper than the offset, when
-// requireProxyGeometry (proxies/limits) refuses the input, when the wrap's estimate exceeds
-// kMaxEstimatedWrapFaces, or when options.budget is spent.
+// Inner alpha-wrap from interior seeds (CGAL alpha_wrap_3 with seed_points). `input` must bound
+// a volume by ray parity (every welded edge has an even number of faces, non-manifold edges
+// allowed; proxies/limits/parity_solid.h): otherwise throws Error naming the boundary and odd
+// edges with advice that works for them. Throws Error when no interior point is deeper than the
+// offset, when requireProxyGeometry (proxies/limits) refuses the input, when the wrap's estimate
+// exceeds kMaxEstimatedWrapFaces, or when options.budget is spent.
 TriMesh makeInsideWrapProxy(const TriMesh& input, const InsideWrapOptions& options = {},
                             InsideStats* stats = nullptr);
+
+// The voxel edge (fraction of the diagonal) for an erosion that will be reduced to `max_faces`:
+// `voxel`, or coarser so that the voxel surface (about twice the input's area over the voxel
+// face) has at most kErodeFacesPerBudgetFace x max_faces faces, then fine enough to divide
+// `erosion` (which is rounded up to whole voxels); never coarser than 1/30.
+inline constexpr double kErodeFacesPerBudgetFace = 100;
+double erodeVoxelForBudget(const TriMesh& input, size_t max_faces, double voxel, double erosion);
 
 // Solid voxelisation (ray parity along x), erosion by a cube of ceil(erosion/voxel) voxels,
 // removal of voxels that would make the surface non-manifold, and the boundary of the voxel

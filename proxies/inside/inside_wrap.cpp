@@ -17,6 +17,8 @@
 
 #include "proxies/inside/inside_proxy.h"
 #include "proxies/limits/input_geometry.h"
+#include "proxies/limits/internal/parity_solid_mesh.h"
+#include "proxies/limits/parity_solid.h"
 #include "proxies/outside/internal/cgal_weld.h"
 #include "proxies/outside/internal/wrap_budget.h"
 #include "proxies/outside/outside_proxy.h"
@@ -40,18 +42,14 @@ size_t countBorderHalfedges(const SurfaceMesh& sm) {
   return n;
 }
 
-// The closed, outward oriented input the inside methods need, or an Error that says why not.
-SurfaceMesh closedInput(const TriMesh& input, const char* method) {
-  SurfaceMesh sm = toWeldedMesh(input);
-  const size_t boundary = countBorderHalfedges(sm);
-  if (boundary > 0 || sm.number_of_faces() == 0)
-    throw Error(
-        input.source, fmt::format("{} boundary edges", boundary),
-        fmt::format("the inside proxy ({}) needs a closed mesh: an open surface has no inside",
-                    method),
-        "try --fill-holes, or --kind outside");
-  if (!PMP::is_outward_oriented(sm)) PMP::reverse_face_orientations(sm);
-  return sm;
+// The input as a ray-parity solid (its own triangles, non-manifold edges split, so a watertight
+// non-manifold scan has an inside too), or an Error that says why it has no inside.
+SurfaceMesh solidInput(const TriMesh& input, const char* method) {
+  parity::ParitySolid solid = parity::makeParitySolid(input);
+  if (!solid.watertight())
+    throw noInteriorError(input.source, solid.boundary_edges, solid.odd_edges,
+                          fmt::format("the inside proxy ({})", method));
+  return std::move(solid.mesh);
 }
 
 // The faces whose corners are not collinear. CGAL's inside test retries a ray that hits a
@@ -172,7 +170,7 @@ TriMesh makeInsideWrapProxy(const TriMesh& input, const InsideWrapOptions& optio
                 "alpha_wrap_3 is undefined otherwise");
   requireProxyGeometry(input, GeometryNeed::kSolid, "an inside wrap");
   requireWrapSize(input, options.alpha, options.offset, "the inside wrap");
-  SurfaceMesh sm = closedInput(input, "wrap");
+  SurfaceMesh sm = solidInput(input, "wrap");
   const double diag = input.diagonal();
   const double offset = options.offset * diag;
   std::vector<Point3> seeds = findSeeds(sm, options, 2 * offset, input.source);

@@ -3,7 +3,9 @@
 // itself: every accepted collapse produces a mesh that contains the previous one (kOutside, the
 // progressive hulls of Sander et al., "Silhouette clipping", SIGGRAPH 2000) or is contained in it
 // (kInside, the mirror image). Budget proxies thus keep their outside/inside guarantee, up to
-// float rounding and far-away self-intersections, which the caller's exact check catches.
+// float rounding and far-away self-intersections, which the caller's exact check catches. With
+// the input as options.bound, the last collapses are tested against the input instead and may
+// cut volume (docs/proxy_tightness.md).
 #include <cstddef>
 
 #include "mesh/tri_mesh.h"
@@ -20,11 +22,17 @@ struct BoundedSimplifyOptions {
   // new faces local so they do not cut through distant parts of the surface.
   double max_move_edges = 1.0;
   const TimeBudget* budget = nullptr;  // polled between collapses; null = no limit
+  // The input the result must keep containing (kOutside) or stay inside of (kInside). With it,
+  // a collapse may also move the surface toward the input, tested against the input itself
+  // (proxies/outside/internal/input_bound.h): much tighter at small budgets. Null = every
+  // collapse keeps the mesh nested in the previous one (progressive hulls).
+  const TriMesh* bound = nullptr;
 };
 
 struct BoundedSimplifyStats {
   size_t faces_before = 0, faces_after = 0;
   size_t collapses = 0;
+  size_t relaxed = 0;  // vertex moves of the relaxation toward the input (with options.bound)
   bool budget_reached = false;  // false when no admissible collapse was left before the budget
 };
 

@@ -1,0 +1,44 @@
+#pragma once
+// Private to proxies/: the test that lets a bounded collapse move a vertex inward, not only
+// outward. A proxy that contains (or is contained in) the input keeps doing so after a local
+// change from the old star of faces to a new one when (1) no new face touches an input triangle
+// and (2) no input piece lies in the region swept between the old and the new star. Without it
+// the collapse must keep each mesh nested in the previous one, which piles up volume at small
+// budgets. Including this header pulls in CGAL; only proxies/**/*.cpp may include it.
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "mesh/tri_mesh.h"
+#include "util/vec3.h"
+
+namespace proxyvis::cgal {
+
+// What TriMesh stores: candidate positions are rounded to float before any test, so that the
+// tests see the geometry that is written.
+inline Vec3d roundToFloat(const Vec3d& x) {
+  return {double(float(x.x)), double(float(x.y)), double(float(x.z))};
+}
+
+class InputBound {
+ public:
+  explicit InputBound(const TriMesh& input);
+  ~InputBound();
+  InputBound(const InputBound&) = delete;
+  InputBound& operator=(const InputBound&) = delete;
+
+  // `old_star` and `new_star` are triangles (3 corners each) with the same boundary; the
+  // union of old_star and reversed new_star is closed. True when no triangle of new_star
+  // touches the input and no input component lies between the two stars.
+  bool allows(const std::vector<std::array<Vec3d, 3>>& old_star,
+              const std::vector<std::array<Vec3d, 3>>& new_star) const;
+
+  // The input point nearest to p.
+  Vec3d closestPoint(const Vec3d& p) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace proxyvis::cgal
