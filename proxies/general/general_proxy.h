@@ -28,9 +28,16 @@ TriMesh weldVertices(const TriMesh& input);
 // The three simplifiers throw Error when requireProxyGeometry (proxies/limits) refuses the input
 // (it needs a surface) or when options.budget is spent.
 
-// OpenMesh Decimater: ModQuadric + ModNormalFlipping (+ ModHausdorff when requested). Faces that
-// OpenMesh cannot add (non-manifold, or degenerate after welding) are skipped.
-TriMesh simplifyQem(const TriMesh& input, const GeneralOptions& options);
+// Work done by simplifyQem (for tests and benchmarks: counts, not times).
+struct QemStats {
+  size_t collapses = 0;
+  size_t legality_tests = 0;  // OpenMesh collapse legality tests (the costly part of a choice)
+};
+
+// OpenMesh Decimater: ModQuadric + ModNormalFlipping (+ ModHausdorff when requested), mixed
+// multiple choice and priority queue (proxies/general/qem_decimater.h). Faces that OpenMesh
+// cannot add (non-manifold, or degenerate after welding) are skipped.
+TriMesh simplifyQem(const TriMesh& input, const GeneralOptions& options, QemStats* stats = nullptr);
 
 // CGAL Surface_mesh_simplification::edge_collapse with GarlandHeckbert_plane_policies.
 TriMesh simplifyCgalSms(const TriMesh& input, const GeneralOptions& options);
