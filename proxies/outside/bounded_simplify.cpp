@@ -51,6 +51,10 @@ constexpr size_t kBoundPhaseFactor = 4;
 // dragon's 2 % budget of 2,000 faces gets the relaxation only; nesting meets its targets).
 // Where nesting stalls above it (an erosion's staircase), the tight phase starts there.
 constexpr size_t kMaxTightFaces = 1500;
+// Where nesting stalls far above that (a wrap of thousands of loose scan fragments stalled at
+// 10 k faces and the tight phase then ran for minutes), the tight phase is skipped: the
+// caller's budget ladder tries a coarser proxy instead.
+constexpr size_t kMaxTightStartFaces = 4000;
 // Relaxation passes after the budget is reached; the last ones gain little. Its test against
 // the mesh itself scans every face: quadratic, so it runs up to kMaxRelaxFaces (the dragon's
 // 2 % budget, ~0.2 s there).
@@ -403,6 +407,8 @@ TriMesh simplifyBounded(const TriMesh& mesh, const BoundedSimplifyOptions& optio
     sm.collect_garbage();
     // A large budget the nested phase met: neither phase 2 nor the relaxation pays there.
     if (sm.number_of_faces() <= options.max_faces && sm.number_of_faces() > kMaxRelaxFaces)
+      return finish(cgal::fromSurfaceMesh(sm, mesh.source));
+    if (sm.number_of_faces() > std::max(kMaxTightStartFaces, options.max_faces))
       return finish(cgal::fromSurfaceMesh(sm, mesh.source));
     const cgal::InputBound bound(*options.bound);
     SurfaceMesh nested = sm;
