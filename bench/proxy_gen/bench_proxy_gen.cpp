@@ -1,5 +1,5 @@
 // bench_proxy_gen: every proxy-gen kind and method on the bundled meshes (data/) and the hard set
-// (<shared data>/meshes/hard, skipped with a note when absent), without a face budget and at 2 %
+// (data/hard), without a face budget and at 2 %
 // of the input's faces; prints a Markdown table of faces, volume ratio, sampled Hausdorff
 // distances both ways (fractions of the diagonal), seconds, peak RSS and the class written, or
 // why the case failed. Each row runs in its own child process (this program with --row), so that
@@ -117,14 +117,11 @@ int main(int argc, char** argv) {
                "bench_proxy_gen"};
   CommonOptions common;
   bool quick = false;
-  std::string shared = PROXYVIS_SHARED_DATA_DIR;
   std::vector<std::string> only;
   double max_seconds = 300;
   std::vector<std::string> row;
   app.add_flag("--quick", quick,
-               "Only the meshes under 20 k faces, only at 2 % (about a minute, see docs/bench.md)");
-  app.add_option("--shared-dir", shared, "The shared data folder (its meshes/hard is the hard set)")
-      ->capture_default_str();
+               "Only the meshes under 20 k faces, only at 2 % (a few minutes; docs/proxy_gen_bench.md)");
   app.add_option("--mesh", only, "Only meshes whose file name contains one of these");
   app.add_option("--max-seconds", max_seconds, "Time budget of one row (proxy-gen --max-seconds)")
       ->check(numberIn(1, 3600))
@@ -142,7 +139,7 @@ int main(int argc, char** argv) {
       if (fs::exists(data / name)) meshes.push_back({data / name, false, name});
     if (fs::exists(data / "bun_zipper.ply"))
       meshes.push_back({data / "bun_zipper.ply", true, "bun_zipper.ply (soup)"});
-    const fs::path hard = fs::path(shared) / "meshes" / "hard";
+    const fs::path hard = data / "hard";
     std::vector<std::string> notes;
     if (fs::is_directory(hard)) {
       std::vector<fs::path> files;
@@ -151,7 +148,7 @@ int main(int argc, char** argv) {
       std::sort(files.begin(), files.end());
       for (const fs::path& p : files) meshes.push_back({p, false, "hard/" + p.filename().string()});
     } else {
-      notes.push_back(fmt::format("hard set skipped: {} not found (--shared-dir)", hard.string()));
+      notes.push_back(fmt::format("hard set skipped: {} not found", hard.string()));
     }
     if (!only.empty())
       std::erase_if(meshes, [&](const Mesh& m) {
