@@ -72,7 +72,11 @@ size_t addFacesSplittingComplex(Mesh& mesh,
       if (layer == layers.size()) layers.emplace_back();
       for (int k = 0; k < 3; ++k) {
         auto [it, fresh] = layers[layer].try_emplace(t[k]);
-        if (fresh) it->second = mesh.add_vertex(mesh.point(vertices[t[k]]));
+        // A copy: add_vertex may grow the point array that point() refers into.
+        if (fresh) {
+          const typename Mesh::Point p = mesh.point(vertices[t[k]]);
+          it->second = mesh.add_vertex(p);
+        }
         v[k] = it->second;
       }
       if (layer == 0) ++split;

@@ -129,7 +129,7 @@ pb_test(general_soup_meets_ratio 0
 file(WRITE ${pb_dir}/tet_fin.off "OFF\n5 5 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 1 0.5\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n3 1 4 2\n")
 pb_test(erode_non_manifold_fin_is_general 0
   "${pb_dir}/tet_fin.off --kind inside --method erode --fill-holes -o ${pb_dir}/fin.ply"
-  REGEX "class: +general" FILE ${pb_dir}/fin.ply DEFS "-DNOT_IN_OUTPUT=--alpha|--offset" TIMEOUT 20)
+  REGEX "class: +general" FILE ${pb_dir}/fin.ply DEFS "-DNOT_IN_OUTPUT=--alpha|--offset" TIMEOUT 120)
 # A surface with no inside (three sheets on one loop: odd edges) is refused at once for erode,
 # with advice that names no wrap flag.
 file(WRITE ${pb_dir}/theta.off "OFF\n6 9 0\n0 0 0\n1 0 0\n0 1 0\n0.3 0.3 -1\n0.3 0.3 0.5\n0.3 0.3 1\n3 0 1 3\n3 1 2 3\n3 2 0 3\n3 0 1 4\n3 1 2 4\n3 2 0 4\n3 0 1 5\n3 1 2 5\n3 2 0 5\n")
