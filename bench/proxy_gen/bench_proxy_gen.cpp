@@ -120,8 +120,9 @@ int main(int argc, char** argv) {
   std::vector<std::string> only;
   double max_seconds = 300;
   std::vector<std::string> row;
-  app.add_flag("--quick", quick,
-               "Only the meshes under 20 k faces, only at 2 % (a few minutes; docs/proxy_gen_bench.md)");
+  app.add_flag(
+      "--quick", quick,
+      "Only the meshes under 20 k faces, only at 2 % (a few minutes; docs/proxy_gen_bench.md)");
   app.add_option("--mesh", only, "Only meshes whose file name contains one of these");
   app.add_option("--max-seconds", max_seconds, "Time budget of one row (proxy-gen --max-seconds)")
       ->check(numberIn(1, 3600))
