@@ -232,11 +232,11 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option(
          "--method", a.method,
-         "outside: wrap (default; the tightest: volume ratio 1.02-1.25 at --ratio 0.02 on "
-         "closed meshes), hull (convex: fastest, but 1.3-2.7); inside: wrap (default; 0.75-0.96 "
-         "of the volume at --ratio 0.02), erode (voxel erosion: slower, about as tight on compact "
-         "shapes, 0.33 on the dragon's thin parts); general: qem (default), cgal-sms, meshopt "
-         "(no guarantee). See docs/proxy_tightness.md")
+         "outside: wrap (default; the tightest: volume ratio 1.02-1.25 at --ratio 0.02 on the "
+         "bundled closed meshes, 1.43 on a thin-legged cow), hull (convex: fastest, but 1.3-2.7); "
+         "inside: wrap (default; 0.75-0.96 of the volume at --ratio 0.02), erode (voxel erosion: "
+         "0.74-0.78 on compact shapes, 0.33 on the dragon's thin parts); general: qem (default), "
+         "cgal-sms, meshopt (no guarantee). See docs/proxy_tightness.md")
       ->check(CLI::IsMember({"wrap", "hull", "erode", "qem", "cgal-sms", "meshopt"}));
   app.add_option("-o,--output", a.output, "Output mesh (mesh input)");
   app.add_option("--out-dir", a.out_dir,
@@ -274,7 +274,10 @@ int main(int argc, char** argv) {
                  "erode: voxel edge as a fraction of the diagonal (default 1/150; with a face "
                  "budget, coarser: about 100 voxel faces per budget face)")
       ->check(numberIn(kVoxelRange.lo, kVoxelRange.hi));
-  app.add_flag("--fill-holes", a.fill_holes, "inside: fill the holes of an open input first");
+  app.add_flag(
+      "--fill-holes", a.fill_holes,
+      "inside: fill the holes of an open input first; the proxy is then written as class general "
+      "(a ray through a hole can reach it), see docs/proxy_classes.md");
   addCommonOptions(app, common);
   return runApp(app, argc, argv, common, [&] {
     checkOutputs({a.input}, {{"-o", a.output}, {"--json", common.json_path}});
