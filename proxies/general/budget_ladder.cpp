@@ -160,6 +160,19 @@ VerifiedCandidate reduceAndVerify(const BudgetContext& ctx, const TriMesh& built
   return allow_unreduced ? attempt(0) : std::move(*last);
 }
 
+namespace {
+
+// The 4-face proxy of the kind: around the reference (outside) or in its deepest interior ball
+// (inside; none without one).
+std::optional<TriMesh> tetrahedronProxy(const BudgetContext& ctx,
+                                        const std::optional<InteriorBall>& ball) {
+  if (ctx.options.kind == ProxyClass::kOutside) return enclosingTetrahedron(ctx.reference);
+  if (ball) return inscribedTetrahedron(*ball, ctx.reference.source);
+  return std::nullopt;
+}
+
+}  // namespace
+
 LadderResult climbBudgetLadder(const BudgetContext& ctx, const VerifiedCandidate& primary) {
   LadderResult result;
   std::optional<VerifiedCandidate>& best = result.within;
@@ -251,20 +264,17 @@ LadderResult climbBudgetLadder(const BudgetContext& ctx, const VerifiedCandidate
     else if (ball)
       consider(verifyCandidate(ctx, inscribedBox(*ball, ref.source), "box"));
   }
-  if (outside)
-    consider(verifyCandidate(ctx, enclosingTetrahedron(ref), "tetrahedron"));
-  else if (ball)
-    consider(verifyCandidate(ctx, inscribedTetrahedron(*ball, ref.source), "tetrahedron"));
+  if (std::optional<TriMesh> tet = tetrahedronProxy(ctx, ball))
+    consider(verifyCandidate(ctx, std::move(*tet), "tetrahedron"));
   return result;
 }
 
 void failBelowClosedMinimum(const BudgetContext& ctx) {
+  std::optional<InteriorBall> ball;
+  if (ctx.options.kind != ProxyClass::kOutside) ball = deepestInteriorPoint(ctx.reference);
   VerifiedCandidate tet;
-  if (ctx.options.kind == ProxyClass::kOutside) {
-    tet = verifyCandidate(ctx, enclosingTetrahedron(ctx.reference), "tetrahedron");
-  } else if (const auto ball = deepestInteriorPoint(ctx.reference)) {
-    tet = verifyCandidate(ctx, inscribedTetrahedron(*ball, ctx.reference.source), "tetrahedron");
-  }
+  if (std::optional<TriMesh> m = tetrahedronProxy(ctx, ball))
+    tet = verifyCandidate(ctx, std::move(*m), "tetrahedron");
   throwBudgetNotMet(ctx, tet.ok ? tet.faces() : 0);
 }
 
