@@ -150,13 +150,40 @@ def check(root):
                                f"cites design.md costs point {n}, which it lacks")
         if path.endswith(".md"):
             for m in MD_LINK.finditer(text):
-                target = m.group(1).split("#")[0]
-                if not target or re.match(r"^[a-z]+:", target):
-                    continue  # anchor only, or a URL
-                full = os.path.normpath(os.path.join(os.path.dirname(path), target))
+                target, _, anchor = m.group(1).partition("#")
+                if re.match(r"^[a-z]+:", target):
+                    continue  # a URL
+                full = os.path.normpath(os.path.join(os.path.dirname(path), target)) \
+                    if target else path
                 if not os.path.exists(full):
                     report(path, m.start(), text, f"links to {target}, which does not exist")
+                elif anchor and full.endswith(".md") and anchor not in anchors_of(full):
+                    report(path, m.start(), text,
+                           f"links to {target or 'itself'}#{anchor}, no such heading")
     return findings
+
+
+def slug(heading):
+    """The anchor GitHub gives a heading: lower case, punctuation dropped, spaces to '-'."""
+    text = re.sub(r"[`*]", "", heading.strip().lower())
+    text = re.sub(r"\[([^\]]*)\]\([^)]*\)", r"\1", text)  # a link's text
+    return re.sub(r"[^\w\- ]", "", text).replace(" ", "-")
+
+
+def anchors_of(path):
+    anchors, seen, fenced = set(), {}, False
+    with open(path, encoding="utf-8", errors="replace") as f:
+        for line in f:
+            if line.lstrip().startswith("```"):
+                fenced = not fenced
+            m = re.match(r"#{1,6}\s+(.*?)\s*#*\s*$", line)
+            if fenced or not m:
+                continue
+            base = slug(m.group(1))
+            n = seen.get(base, 0)
+            seen[base] = n + 1
+            anchors.add(base if n == 0 else f"{base}-{n}")
+    return anchors
 
 
 def self_test():
@@ -173,11 +200,13 @@ def self_test():
         "h.cpp": "// docs/design.md, pitfall 7\n",
         "i.cpp": "// docs/design.md,\n// costs point 5: baseline\n",
         "j.md": "see [x](nowhere.md)\n",
+        "k.md": "see [x](docs/design.md#no-such-heading)\n",
     }
     fine = {
         "ok.cpp": "// docs/design.md §2b, pitfall 2, costs point 2; docs/design.md (\"Ray classes\")\n"
                   "// paper §4 is not ours. Two issues remain, e.g. the tissue 12.\n",
-        "ok.md": "[d](docs/design.md#x) and [u](https://example.org)\n",
+        "ok.md": "# A §3 heading (x)\n[d](docs/design.md#2b-measured-costs-and-what-follows), "
+                 "[s](#a-3-heading-x) and [u](https://example.org)\n",
     }
     with tempfile.TemporaryDirectory() as tmp:
         os.mkdir(os.path.join(tmp, "docs"))
