@@ -40,8 +40,9 @@ std::string budgetText(const json& r) {
   if (p.value("max_faces", 0) > 0)
     budget = fmt::format("{} faces (--max-faces)", p["max_faces"].get<uint64_t>());
   else if (p.contains("max_faces_from_ratio"))
-    budget = fmt::format("{} faces (--ratio {:g} of the input's)",
-                         p["max_faces_from_ratio"].get<uint64_t>(), p.value("ratio", 0.0));
+    budget = fmt::format("{} faces (--ratio times the input's {})",
+                         p["max_faces_from_ratio"].get<uint64_t>(),
+                         r["input"]["faces"].get<uint64_t>());
   else if (p.contains("max_faces_auto"))
     budget = fmt::format("{} faces (the input's count: a proxy must not cost more)",
                          p["max_faces_auto"].get<uint64_t>());
@@ -112,16 +113,16 @@ std::string proxySummaryText(const json& r) {
                    built != faces ? fmt::format(" ({} before the budget reduction)", built) : "");
   if (const std::string budget = budgetText(r); !budget.empty())
     s += fmt::format("budget:     {}\n", budget);
+  s += fmt::format("volume ratio: {}\n", volumeText(r));
+  if (r.contains("hausdorff"))
+    s += fmt::format("Hausdorff (sampled, a lower bound): {}\n",
+                     hausdorffText(hausdorffFromJson(r["hausdorff"])));
   s += fmt::format("verified:   {}\n", verifiedText(r));
   const json& cls = r["class"];
   s += fmt::format("class:      {}{}\n", cls.is_string() ? cls.get<std::string>() : "none",
                    r.contains("class_reason")
                        ? fmt::format(" ({})", r["class_reason"].get<std::string>())
                        : std::string());
-  s += fmt::format("volume ratio: {}\n", volumeText(r));
-  if (r.contains("hausdorff"))
-    s += fmt::format("Hausdorff (sampled, a lower bound): {}\n",
-                     hausdorffText(hausdorffFromJson(r["hausdorff"])));
   s += "seconds:\n" + secondsText(r["seconds"]);
   return s;
 }
