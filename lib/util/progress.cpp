@@ -65,7 +65,7 @@ void Progress::abandon() {
   if (finished_.exchange(true)) return;
   if (enabled_ && terminal_) {
     std::lock_guard lock(mutex_);
-    std::fputc('\n', stderr);
+    std::fputs("\r\033[K", stderr);  // erase the bar's line: the error line takes it
     std::fflush(stderr);
   }
 }

@@ -25,8 +25,8 @@ class Progress {
   // nothing when the steps take very different times; redraws at once.
   void setLabel(std::string label);
   void done();
-  // Ends the bar where it stands, without drawing it full (a run that failed): the error line that
-  // follows starts on a line of its own.
+  // Ends the bar without drawing it full (a run that failed): on a terminal its line is erased, so
+  // that the error line that follows stands alone.
   void abandon();
   double elapsedSeconds() const;
   bool enabled() const { return enabled_; }
