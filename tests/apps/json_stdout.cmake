@@ -30,6 +30,11 @@ js_test(mesh_info mesh-info "triangles" "faces,closed" ${js_data}/bunny.off ${js
 js_test(proxy_gen proxy-gen "proxy-gen \\[.*verified: +yes.*total" "faces,verified,hausdorff"
   ${js_data}/bunny.off --kind outside --method hull -o ${js_dir}/proxy_gen/bunny.hull.ply
   --progress)
+# The generators that call OpenMesh (QEM) and CGAL (the inside wrap) print nothing on stdout either.
+js_test(proxy_gen_qem proxy-gen "verified:" "faces,hausdorff"
+  ${js_data}/bunny.off --kind general --method qem -o ${js_dir}/proxy_gen_qem/bunny.qem.ply)
+js_test(proxy_gen_inside_wrap proxy-gen "verified: +yes" "faces,hausdorff"
+  ${js_data}/hard/cow.off --kind inside -o ${js_dir}/proxy_gen_inside_wrap/cow.inside.ply)
 js_test(proxy_gen_scene proxy-gen "== bunny.*scene with proxies" "meshes,scene_out"
   ${CMAKE_SOURCE_DIR}/scenes/cornell-bunny.json --kind outside --method hull
   --out-dir ${js_dir}/proxy_gen_scene/proxies)
