@@ -207,6 +207,7 @@ int runScene(const Args& a, const CommonOptions& common) {
     }
     if (!errors[i].empty()) reports[i] = {{"name", mesh.name}, {"error", errors[i]}};
     progress.update();
+    progress.setLabel(mesh.name);  // the mesh finished last (one line each in a log)
   });
   progress.done();
 

@@ -40,9 +40,9 @@ std::string budgetText(const json& r) {
   if (p.value("max_faces", 0) > 0)
     budget = fmt::format("{} faces (--max-faces)", p["max_faces"].get<uint64_t>());
   else if (p.contains("max_faces_from_ratio"))
-    budget = fmt::format("{} faces (--ratio times the input's {})",
-                         p["max_faces_from_ratio"].get<uint64_t>(),
-                         r["input"]["faces"].get<uint64_t>());
+    budget =
+        fmt::format("{} faces (--ratio times the input's {})",
+                    p["max_faces_from_ratio"].get<uint64_t>(), r["input"]["faces"].get<uint64_t>());
   else if (p.contains("max_faces_auto"))
     budget = fmt::format("{} faces (the input's count: a proxy must not cost more)",
                          p["max_faces_auto"].get<uint64_t>());
