@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 #include <CLI/CLI.hpp>
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <mutex>
@@ -14,6 +15,8 @@
 #include "proxies/general/proxy_pipeline.h"
 #include "proxies/general/written_class.h"
 #include "scene/scene_desc.h"
+#include "stage_progress.h"
+#include "summary_text.h"
 #include "util/app_main.h"
 #include "util/error.h"
 #include "util/output_path.h"
@@ -35,6 +38,7 @@ struct Args {
   size_t max_faces = 0;
   double max_seconds = 600;
   bool fill_holes = false;
+  bool progress = false;  // the bar also when stderr is not a terminal
 };
 
 ProxyGenOptions toOptions(const Args& a, const CommonOptions& common) {
@@ -76,14 +80,31 @@ void emit(const json& report, const std::string& summary, const CommonOptions& c
   printHumanReport(common, summary);
 }
 
+// Loading is proxy-gen's own stage: it goes into the report's seconds (and their total, which
+// then covers everything but writing).
+void addLoadSeconds(json& report, double load_seconds) {
+  json& seconds = report["seconds"];
+  seconds["load"] = load_seconds;
+  seconds["total"] = seconds.value("total", 0.0) + load_seconds;
+}
+
 int runMesh(const Args& a, const CommonOptions& common) {
   if (a.output.empty())
     throw Error("", "no output file", "a mesh input needs -o OUTPUT", "add -o proxy.ply");
   if (!isSupportedMeshExtension(a.output))
     throw Error(a.output, "unsupported output extension",
                 "proxy-gen writes .obj, .ply, .off or .drc");
+  StageProgress progress(common.quiet, a.progress);
+  progress.stage("load");
+  const auto load_start = std::chrono::steady_clock::now();
   const TriMesh input = loadMesh(a.input);
-  ProxyGenResult result = generateProxy(input, toOptions(a, common));
+  const double load_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
+  ProxyGenOptions options = toOptions(a, common);
+  options.on_stage = [&](const std::string& stage) { progress.stage(stage); };
+  ProxyGenResult result = generateProxy(input, options);
+  progress.done();
+  addLoadSeconds(result.report, load_seconds);
   OutputSet outputs(MissingFolders::kCreate);
   // The file must hold the very mesh that was verified: Draco without quantization.
   SaveOptions save;
@@ -92,7 +113,7 @@ int runMesh(const Args& a, const CommonOptions& common) {
   noteWrittenClass(result.report, a.input);
   result.report["output"] = a.output;
   result.report["output_sha256"] = outputs.sha256Of(a.output);
-  emit(result.report, formatProxyReport(result.report), common, outputs);
+  emit(result.report, proxySummaryText(result.report), common, outputs);
   return kExitOk;
 }
 
@@ -129,20 +150,24 @@ int runScene(const Args& a, const CommonOptions& common) {
   std::vector<std::optional<ProxyRef>> refs(n);
   std::vector<std::string> errors(n), skipped(n);
   std::vector<int> codes(n, kExitOk);
-  Progress progress("proxy-gen", n, common.quiet);
+  Progress progress("proxy-gen", n, common.quiet, a.progress);
   tbb::parallel_for(size_t(0), n, [&](size_t i) {
     const SceneMeshDesc& mesh = scene.meshes[i];
     const fs::path& out = proxy_files[i];
     try {
       ProxyGenOptions o = base;
       o.seed = hashKeys(common.seed, i);  // per-mesh stream: same result at any thread count
+      const auto load_start = std::chrono::steady_clock::now();
       const TriMesh input = loadMesh(mesh.file);
+      const double load_seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
       // A proxy only pays if it has fewer faces than its original; no closed mesh has fewer
       // than 4, so a smaller original (a ground quad) is skipped without trying.
       if (input.numTriangles() < 4) {
         skipped[i] = fmt::format("{} faces: no closed proxy can have fewer", input.numTriangles());
       } else {
         ProxyGenResult r = generateProxy(input, o);
+        addLoadSeconds(r.report, load_seconds);
         if (r.proxy.numTriangles() >= input.numTriangles()) {
           skipped[i] = fmt::format("its {} proxy has {} faces, the original {}: not cheaper",
                                    a.kind, r.proxy.numTriangles(), input.numTriangles());
@@ -182,6 +207,7 @@ int runScene(const Args& a, const CommonOptions& common) {
     }
     if (!errors[i].empty()) reports[i] = {{"name", mesh.name}, {"error", errors[i]}};
     progress.update();
+    progress.setLabel(mesh.name);  // the mesh finished last (one line each in a log)
   });
   progress.done();
 
@@ -201,7 +227,7 @@ int runScene(const Args& a, const CommonOptions& common) {
       continue;
     }
     noteWrittenClass(reports[i], scene.meshes[i].file.string());
-    summary += fmt::format("== {}\n{}", scene.meshes[i].name, formatProxyReport(reports[i]));
+    summary += fmt::format("== {}\n{}", scene.meshes[i].name, proxySummaryText(reports[i]));
     auto& proxies = scene.meshes[i].proxies;
     std::erase_if(proxies, [&](const ProxyRef& p) { return p.kind == a.kind; });
     proxies.push_back(*refs[i]);
@@ -279,6 +305,10 @@ int main(int argc, char** argv) {
       "inside: fill the holes of an open input first; the proxy is then written as class general "
       "(a ray through a hole can reach it), see docs/proxy_classes.md");
   addCommonOptions(app, common);
+  app.add_flag("--progress", a.progress,
+               "Show the progress bar (stages of one mesh, meshes of a scene) on stderr even when "
+               "it is not a terminal (one line per stage); without it, only on a terminal")
+      ->excludes("--quiet");
   return runApp(app, argc, argv, common, [&] {
     checkOutputs({a.input}, {{"-o", a.output}, {"--json", common.json_path}});
     fs::path in(a.input);

@@ -1,6 +1,9 @@
 #include "util/progress.h"
 
+#include <fmt/core.h>
 #include <unistd.h>
+
+#include <algorithm>
 #include <cstdio>
 
 namespace proxyvis {
@@ -13,10 +16,11 @@ void Progress::setGloballyQuiet(bool quiet) {
   g_quiet = quiet;
 }
 
-Progress::Progress(std::string title, uint64_t total_work, bool quiet)
+Progress::Progress(std::string title, uint64_t total_work, bool quiet, bool force)
     : title_(std::move(title)),
       total_(total_work == 0 ? 1 : total_work),
-      enabled_(!quiet && !g_quiet && ::isatty(STDERR_FILENO)),
+      enabled_(!quiet && !g_quiet && (force || ::isatty(STDERR_FILENO))),
+      terminal_(::isatty(STDERR_FILENO)),
       start_(std::chrono::steady_clock::now()),
       last_draw_(start_) {}
 
@@ -30,7 +34,7 @@ double Progress::elapsedSeconds() const {
 
 void Progress::update(uint64_t work) {
   uint64_t now_done = done_.fetch_add(work) + work;
-  if (!enabled_) return;
+  if (!enabled_ || !terminal_ || finished_) return;  // a log gets no redraws
   auto now = std::chrono::steady_clock::now();
   if (now - last_draw_ < std::chrono::milliseconds(200)) return;
   std::unique_lock lock(mutex_, std::try_to_lock);
@@ -39,11 +43,30 @@ void Progress::update(uint64_t work) {
   draw(now_done, false);
 }
 
+void Progress::setLabel(std::string label) {
+  if (!enabled_ || finished_) return;
+  std::lock_guard lock(mutex_);
+  if (label == label_) return;  // a stage that runs again in a row
+  label_ = std::move(label);
+  last_draw_ = std::chrono::steady_clock::now();
+  draw(done_, false);
+}
+
 void Progress::done() {
   if (finished_.exchange(true)) return;
   if (enabled_) {
     std::lock_guard lock(mutex_);
+    label_.clear();
     draw(total_, true);
+  }
+}
+
+void Progress::abandon() {
+  if (finished_.exchange(true)) return;
+  if (enabled_ && terminal_) {
+    std::lock_guard lock(mutex_);
+    std::fputs("\r\033[K", stderr);  // erase the bar's line: the error line takes it
+    std::fflush(stderr);
   }
 }
 
@@ -56,9 +79,13 @@ void Progress::draw(uint64_t done_work, bool final) {
   bar[kWidth] = 0;
   double t = elapsedSeconds();
   double eta = frac > 0 ? t / frac - t : 0;
-  std::fprintf(
-      stderr, "\r%s [%s] %5.1f%% %6.1fs%s", title_.c_str(), bar, 100 * frac, t,
-      final ? "       \n" : (std::string(" eta ") + std::to_string(int(eta)) + "s").c_str());
+  // The tail is padded so that a shorter one overwrites all of a longer one on a terminal.
+  std::string tail = final            ? std::string()
+                     : label_.empty() ? fmt::format("eta {}s", int(eta))
+                                      : label_;
+  if (terminal_) tail = fmt::format("{:<24}", tail);
+  std::fprintf(stderr, "%s%s [%s] %5.1f%% %6.1fs %s%s", terminal_ ? "\r" : "", title_.c_str(), bar,
+               100 * frac, t, tail.c_str(), final || !terminal_ ? "\n" : "");
   std::fflush(stderr);
 }
 

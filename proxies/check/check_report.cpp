@@ -3,7 +3,9 @@
 #include <fmt/core.h>
 
 #include <nlohmann/json.hpp>
+#include <optional>
 
+#include "proxies/check/distance_report.h"
 #include "util/atomic_write.h"
 #include "util/error.h"
 #include "util/output_set.h"
@@ -19,9 +21,32 @@ std::string rateLine(const char* name, const RateEstimate& e, const char* meanin
                      meaning);
 }
 
+// Why an open mesh has no volume: "closed" here is the exact check's ray-parity test.
+constexpr const char* kOpenMeshNote =
+    "open: some edge has an odd number of faces (a boundary), so the surface bounds no volume";
+
 std::string meshLine(const char* role, const MeshSummary& m) {
-  return fmt::format("  {:<9} {:>9} faces {:>9} vertices  {:<6}  volume {:.6g}   {}\n", role,
-                     m.faces, m.vertices, m.closed ? "closed" : "open", m.volume, m.source);
+  const std::string volume =
+      m.closed ? fmt::format("volume {:.6g}", m.volume) : std::string("no volume (open)");
+  return fmt::format("  {:<9} {:>9} faces {:>9} vertices  {:<6}  {:<18}  {}\n", role, m.faces,
+                     m.vertices, m.closed ? "closed" : "open", volume, m.source);
+}
+
+// The volume ratio proxy/original, or why there is none.
+std::optional<double> volumeRatio(const PairCheckReport& r) {
+  if (r.original.closed && r.proxy.closed && r.original.volume > 0)
+    return r.proxy.volume / r.original.volume;
+  return std::nullopt;
+}
+std::string noVolumeRatioReason(const PairCheckReport& r) {
+  if (!r.original.closed && !r.proxy.closed) return "both meshes are open: neither bounds a volume";
+  if (!r.original.closed) return "the original is open: it bounds no volume";
+  if (!r.proxy.closed) return "the proxy is open: it bounds no volume";
+  return "the original's volume is zero";
+}
+
+HausdorffDistances distances(const PairCheckReport& r) {
+  return {r.distance_original_to_proxy, r.distance_proxy_to_original, r.original_diagonal};
 }
 
 nlohmann::json rateJson(const RateEstimate& e) {
@@ -46,6 +71,7 @@ nlohmann::json meshJson(const MeshSummary& m) {
   nlohmann::json j = {
       {"file", m.source}, {"faces", m.faces}, {"vertices", m.vertices}, {"closed", m.closed}};
   j["volume"] = m.closed ? nlohmann::json(m.volume) : nlohmann::json(nullptr);
+  if (!m.closed) j["volume_note"] = kOpenMeshNote;
   return j;
 }
 
@@ -78,12 +104,12 @@ std::string formatHumanReport(const PairCheckReport& r) {
   out += "Meshes\n";
   out += meshLine("original", r.original);
   out += meshLine("proxy", r.proxy);
-  if (r.original.closed && r.proxy.closed && r.original.volume > 0)
-    out +=
-        fmt::format("  volume ratio proxy/original {:.4f}\n", r.proxy.volume / r.original.volume);
-  out +=
-      fmt::format("  distance (sampled Hausdorff) original->proxy {:.6g}, proxy->original {:.6g}\n",
-                  r.distance_original_to_proxy, r.distance_proxy_to_original);
+  if (const std::optional<double> ratio = volumeRatio(r))
+    out += fmt::format("  volume ratio proxy/original {:.4f}\n", *ratio);
+  else
+    out += fmt::format("  volume ratio proxy/original: none ({})\n", noVolumeRatioReason(r));
+  out += fmt::format("  Hausdorff distance (sampled, a lower bound): {}\n",
+                     hausdorffText(distances(r)));
   out +=
       fmt::format("\nSegments: {} ({} distribution, seed {}{})\n", c.total(), r.distribution,
                   r.seed, r.sampled.skipped ? fmt::format(", {} skipped", r.sampled.skipped) : "");
@@ -173,12 +199,10 @@ nlohmann::json toJson(const PairCheckReport& r) {
   j["seconds"] = r.seconds;
   j["original"] = meshJson(r.original);
   j["proxy"] = meshJson(r.proxy);
-  j["volume_ratio"] = r.original.closed && r.proxy.closed && r.original.volume > 0
-                          ? nlohmann::json(r.proxy.volume / r.original.volume)
-                          : nlohmann::json(nullptr);
-  j["hausdorff"] = {{"original_to_proxy", r.distance_original_to_proxy},
-                    {"proxy_to_original", r.distance_proxy_to_original},
-                    {"method", "sampled one-sided maximum (lower bound)"}};
+  const std::optional<double> ratio = volumeRatio(r);
+  j["volume_ratio"] = ratio ? nlohmann::json(*ratio) : nlohmann::json(nullptr);
+  if (!ratio) j["volume_ratio_note"] = noVolumeRatioReason(r);
+  j["hausdorff"] = hausdorffJson(distances(r));
   return j;
 }
 

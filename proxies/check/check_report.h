@@ -16,6 +16,9 @@ std::string formatHumanReport(const PairCheckReport& report);
 
 // Keys: counts {HH, HM, MH, MM}, V_avg, f_hit, f_miss, intervals, sampled_class, exact,
 // cost_ratio, seed, rays, seconds, plus details (meshes, distances, error rates, verdicts).
+// Volumes are null for an open mesh, with a "volume_note" saying why (and "volume_ratio_note");
+// "hausdorff" holds the distances in scene units and as fractions of the original's diagonal
+// (proxies/check/distance_report.h).
 nlohmann::json toJson(const PairCheckReport& report);
 
 // ASCII PLY: two vertices and one edge per segment, colored red for HM' and blue for MH';

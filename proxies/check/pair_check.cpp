@@ -59,6 +59,7 @@ PairCheckReport checkPair(const TriMesh& original, const TriMesh& proxy,
       sampledOneSidedDistance(original, proxy, options.distance_samples, hashKeys(options.seed, 1));
   r.distance_proxy_to_original =
       sampledOneSidedDistance(proxy, original, options.distance_samples, hashKeys(options.seed, 2));
+  r.original_diagonal = original.diagonal();
 
   TraceDevice device;
   std::unique_ptr<TraceScene> original_scene = buildScene(device, original);

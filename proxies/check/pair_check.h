@@ -35,6 +35,7 @@ struct PairCheckReport {
   std::string label;  // e.g. "dragon / outside (wrap)" in a scene; empty for a plain pair
   MeshSummary original, proxy;
   double distance_original_to_proxy = 0, distance_proxy_to_original = 0;  // sampled one-sided
+  double original_diagonal = 0;  // of the original's bounding box: the distances' yardstick
   ContainmentResult exact;
   double exact_seconds = 0;
   std::string distribution;  // "sphere" or "scene"

@@ -8,6 +8,7 @@
 
 #include "mesh/validation.h"
 #include "proxies/check/containment.h"
+#include "proxies/check/distance_report.h"
 #include "proxies/check/mesh_distance.h"
 #include "proxies/general/budget_ladder.h"
 #include "proxies/general/budget_shapes.h"
@@ -155,7 +156,7 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
   const std::string method = resolveMethod(options);
   json report;
   json& seconds = report["seconds"] = json::object();
-  StageTimer timer(seconds);
+  StageTimer timer(seconds, options.on_stage);
   checkOptionRanges(options);
   // Before CGAL or OpenMesh see the mesh: they crash, abort or loop on some geometry that loads.
   requireProxyGeometry(input, geometryNeed(options.kind, method),
@@ -278,11 +279,16 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
     report["volume_ratio"] = (ref_volume && p_report.closed && *ref_volume > 0)
                                  ? json(proxy.signedVolume() / *ref_volume)
                                  : json(nullptr);
-    report["hausdorff_proxy_to_original"] =
-        sampledOneSidedDistance(proxy, reference, options.hausdorff_samples, options.seed) / diag;
-    report["hausdorff_original_to_proxy"] =
-        sampledOneSidedDistance(reference, proxy, options.hausdorff_samples, options.seed + 1) /
-        diag;
+    HausdorffDistances h;
+    h.proxy_to_original =
+        sampledOneSidedDistance(proxy, reference, options.hausdorff_samples, options.seed);
+    h.original_to_proxy =
+        sampledOneSidedDistance(reference, proxy, options.hausdorff_samples, options.seed + 1);
+    h.diagonal = diag;
+    // Fractions of the diagonal (the unit of --alpha and --offset); "hausdorff" adds scene units.
+    report["hausdorff_proxy_to_original"] = h.proxy_to_original / diag;
+    report["hausdorff_original_to_proxy"] = h.original_to_proxy / diag;
+    report["hausdorff"] = hausdorffJson(h);
   });
   seconds["total"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -309,42 +315,6 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
                                                 : failureAdvice(options.kind, method));
   }
   return {std::move(chosen.mesh), verified, std::move(report)};
-}
-
-std::string formatProxyReport(const json& r) {
-  auto num = [](const json& v, const char* fmt_str) {
-    return v.is_number() ? fmt::format(fmt::runtime(fmt_str), v.get<double>()) : std::string("n/a");
-  };
-  std::string s;
-  s += fmt::format("input:      {} ({} faces, {})\n", r["input"]["path"].get<std::string>(),
-                   r["input"]["faces"].get<uint64_t>(),
-                   r["input"]["closed"].get<bool>()        ? "closed"
-                   : r["input"].value("watertight", false) ? "watertight, non-manifold"
-                                                           : "open");
-  s += fmt::format(
-      "proxy:      {} / {}, {} faces (before budget {}){}\n", r["kind"].get<std::string>(),
-      r["method"].get<std::string>(), r["faces"].get<uint64_t>(),
-      r["faces_before_budget"].get<uint64_t>(),
-      r.contains("budget_fallback")
-          ? fmt::format(", from the budget fallback: {}", r["budget_fallback"].get<std::string>())
-          : "");
-  if (r.contains("budget_reached") && !r["budget_reached"].get<bool>())
-    s += "budget:     NOT reached (--budget soft, or no budget was asked for)\n";
-  s += fmt::format("parameters: {}\n", r["parameters"].dump());
-  s += fmt::format("volume ratio: {}\n", num(r["volume_ratio"], "{:.4f}"));
-  s += fmt::format("hausdorff (fraction of diagonal): proxy->original {}, original->proxy {}\n",
-                   num(r["hausdorff_proxy_to_original"], "{:.5f}"),
-                   num(r["hausdorff_original_to_proxy"], "{:.5f}"));
-  s += fmt::format("checks:     {}\n", r["checks"].dump());
-  s += fmt::format("verified:   {}\n", r["verified"].get<bool>() ? "yes" : "NO");
-  if (r.contains("class_reason"))
-    s += fmt::format("class:      {} ({})\n", r["class"].get<std::string>(),
-                     r["class_reason"].get<std::string>());
-  std::string secs;
-  for (const auto& [k, v] : r["seconds"].items())
-    secs += fmt::format("{}{} {:.3f}", secs.empty() ? "" : ", ", k, v.get<double>());
-  s += fmt::format("seconds:    {}\n", secs);
-  return s;
 }
 
 }  // namespace proxyvis

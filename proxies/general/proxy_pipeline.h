@@ -5,6 +5,7 @@
 // Hausdorff distances both ways, seconds per stage). Used by apps/proxy-gen, the tests and
 // bench/proxy_gen.
 #include <cstdint>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -51,6 +52,9 @@ struct ProxyGenOptions {
   // Time budget for the whole generation (wrap, seed search, erosion, decimation, face budget
   // poll it); 0 = none.
   double max_seconds = 0;
+  // Called as each stage starts, with its key in the report's "seconds" (validate_input,
+  // fill_holes, build, simplify, verify, budget_ladder, metrics); empty = nothing to tell.
+  std::function<void(const std::string& stage)> on_stage;
 };
 
 // Methods accepted for a kind ("hull", "wrap" / "wrap", "erode" / "qem", "cgal-sms", "meshopt").
@@ -59,7 +63,7 @@ const std::vector<std::string>& proxyMethods(ProxyClass kind);
 struct ProxyGenResult {
   TriMesh proxy;
   bool verified = false;  // outside/inside: containment proven; general: closed, manifold, no SI
-  nlohmann::json report;  // see formatProxyReport for the keys
+  nlohmann::json report;  // the keys: docs/proxy_reports.md
 };
 
 // Builds and checks the proxy of `input` (report key "input.path" = input.source); a face budget
@@ -71,8 +75,5 @@ struct ProxyGenResult {
 // its guarantee or a hard budget is not met. A general proxy
 // that is not closed/manifold/free of self-intersections is returned with verified = false.
 ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& options);
-
-// The human summary of a report (one "key: value" line per number).
-std::string formatProxyReport(const nlohmann::json& report);
 
 }  // namespace proxyvis

@@ -1,17 +1,24 @@
 #pragma once
-// Seconds per named stage of a proxy-gen run, added up in a JSON object (report key "seconds").
+// Seconds per named stage of a proxy-gen run, added up in a JSON object (report key "seconds"),
+// and a call as each stage starts (proxy-gen's progress bar).
 #include <chrono>
+#include <functional>
 #include <nlohmann/json.hpp>
+#include <string>
 #include <type_traits>
+#include <utility>
 
 namespace proxyvis {
 
 class StageTimer {
  public:
-  explicit StageTimer(nlohmann::json& seconds) : seconds_(seconds) {}
+  explicit StageTimer(nlohmann::json& seconds,
+                      std::function<void(const std::string&)> on_start = {})
+      : seconds_(seconds), on_start_(std::move(on_start)) {}
   // Runs f() and adds its wall time to `stage`.
   template <typename F>
   auto run(const char* stage, F&& f) {
+    if (on_start_) on_start_(stage);
     const auto start = std::chrono::steady_clock::now();
     auto finish = [&] {
       const double s =
@@ -30,6 +37,7 @@ class StageTimer {
 
  private:
   nlohmann::json& seconds_;
+  std::function<void(const std::string&)> on_start_;
 };
 
 }  // namespace proxyvis

@@ -63,7 +63,7 @@ pg_test(scene_outside 0
 # --ratio is a relative face budget for an outside proxy too (5 % of the bunny's 6966 faces).
 pg_test(outside_ratio_budget 0
   "${pg_data}/bunny.off --kind outside --ratio 0.05 -o ${pg_dir}/bunny.ratio.ply"
-  REGEX "\"max_faces_from_ratio\":348.*verified: +yes" FILE ${pg_dir}/bunny.ratio.ply)
+  REGEX "budget: +348 faces \\(--ratio times the input's 6966\\), reached.*verified: +yes" FILE ${pg_dir}/bunny.ratio.ply)
 # Usage errors are one line naming the program, the flag and the rule.
 pg_test(negative_alpha 2 "${pg_data}/bunny.off --kind outside --alpha -1 -o ${pg_dir}/neg.ply"
   REGEX "proxy-gen: error: --alpha: must be in \\[0.001, 1\\], got -1" NO_FILE ${pg_dir}/neg.ply)

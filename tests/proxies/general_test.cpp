@@ -68,9 +68,14 @@ TEST(GeneralReport, HasEveryKeyAndRoundTrips) {
   EXPECT_EQ(parsed["method"], "qem");
   EXPECT_EQ(parsed["input"]["faces"].get<size_t>(), input.numTriangles());
   EXPECT_TRUE(parsed["seconds"].contains("total"));
-  const std::string summary = formatProxyReport(parsed);
-  EXPECT_NE(summary.find("volume ratio"), std::string::npos);
-  EXPECT_NE(summary.find("hausdorff"), std::string::npos);
+  // The distances in scene units beside the fractions of the diagonal, which they must match.
+  const nlohmann::json& h = parsed["hausdorff"];
+  EXPECT_EQ(h["unit"], "scene units");
+  EXPECT_NEAR(h["diagonal"].get<double>(), input.diagonal(), 1e-6);
+  EXPECT_NEAR(h["proxy_to_original"].get<double>() / input.diagonal(),
+              parsed["hausdorff_proxy_to_original"].get<double>(), 1e-9);
+  EXPECT_NEAR(h["original_to_proxy_fraction_of_diagonal"].get<double>(),
+              parsed["hausdorff_original_to_proxy"].get<double>(), 1e-9);
 }
 
 }  // namespace
