@@ -62,6 +62,35 @@ TEST(Report, JsonHasTheContractKeys) {
   EXPECT_DOUBLE_EQ(j["rows"][1]["rays_per_pixel"]["original"].get<double>(), 5.0);
 }
 
+TEST(Report, TypedRowFieldsKeepTheirJsonKeys) {
+  ReportRow r = row("equal-time", "roulette", 30, 2.0, 5e-4);
+  r.spp_max = 33;
+  r.shading_seconds = 0.25;
+  r.visibility_seconds = 1.5;
+  r.time_budget = 2.0;
+  r.proxy_class = "outside";
+  r.mse_per_seed = {4e-4, 6e-4};
+  ReportLearned learned;
+  learned.regions = 12;
+  learned.regions_roulette = 5;
+  learned.cost_proxy[1] = 7;
+  r.learned = learned;
+  nlohmann::json j = rowToJson(r);
+  EXPECT_EQ(j.at("spp_max"), 33);
+  EXPECT_DOUBLE_EQ(j.at("shading_seconds").get<double>(), 0.25);
+  EXPECT_DOUBLE_EQ(j.at("visibility_seconds").get<double>(), 1.5);
+  EXPECT_DOUBLE_EQ(j.at("time_budget").get<double>(), 2.0);
+  EXPECT_EQ(j.at("proxy_class"), "outside");
+  EXPECT_EQ(j.at("mse_per_seed").size(), 2u);
+  EXPECT_EQ(j.at("learned").at("regions"), 12);
+  EXPECT_EQ(j.at("learned").at("regions_roulette"), 5);
+  EXPECT_DOUBLE_EQ(j.at("learned").at("cost_proxy").at(1).get<double>(), 7.0);
+  // An equal-spp row has no budget and a non-roulette row learned nothing: no such keys.
+  nlohmann::json plain = rowToJson(row("equal-spp", "exact", 4, 1.0, 4e-3));
+  EXPECT_FALSE(plain.contains("time_budget"));
+  EXPECT_FALSE(plain.contains("learned"));
+}
+
 TEST(Report, CsvHasHeaderAndOneLinePerRow) {
   Report rep = sampleReport();
   std::istringstream in(reportToCsv(rep.rows));
