@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "metrics/color_map.h"
 #include "render/image_io.h"
 
 namespace proxyvis {
@@ -12,12 +13,6 @@ namespace proxyvis {
 namespace fs = std::filesystem;
 
 namespace {
-
-// Inverse of the sRGB transfer curve (IEC 61966-2-1), for colours that are already display-
-// encoded but go through writeImage's linear-to-sRGB PNG path.
-float srgbToLinear(float v) {
-  return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
-}
 
 std::string rangeText(const HeatMapRange& r) {
   return fmt::format("log scale, {:.1e} (dark) to {:.1e} (bright)", r.lo, r.hi);
@@ -52,9 +47,7 @@ HeatMapRange sharedLogRange(const std::vector<const std::vector<float>*>& maps) 
 
 Image heatMapImage(const std::vector<float>& values, int width, int height,
                    const HeatMapRange& range) {
-  Image image{width, height, 3, heatMapRgb(values, range)};
-  for (float& v : image.pixels) v = srgbToLinear(v);
-  return image;
+  return Image{width, height, 3, heatMapRgb(values, range)};
 }
 
 void writeCellImages(const CellImages& images, const fs::path& dir, float exposure,
@@ -108,9 +101,9 @@ std::vector<HtmlGallery> cellGalleries(const std::string& title, const std::stri
 
 LogLogPlot mseTimePlot(const std::vector<ReportRow>& rows) {
   LogLogPlot plot;
-  plot.title = "MSE against render time (log-log; lower left is better)";
-  plot.x_label = "time per render (s)";
-  plot.y_label = "MSE";
+  plot.title = "MSE against render time (lower left is better; bars: ± standard error over seeds)";
+  plot.x_label = "wall time per render (s, log scale)";
+  plot.y_label = "MSE (linear radiance², log scale)";
   for (const ReportRow& r : rows) {
     auto it = std::find_if(plot.series.begin(), plot.series.end(),
                            [&](const PlotSeries& s) { return s.name == r.estimator; });
@@ -118,7 +111,10 @@ LogLogPlot mseTimePlot(const std::vector<ReportRow>& rows) {
       plot.series.push_back({r.estimator, {}});
       it = plot.series.end() - 1;
     }
-    it->points.push_back({r.seconds, r.mse, fmt::format("{} {:.0f} spp", r.table, r.spp)});
+    std::string label = r.table == kEqualTimeTable
+                            ? fmt::format("equal time, {:.0f} spp reached", r.spp)
+                            : fmt::format("{:.0f} spp", r.spp);
+    it->points.push_back({r.seconds, r.mse, label, r.mse_stderr});
   }
   return plot;
 }

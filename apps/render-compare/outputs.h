@@ -31,8 +31,8 @@ struct CellImages {
 void writeCellImages(const CellImages& images, const std::filesystem::path& dir, float exposure,
                      const HeatMapRange& error_range, const HeatMapRange& cost_range);
 
-// A heat-map as an image for writeImage's PNG path (linear values that its sRGB curve turns
-// back into the colour map).
+// A heat-map as an image for writeImage's PNG path (OIIO's colour maps are linear values that its
+// sRGB curve turns into the map's published colours).
 Image heatMapImage(const std::vector<float>& values, int width, int height,
                    const HeatMapRange& range);
 
