@@ -99,6 +99,7 @@ nlohmann::json reportToJson(const Report& report) {
   nlohmann::json rows = nlohmann::json::array();
   for (const ReportRow& r : report.rows) rows.push_back(rowToJson(r));
   return {{"title", report.title},
+          {"scene_name", report.scene_name},
           {"relmse_epsilon", kRelMseEpsilon},
           {"efficiency_definition", "1/(MSE*seconds) relative to exact"},
           {"meta", report.meta},
@@ -135,7 +136,8 @@ std::string markdownTable(const std::vector<ReportRow>& rows, std::string_view t
 }
 
 std::string reportToMarkdown(const Report& report) {
-  std::string out = "# " + report.title + "\n\n";
+  std::string out = "# " + (report.scene_name.empty() ? report.title : report.scene_name) + "\n\n";
+  if (!report.scene_name.empty() && !report.title.empty()) out += report.title + "\n\n";
   for (const std::string& note : report.notes) out += "- " + note + "\n";
   if (!report.notes.empty()) out += "\n";
   out += fmt::format(

@@ -53,7 +53,8 @@ struct ReportRow {
 };
 
 struct Report {
-  std::string title;
+  std::string title;       // what the report is (e.g. "render-compare: equal time and samples")
+  std::string scene_name;  // the scene's name: the page's heading (the title when empty)
   nlohmann::json meta = nlohmann::json::object();  // scene, settings, reference, baseline...
   std::vector<ReportRow> rows;
   std::vector<std::string> notes;  // plain-text remarks (warnings, what is missing)
@@ -66,7 +67,7 @@ void fillRelativeEfficiency(std::vector<ReportRow>& rows, std::string_view table
                             std::string_view baseline = "exact");
 
 nlohmann::json rowToJson(const ReportRow& row);
-// {"title", "relmse_epsilon", "meta": {...}, "notes": [...], "rows": [...]}.
+// {"title", "scene_name", "relmse_epsilon", "meta": {...}, "notes": [...], "rows": [...]}.
 nlohmann::json reportToJson(const Report& report);
 
 // One header line, then one line per row; numbers in full precision.
@@ -75,7 +76,7 @@ std::string reportToCsv(const std::vector<ReportRow>& rows);
 // A GitHub Markdown table of the rows of `table` (all rows if `table` is empty).
 std::string markdownTable(const std::vector<ReportRow>& rows, std::string_view table = {});
 
-// Title, notes and one table per kind.
+// Heading (scene name, else title), notes and one table per kind.
 std::string reportToMarkdown(const Report& report);
 
 }  // namespace proxyvis
