@@ -13,7 +13,8 @@ namespace proxyvis {
 namespace {
 
 // Fits an 800 px window: the meta grid drops to fewer columns, tables scroll in their own box,
-// plots and images shrink (max-width), and numbers (td, .num) never wrap inside.
+// plots and images shrink (max-width), long words in text (paths) may break anywhere, and
+// numbers (td, .num) never wrap inside.
 constexpr const char* kStyle = R"(
 body { font-family: system-ui, sans-serif; margin: 20px; color: #222; max-width: 1500px; }
 h1 { font-size: 24px; margin: 0 0 2px; } p.sub { color: #666; margin: 0 0 10px; font-size: 14px; }
@@ -23,6 +24,7 @@ h3 { font-size: 15px; margin: 14px 0 6px; }
 .meta div { break-inside: avoid; padding: 1px 0; overflow-wrap: anywhere; }
 .meta b { color: #777; font-weight: normal; display: block; font-size: 12px; }
 .notes { font-size: 13px; color: #444; padding-left: 20px; }
+h1, .notes, p.desc, figcaption, ul.files { overflow-wrap: anywhere; }
 .notes li.warning { color: #b00020; font-weight: bold; }
 .num, td { white-space: nowrap; }
 .scroll { overflow-x: auto; max-width: 100%; }
@@ -97,6 +99,7 @@ std::string metaValueHtml(const nlohmann::json& v, const HtmlReportLayout& layou
     return "<span class=\"num\">" + fmt::format("{:.4g}", v.get<double>()) + "</span>";
   if (v.is_number()) return "<span class=\"num\">" + v.dump() + "</span>";
   if (v.is_array()) {
+    if (v.empty()) return "none";
     std::string out;
     for (const auto& e : v) out += (out.empty() ? "" : ", ") + metaValueHtml(e, layout);
     return out;

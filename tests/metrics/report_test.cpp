@@ -178,6 +178,7 @@ TEST(Report, HtmlMetaHasReadableLabelsLinksAndRecordTables) {
   rep.meta["reference_spp"] = 1024;
   rep.meta["reference_file"] = "reference-ab12.exr";
   rep.meta["uses_proxies"] = true;
+  rep.meta["warnings"] = nlohmann::json::array();
   rep.meta["proxy_classes"] = nlohmann::json::array(
       {{{"mesh", "box"}, {"class", "outside"}}, {{"mesh", "bunny"}, {"class", "general"}}});
   HtmlReportLayout layout;
@@ -186,6 +187,7 @@ TEST(Report, HtmlMetaHasReadableLabelsLinksAndRecordTables) {
   EXPECT_NE(html.find("<b>reference: samples per pixel</b>"), std::string::npos);
   EXPECT_EQ(html.find("reference_spp"), std::string::npos);
   EXPECT_NE(html.find("<b>scene has proxies</b>yes"), std::string::npos);
+  EXPECT_NE(html.find("<b>warnings</b>none"), std::string::npos);
   // A meta value naming a written file links it; the file list links it too.
   EXPECT_EQ(countOccurrences(html, "<a href=\"reference-ab12.exr\">"), 2u);
   EXPECT_NE(html.find("<h3>proxies</h3>"), std::string::npos);
