@@ -22,7 +22,7 @@ WIDTH = 800
 RESULT_ID = "pv-page-check"
 
 # Injected first into <head> of a copy of the page: records errors while the page loads, then
-# writes its findings into the DOM that --dump-dom prints.
+# sends its findings to the frames page.
 CHECK_SCRIPT = """<script>
 (function () {
   var failures = [];
@@ -44,13 +44,26 @@ CHECK_SCRIPT = """<script>
     if (root.scrollWidth > %(width)d || root.scrollWidth > root.clientWidth)
       failures.push('horizontal scroll: page ' + root.scrollWidth + ' px wide, window ' +
                     root.clientWidth + ' px');
-    var out = document.createElement('pre');
-    out.id = '%(id)s';
-    out.textContent = JSON.stringify({images: n, failures: failures});
-    document.body.appendChild(out);
+    parent.postMessage({page: location.pathname.split('/').pop(), images: n,
+                        failures: failures}, '*');
   });
 })();
-</script>""" % {"width": WIDTH, "id": RESULT_ID}
+</script>""" % {"width": WIDTH}
+
+# Opens every checked copy in an iframe of the page's width (one Chromium start for all of them:
+# it costs seconds) and writes their findings into the DOM that --dump-dom prints.
+FRAMES_PAGE = """<!DOCTYPE html><html><head><meta charset="utf-8"></head><body>
+<pre id="%(id)s"></pre>
+<script>
+var results = {};
+window.addEventListener('message', function (e) {
+  results[e.data.page] = e.data;
+  if (Object.keys(results).length === %(count)d)
+    document.getElementById('%(id)s').textContent = JSON.stringify(results);
+});
+</script>
+%(frames)s
+</body></html>"""
 
 
 class References(html.parser.HTMLParser):
@@ -84,38 +97,55 @@ def missing_files(page_text, folder):
     return bad, len(refs.links), len(refs.images)
 
 
-def check_page(chromium, page):
-    """Opens `page` in Chromium; returns (failures, number of images checked)."""
-    folder = os.path.dirname(os.path.abspath(page))
-    with open(page, encoding="utf-8") as f:
-        text = f.read()
-    failures, n_links, _ = missing_files(text, folder)
-    checked = os.path.join(folder, ".page_check_" + os.path.basename(page))
-    with open(checked, "w", encoding="utf-8") as f:
-        f.write(text.replace("<head>", "<head>" + CHECK_SCRIPT, 1))
+def check_pages(chromium, pages):
+    """Opens every page of `pages` (all in one folder) in Chromium; returns for each
+    (failures, number of images checked, number of links)."""
+    folder = os.path.dirname(os.path.abspath(pages[0]))
+    results, copies = {}, {}
+    for page in pages:
+        with open(page, encoding="utf-8") as f:
+            text = f.read()
+        failures, n_links, _ = missing_files(text, folder)
+        results[page] = (failures, 0, n_links)
+        copies[page] = os.path.join(folder, ".page_check_" + os.path.basename(page))
+        with open(copies[page], "w", encoding="utf-8") as f:
+            f.write(text.replace("<head>", "<head>" + CHECK_SCRIPT, 1))
+    frames_page = os.path.join(folder, ".page_check_frames.html")
+    with open(frames_page, "w", encoding="utf-8") as f:
+        f.write(FRAMES_PAGE % {
+            "id": RESULT_ID, "count": len(pages),
+            "frames": "\n".join(
+                f'<iframe src="{urllib.parse.quote(os.path.basename(c))}" width="{WIDTH}" '
+                'height="900"></iframe>' for c in copies.values())})
+    profile = os.path.join(folder, ".chromium-profile")
     cmd = [chromium, "--headless", "--disable-gpu", "--no-sandbox", "--no-first-run",
-           "--disable-extensions", "--allow-file-access-from-files",
-           f"--user-data-dir={os.path.join(folder, '.chromium-profile')}",
-           f"--window-size={WIDTH},900", "--virtual-time-budget=5000",
+           "--disable-extensions", "--allow-file-access-from-files", f"--user-data-dir={profile}",
+           f"--window-size={2 * WIDTH + 100},1000", "--virtual-time-budget=5000",
            "--enable-logging=stderr", "--v=0", "--dump-dom",
-           "file://" + urllib.parse.quote(os.path.abspath(checked))]
+           "file://" + urllib.parse.quote(os.path.abspath(frames_page))]
     try:
         run = subprocess.run(cmd, capture_output=True, text=True, timeout=60)
     finally:
-        os.remove(checked)
-        shutil.rmtree(os.path.join(folder, ".chromium-profile"), ignore_errors=True)
-    # Chromium logs every console message of the page as ...:CONSOLE:line] "text", source: ...
-    # (older versions: CONSOLE(line)).
-    for line in run.stderr.splitlines():
-        if re.search(r":CONSOLE[:(]\d+", line):
-            failures.append("console: " + line.split("] ", 1)[-1])
+        for c in list(copies.values()) + [frames_page]:
+            os.remove(c)
+        shutil.rmtree(profile, ignore_errors=True)
     match = re.search(r'<pre id="%s">(.*?)</pre>' % RESULT_ID, run.stdout, re.S)
-    if not match:
-        failures.append(f"Chromium did not run the page's checks (exit {run.returncode}):\n"
-                        + run.stderr[-2000:])
-        return failures, 0, n_links
-    result = json.loads(html.unescape(match.group(1)))
-    return failures + result["failures"], result["images"], n_links
+    found = json.loads(html.unescape(match.group(1))) if match and match.group(1) else {}
+    for page in pages:
+        failures, _, n_links = results[page]
+        name = os.path.basename(copies[page])
+        # Chromium logs every console message of a page as
+        # ...:CONSOLE:line] "text", source: URL (line) (older versions: CONSOLE(line)).
+        for line in run.stderr.splitlines():
+            if re.search(r":CONSOLE[:(]\d+", line) and urllib.parse.quote(name) in line:
+                failures.append("console: " + line.split("] ", 1)[-1])
+        if name not in found:
+            failures.append(f"Chromium did not run the page's checks (exit {run.returncode}):\n"
+                            + run.stderr[-2000:])
+            results[page] = (failures, 0, n_links)
+            continue
+        results[page] = (failures + found[name]["failures"], found[name]["images"], n_links)
+    return results
 
 
 def render_report(render_compare, scenes_dir, work):
@@ -180,8 +210,9 @@ def main():
     page = render_report(render_compare, scenes_dir, work)
 
     planted = planted_defects_page(page)
-    found, _, _ = check_page(chromium, planted)
+    results = check_pages(chromium, [page, planted])
     os.remove(planted)
+    found = results[planted][0]
     expected = ["no_such_image.png", "no_such_table.csv", "horizontal scroll",
                 "planted console error"]
     unnoticed = [e for e in expected if not any(e in f for f in found)]
@@ -190,7 +221,7 @@ def main():
         print("it found:\n  " + "\n  ".join(found))
         return 1
 
-    failures, images, links = check_page(chromium, page)
+    failures, images, links = results[page]
     if images < 10 or links < 10:
         failures.append(f"only {images} images and {links} links: not the whole report")
     if failures:
