@@ -170,8 +170,7 @@ int runCompare(CompareOptions& o) {
       stems.push_back(fmt::format("{}_equal-time", estimatorName(kind)));
     }
   int largest_spp = 0;
-  for (const CellResult& c : cells)
-    largest_spp = std::max(largest_spp, c.row.spp_max);
+  for (const CellResult& c : cells) largest_spp = std::max(largest_spp, c.row.spp_max);
 
   Reference ref = loadOrRenderReference(*scene, o, o.referenceSpp(largest_spp), dir);
   if (!o.common.quiet)
