@@ -23,6 +23,7 @@ PKGS=(
   libmeshoptimizer-dev libtbb-dev
   libcli11-dev libfmt-dev nlohmann-json3-dev libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  chromium  # headless: the report test opens render-compare's HTML page in it
 )
 
 # Only for ./setup.sh fuzz: the compiler with libFuzzer and the sanitizer runtimes.

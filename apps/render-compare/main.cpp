@@ -82,6 +82,7 @@ Report makeReport(const CompareOptions& o, const RenderScene& scene, const Refer
   const SceneDesc& desc = scene.desc();
   Report report;
   report.title = "render-compare: " + desc.path.filename().string();
+  report.scene_name = desc.path.stem().string();
   report.meta["scene"] = desc.path.string();
   report.meta["scene_hash"] = sceneHash(desc);
   report.meta["resolution"] = fmt::format("{}x{}", desc.camera.width, desc.camera.height);
@@ -169,8 +170,7 @@ int runCompare(CompareOptions& o) {
       stems.push_back(fmt::format("{}_equal-time", estimatorName(kind)));
     }
   int largest_spp = 0;
-  for (const CellResult& c : cells)
-    largest_spp = std::max(largest_spp, c.row.extra.at("spp_max").get<int>());
+  for (const CellResult& c : cells) largest_spp = std::max(largest_spp, c.row.spp_max);
 
   Reference ref = loadOrRenderReference(*scene, o, o.referenceSpp(largest_spp), dir);
   if (!o.common.quiet)
@@ -194,7 +194,9 @@ int runCompare(CompareOptions& o) {
   // estimators in one table compare.
   float exposure = autoExposure(ref.radiance);
   const std::string reference_png = "reference.png";
+  const std::string reference_exr = ref.file.filename().string();
   writeImage(ref.radiance, dir / reference_png, {exposure, false, {}});
+  writeColorBar(dir);
   HtmlReportLayout layout;
   layout.plots.push_back(mseTimePlot(report.rows));
   auto addTable = [&](std::string_view table, double spp, const std::string& title) {
@@ -211,7 +213,7 @@ int runCompare(CompareOptions& o) {
     for (const auto& m : cost_maps) cost_ptrs.push_back(&m);
     HeatMapRange error_range = sharedLogRange(error_maps), cost_range = sharedLogRange(cost_ptrs);
     for (const CellImages& im : images) writeCellImages(im, dir, exposure, error_range, cost_range);
-    return cellGalleries(title, reference_png, images, error_range, cost_range);
+    return cellGalleries(title, reference_png, reference_exr, images, error_range, cost_range);
   };
   auto add = [&](const std::vector<HtmlGallery>& g, bool shown) {
     if (shown) layout.galleries.insert(layout.galleries.end(), g.begin(), g.end());
@@ -222,6 +224,9 @@ int runCompare(CompareOptions& o) {
   for (int spp : o.spp_list)
     add(addTable(kEqualSppTable, spp, fmt::format("Equal samples ({} spp)", spp)),
         spp == o.spp_list.back());
+  std::vector<CellImages> all_cells;
+  for (size_t i = 0; i < cells.size(); ++i) all_cells.push_back({stems[i], &cells[i]});
+  layout.files = runFileGroups(reference_png, reference_exr, all_cells);
 
   nlohmann::json json = reportToJson(report);
   const std::string json_text = json.dump(2) + "\n";

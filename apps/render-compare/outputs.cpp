@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "metrics/color_map.h"
 #include "render/image_io.h"
 
 namespace proxyvis {
@@ -13,14 +14,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Inverse of the sRGB transfer curve (IEC 61966-2-1), for colours that are already display-
-// encoded but go through writeImage's linear-to-sRGB PNG path.
-float srgbToLinear(float v) {
-  return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
-}
+// Units of the heat-maps' colour bars.
+constexpr const char* kErrorUnit = "radiance²";
+constexpr const char* kCostUnit = "rays/px";
 
-std::string rangeText(const HeatMapRange& r) {
-  return fmt::format("log scale, {:.1e} (dark) to {:.1e} (bright)", r.lo, r.hi);
+std::string cellLabel(const ReportRow& row) {
+  return row.table == kEqualTimeTable ? row.estimator + ", equal time"
+                                      : fmt::format("{}, {:.0f} spp", row.estimator, row.spp);
 }
 
 }  // namespace
@@ -52,9 +52,7 @@ HeatMapRange sharedLogRange(const std::vector<const std::vector<float>*>& maps) 
 
 Image heatMapImage(const std::vector<float>& values, int width, int height,
                    const HeatMapRange& range) {
-  Image image{width, height, 3, heatMapRgb(values, range)};
-  for (float& v : image.pixels) v = srgbToLinear(v);
-  return image;
+  return Image{width, height, 3, heatMapRgb(values, range)};
 }
 
 void writeCellImages(const CellImages& images, const fs::path& dir, float exposure,
@@ -77,40 +75,77 @@ void writeCellImages(const CellImages& images, const fs::path& dir, float exposu
              dir / (images.stem + "_cost.png"));
 }
 
+void writeColorBar(const fs::path& dir) {
+  constexpr int kWidth = 256, kHeight = 8;
+  writeImage(Image{kWidth, kHeight, 3, colorBarRgb(kWidth, kHeight)}, dir / kColorBarFile);
+}
+
 std::vector<HtmlGallery> cellGalleries(const std::string& title, const std::string& reference_png,
+                                       const std::string& reference_exr,
                                        const std::vector<CellImages>& cells,
                                        const HeatMapRange& error_range,
                                        const HeatMapRange& cost_range) {
   HtmlGallery renders{title + ": images",
-                      "Tone-mapped PNG (linear EXR beside it), first seed.",
-                      {{reference_png, "reference", "exact, converged"}}};
+                      "Tone-mapped PNG of the first seed; the linked EXR holds the linear "
+                      "radiance, the AOV EXR the visibility and rays per pixel.",
+                      {{reference_png, "reference", "exact · converged", {{reference_exr, "EXR"}}}},
+                      std::nullopt};
   HtmlGallery errors{title + ": squared error per pixel",
-                     "Mean over RGB of (I − I_ref)², " + rangeText(error_range) +
-                         ", the same scale for every estimator.",
-                     {}};
+                     "Mean over RGB of (I − I_ref)², first seed; one colour scale for every "
+                     "estimator of the table, its range under each map.",
+                     {},
+                     HtmlColorBar{kColorBarFile, error_range, kErrorUnit}};
   HtmlGallery costs{title + ": rays per pixel",
-                    "proxy + original + 2 × probe rays per pixel, " + rangeText(cost_range) + ".",
-                    {}};
+                    "proxy + original + 2 × probe rays per pixel, first seed; one colour scale "
+                    "for every estimator of the table.",
+                    {},
+                    HtmlColorBar{kColorBarFile, cost_range, kCostUnit}};
   for (const CellImages& c : cells) {
     const ReportRow& row = c.cell->row;
     std::string detail =
         fmt::format("{:.0f} spp · {:.2f} s · MSE {:.2e}", row.spp, row.seconds, row.mse);
-    renders.images.push_back({c.stem + ".png", row.estimator, detail});
-    errors.images.push_back({c.stem + "_error.png", row.estimator, detail});
+    renders.images.push_back({c.stem + ".png",
+                              row.estimator,
+                              detail,
+                              {{c.stem + ".exr", "EXR"}, {c.stem + "_aov.exr", "AOV EXR"}}});
+    errors.images.push_back({c.stem + "_error.png", row.estimator, detail, {}});
     double px = row.pixels > 0 ? row.pixels : 1;
     costs.images.push_back(
-        {c.stem + "_cost.png", row.estimator,
-         fmt::format("{:.1f} proxy · {:.1f} orig · {:.1f} probe /px", row.rays.proxy / px,
-                     row.rays.original / px, row.rays.probe / px)});
+        {c.stem + "_cost.png",
+         row.estimator,
+         fmt::format("{:.1f} proxy · {:.1f} original · {:.1f} probe rays/px", row.rays.proxy / px,
+                     row.rays.original / px, row.rays.probe / px),
+         {{c.stem + "_aov.exr", "AOV EXR"}}});
   }
   return {renders, errors, costs};
 }
 
+std::vector<HtmlFileGroup> runFileGroups(const std::string& reference_png,
+                                         const std::string& reference_exr,
+                                         const std::vector<CellImages>& cells) {
+  std::vector<HtmlFileGroup> groups = {
+      {"Tables",
+       {{"report.json", "report.json"}, {"report.csv", "report.csv"}, {"report.md", "report.md"}}},
+      {"Reference",
+       {{reference_exr, reference_exr},
+        {fs::path(reference_exr).replace_extension(".json").string(), "its settings (JSON)"},
+        {reference_png, "PNG"}}},
+      {"Colour bar of the heat-maps", {{kColorBarFile, kColorBarFile}}}};
+  for (const CellImages& c : cells)
+    groups.push_back({cellLabel(c.cell->row),
+                      {{c.stem + ".exr", "EXR"},
+                       {c.stem + "_aov.exr", "AOV EXR"},
+                       {c.stem + ".png", "PNG"},
+                       {c.stem + "_error.png", "error map"},
+                       {c.stem + "_cost.png", "cost map"}}});
+  return groups;
+}
+
 LogLogPlot mseTimePlot(const std::vector<ReportRow>& rows) {
   LogLogPlot plot;
-  plot.title = "MSE against render time (log-log; lower left is better)";
-  plot.x_label = "time per render (s)";
-  plot.y_label = "MSE";
+  plot.title = "MSE against render time (lower left is better; bars: ± standard error over seeds)";
+  plot.x_label = "wall time per render (s, log scale)";
+  plot.y_label = "MSE (linear radiance², log scale)";
   for (const ReportRow& r : rows) {
     auto it = std::find_if(plot.series.begin(), plot.series.end(),
                            [&](const PlotSeries& s) { return s.name == r.estimator; });
@@ -118,7 +153,10 @@ LogLogPlot mseTimePlot(const std::vector<ReportRow>& rows) {
       plot.series.push_back({r.estimator, {}});
       it = plot.series.end() - 1;
     }
-    it->points.push_back({r.seconds, r.mse, fmt::format("{} {:.0f} spp", r.table, r.spp)});
+    std::string label = r.table == kEqualTimeTable
+                            ? fmt::format("equal time, {:.0f} spp reached", r.spp)
+                            : fmt::format("{:.0f} spp", r.spp);
+    it->points.push_back({r.seconds, r.mse, label, r.mse_stderr});
   }
   return plot;
 }

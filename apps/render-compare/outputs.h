@@ -31,16 +31,28 @@ struct CellImages {
 void writeCellImages(const CellImages& images, const std::filesystem::path& dir, float exposure,
                      const HeatMapRange& error_range, const HeatMapRange& cost_range);
 
-// A heat-map as an image for writeImage's PNG path (linear values that its sRGB curve turns
-// back into the colour map).
+// A heat-map as an image for writeImage's PNG path (OIIO's colour maps are linear values that its
+// sRGB curve turns into the map's published colours).
 Image heatMapImage(const std::vector<float>& values, int width, int height,
                    const HeatMapRange& range);
 
-// Galleries for one table: the images beside the reference, the error and the cost heat-maps.
+// The colour bar image under every heat-map of the HTML report (the heat-maps' colour map, low
+// values at the left), written once as `kColorBarFile` in `dir`.
+inline constexpr const char* kColorBarFile = "colorbar.png";
+void writeColorBar(const std::filesystem::path& dir);
+
+// Galleries for one table: the images beside the reference, the error and the cost heat-maps
+// (each with the colour bar of its range), every image linked to the files it was made from.
 std::vector<HtmlGallery> cellGalleries(const std::string& title, const std::string& reference_png,
+                                       const std::string& reference_exr,
                                        const std::vector<CellImages>& cells,
                                        const HeatMapRange& error_range,
                                        const HeatMapRange& cost_range);
+
+// The report's list of every file the run writes: the tables, the reference, each cell's images.
+std::vector<HtmlFileGroup> runFileGroups(const std::string& reference_png,
+                                         const std::string& reference_exr,
+                                         const std::vector<CellImages>& cells);
 
 // MSE against time, one series per estimator (every row of every table).
 LogLogPlot mseTimePlot(const std::vector<ReportRow>& rows);

@@ -16,17 +16,21 @@ namespace proxyvis {
 
 namespace {
 
-nlohmann::json learnedToJson(const LearnedSummary& l) {
-  return {{"regions", l.regions},
-          {"regions_roulette", l.regions_roulette},
-          {"p_proxy_blocked", l.p_proxy_blocked},
-          {"error_given_blocked", l.error_given_blocked},
-          {"error_given_visible", l.error_given_visible},
-          {"var_exact", l.var_exact},
-          {"cost_proxy", {l.costs.proxy[0], l.costs.proxy[1]}},
-          {"cost_original", {l.costs.original[0], l.costs.original[1]}},
-          {"cost_per_sample", l.costs.per_sample},
-          {"predicted_efficiency", l.predicted_efficiency}};
+ReportLearned toReportLearned(const LearnedSummary& l) {
+  ReportLearned r;
+  r.regions = int(l.regions);
+  r.regions_roulette = int(l.regions_roulette);
+  r.p_proxy_blocked = l.p_proxy_blocked;
+  r.error_given_blocked = l.error_given_blocked;
+  r.error_given_visible = l.error_given_visible;
+  r.var_exact = l.var_exact;
+  for (int i = 0; i < 2; ++i) {
+    r.cost_proxy[i] = l.costs.proxy[i];
+    r.cost_original[i] = l.costs.original[i];
+  }
+  r.cost_per_sample = l.costs.per_sample;
+  r.predicted_efficiency = l.predicted_efficiency;
+  return r;
 }
 
 }  // namespace
@@ -63,8 +67,8 @@ CellResult runCell(const RenderScene& scene, const CompareOptions& options, Esti
                    r.seconds);
     cell.radiance_per_seed.push_back(r.radiance);
     if (k == 0) {
-      row.extra["proxy_class"] = proxyClassName(r.proxy_class);
-      if (kind == EstimatorKind::kRoulette) row.extra["learned"] = learnedToJson(r.learned);
+      row.proxy_class = proxyClassName(r.proxy_class);
+      if (kind == EstimatorKind::kRoulette) row.learned = toReportLearned(r.learned);
       cell.first = std::move(r);
     }
   }
@@ -74,10 +78,10 @@ CellResult runCell(const RenderScene& scene, const CompareOptions& options, Esti
   row.seconds = summarizeSeeds(seconds).mean;
   row.pixels = double(cell.first.radiance.width) * cell.first.radiance.height;
   row.seeds = options.seeds;
-  row.extra["spp_max"] = *std::max_element(spp_reached.begin(), spp_reached.end());
-  row.extra["shading_seconds"] = summarizeSeeds(shading).mean;
-  row.extra["visibility_seconds"] = summarizeSeeds(visibility).mean;
-  if (time_budget > 0) row.extra["time_budget"] = time_budget;
+  row.spp_max = int(*std::max_element(spp_reached.begin(), spp_reached.end()));
+  row.shading_seconds = summarizeSeeds(shading).mean;
+  row.visibility_seconds = summarizeSeeds(visibility).mean;
+  row.time_budget = time_budget;
   return cell;
 }
 
@@ -121,7 +125,7 @@ void scoreCell(CellResult& cell, const Image& reference) {
   row.mse_stderr = m.standard_error;
   row.relmse = rel.mean;
   row.relmse_stderr = rel.standard_error;
-  row.extra["mse_per_seed"] = mse;
+  row.mse_per_seed = mse;
 }
 
 }  // namespace proxyvis

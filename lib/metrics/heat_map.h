@@ -1,23 +1,19 @@
 #pragma once
-// False-colour maps for error and cost images (no image I/O here: the app writes the PNG).
-#include <array>
+// The value-to-colour-scale mapping of error and cost heat-maps (no image I/O and no colours
+// here: color_map.h turns the mapped values into colours, the app writes the PNG).
 #include <span>
 #include <vector>
 
 namespace proxyvis {
-
-// The "inferno" colour map (Smith & van der Walt, matplotlib 2015), piecewise linear through 9
-// of its samples: perceptually ordered, readable in greyscale. t is clamped to [0, 1]; returns
-// RGB in [0, 1] (display-referred, already sRGB-encoded).
-std::array<float, 3> infernoColor(double t);
 
 struct HeatMapRange {
   double lo = 0, hi = 1;
   bool log_scale = false;  // log10 mapping; lo must then be > 0 (values below lo map to 0)
 };
 
-// Maps each value to t in [0, 1] by `range` and returns 3 floats per value (RGB, sRGB-encoded).
-std::vector<float> heatMapRgb(std::span<const float> values, const HeatMapRange& range);
+// Maps each value to its position t in [0, 1] on the colour scale of `range`: lo and below to 0,
+// hi and above to 1, NaN to 0.
+std::vector<float> heatMapUnit(std::span<const float> values, const HeatMapRange& range);
 
 // A range that shows `values` well: log scale from the 2nd to the 99.5th percentile of the
 // positive values (a few fireflies would flatten a linear map). {1e-6, 1, log} if none is > 0.

@@ -17,10 +17,38 @@ bool drawable(const PlotPoint& p) {
   return p.x > 0 && p.y > 0 && std::isfinite(p.x) && std::isfinite(p.y);
 }
 
-std::string decadeLabel(double v) {
-  int e = int(std::lround(std::log10(v)));
+// The error bar's half-length, 0 when absent or not a finite positive number.
+double errorOf(const PlotPoint& p) {
+  return p.y_err > 0 && std::isfinite(p.y_err) ? p.y_err : 0;
+}
+
+bool isDecade(double v) {
+  double e = std::log10(v);
+  return std::abs(e - std::round(e)) < 1e-9;
+}
+
+// 2 and 5 × a decade get labels when the axis spans two decades or less (else only decades):
+// a short axis would otherwise carry only two numbers.
+bool isMidLabel(double v) {
+  double mantissa = v / std::pow(10.0, std::floor(std::log10(v) + 1e-9));
+  return std::abs(mantissa - 2) < 1e-6 || std::abs(mantissa - 5) < 1e-6;
+}
+
+// k × 10^e for k = 1..9 within [lo, hi] of the axis.
+std::vector<double> gridValues(const LogAxis& axis) {
+  std::vector<double> out;
+  for (double d : axis.decades())
+    for (int k = 1; k <= 9; ++k)
+      if (k * d <= axis.hi() * (1 + 1e-9)) out.push_back(k * d);
+  return out;
+}
+
+std::string tickLabel(double v) {
+  int e = int(std::floor(std::log10(v) + 1e-9));
   if (e >= -2 && e <= 3) return fmt::format("{:g}", v);
-  return fmt::format("1e{}", e);
+  double mantissa = v / std::pow(10.0, e);
+  if (std::abs(mantissa - 1) < 1e-6) return fmt::format("1e{}", e);
+  return fmt::format("{:.0f}e{}", mantissa, e);
 }
 
 }  // namespace
@@ -48,9 +76,54 @@ std::vector<double> LogAxis::decades() const {
 }
 
 std::string seriesColor(size_t i) {
-  static const char* kPalette[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd",
-                                   "#ff7f0e", "#17becf", "#8c564b", "#e377c2"};
-  return kPalette[i % 8];
+  static const char* kPalette[] = {"#0072B2", "#D55E00", "#009E73", "#CC79A7",
+                                   "#E69F00", "#56B4E9", "#000000"};
+  return kPalette[i % 7];
+}
+
+MarkerShape seriesMarker(size_t i) {
+  static const MarkerShape kShapes[] = {MarkerShape::kCircle,       MarkerShape::kSquare,
+                                        MarkerShape::kTriangleUp,   MarkerShape::kDiamond,
+                                        MarkerShape::kTriangleDown, MarkerShape::kPlus,
+                                        MarkerShape::kCross};
+  return kShapes[i % 7];
+}
+
+std::string markerSvg(MarkerShape shape, double x, double y, double r, const std::string& color) {
+  auto polygon = [&](std::initializer_list<std::pair<double, double>> corners) {
+    std::string points;
+    for (auto [dx, dy] : corners) points += fmt::format("{:.1f},{:.1f} ", x + dx * r, y + dy * r);
+    return fmt::format("<polygon class=\"marker\" points=\"{}\" fill=\"{}\"/>", points, color);
+  };
+  auto strokes = [&](const std::string& d) {
+    return fmt::format(
+        "<path class=\"marker\" d=\"{}\" stroke=\"{}\" stroke-width=\"2.2\" fill=\"none\"/>", d,
+        color);
+  };
+  switch (shape) {
+    case MarkerShape::kCircle:
+      return fmt::format(
+          "<circle class=\"marker\" cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"{:.1f}\" fill=\"{}\"/>", x, y,
+          r, color);
+    case MarkerShape::kSquare:
+      return fmt::format(
+          "<rect class=\"marker\" x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" "
+          "fill=\"{}\"/>",
+          x - 0.9 * r, y - 0.9 * r, 1.8 * r, 1.8 * r, color);
+    case MarkerShape::kTriangleUp:
+      return polygon({{0, -1.2}, {1.1, 0.8}, {-1.1, 0.8}});
+    case MarkerShape::kDiamond:
+      return polygon({{0, -1.3}, {1.1, 0}, {0, 1.3}, {-1.1, 0}});
+    case MarkerShape::kTriangleDown:
+      return polygon({{0, 1.2}, {1.1, -0.8}, {-1.1, -0.8}});
+    case MarkerShape::kPlus:
+      return strokes(fmt::format("M{:.1f} {:.1f}H{:.1f}M{:.1f} {:.1f}V{:.1f}", x - 1.2 * r, y,
+                                 x + 1.2 * r, x, y - 1.2 * r, y + 1.2 * r));
+    case MarkerShape::kCross:
+      return strokes(fmt::format("M{:.1f} {:.1f}L{:.1f} {:.1f}M{:.1f} {:.1f}L{:.1f} {:.1f}", x - r,
+                                 y - r, x + r, y + r, x - r, y + r, x + r, y - r));
+  }
+  return {};
 }
 
 std::string escapeHtml(const std::string& text) {
@@ -88,13 +161,16 @@ std::string logLogPlotSvg(const LogLogPlot& plot) {
       "<rect width=\"{0}\" height=\"{1}\" fill=\"#fff\"/>\n"
       "<text x=\"{2}\" y=\"20\" font-size=\"14\" font-weight=\"bold\">{3}</text>\n",
       w, h, kLeft, escapeHtml(plot.title));
+  // The axes cover every point with its error bar (the lower end only where it stays positive).
   double x_min = std::numeric_limits<double>::infinity(), x_max = 0;
   double y_min = std::numeric_limits<double>::infinity(), y_max = 0;
   for (const PlotSeries& s : plot.series)
     for (const PlotPoint& p : s.points)
       if (drawable(p)) {
+        double err = errorOf(p);
         x_min = std::min(x_min, p.x), x_max = std::max(x_max, p.x);
-        y_min = std::min(y_min, p.y), y_max = std::max(y_max, p.y);
+        y_min = std::min(y_min, p.y - err > 0 ? p.y - err : p.y);
+        y_max = std::max(y_max, p.y + err);
       }
   if (!(x_max > 0)) {
     svg += fmt::format("<text x=\"{}\" y=\"{}\" fill=\"#888\">no data</text>\n</svg>\n", w / 2 - 30,
@@ -105,51 +181,78 @@ std::string logLogPlotSvg(const LogLogPlot& plot) {
   LogAxis xa = LogAxis::covering(x_min, x_max, left, right);
   LogAxis ya = LogAxis::covering(y_min, y_max, bottom, top);
 
-  // Grid, ticks and axis titles.
-  for (double d : xa.decades())
-    svg += fmt::format(
-        "<line x1=\"{0:.1f}\" y1=\"{1}\" x2=\"{0:.1f}\" y2=\"{2}\" stroke=\"#ddd\"/>"
-        "<text x=\"{0:.1f}\" y=\"{3}\" text-anchor=\"middle\" fill=\"#444\">{4}</text>\n",
-        xa.map(d), top, bottom, bottom + 16, decadeLabel(d));
-  for (double d : ya.decades())
-    svg += fmt::format(
-        "<line x1=\"{1}\" y1=\"{0:.1f}\" x2=\"{2}\" y2=\"{0:.1f}\" stroke=\"#ddd\"/>"
-        "<text x=\"{3}\" y=\"{4:.1f}\" text-anchor=\"end\" fill=\"#444\">{5}</text>\n",
-        ya.map(d), left, right, left - 6, ya.map(d) + 4, decadeLabel(d));
+  // Grid (decades, and 2..9 × decade lighter), tick labels and axis titles.
+  const bool x_mid_labels = xa.hi() / xa.lo() <= 100.5, y_mid_labels = ya.hi() / ya.lo() <= 100.5;
+  for (double v : gridValues(xa)) {
+    bool decade = isDecade(v);
+    svg += fmt::format("<line x1=\"{0:.1f}\" y1=\"{1}\" x2=\"{0:.1f}\" y2=\"{2}\" stroke=\"{3}\"/>",
+                       xa.map(v), top, bottom, decade ? "#d4d4d4" : "#efefef");
+    if (decade || (x_mid_labels && isMidLabel(v)))
+      svg +=
+          fmt::format("<text x=\"{:.1f}\" y=\"{}\" text-anchor=\"middle\" fill=\"#444\">{}</text>",
+                      xa.map(v), bottom + 16, tickLabel(v));
+    svg += "\n";
+  }
+  for (double v : gridValues(ya)) {
+    bool decade = isDecade(v);
+    svg += fmt::format("<line x1=\"{1}\" y1=\"{0:.1f}\" x2=\"{2}\" y2=\"{0:.1f}\" stroke=\"{3}\"/>",
+                       ya.map(v), left, right, decade ? "#d4d4d4" : "#efefef");
+    if (decade || (y_mid_labels && isMidLabel(v)))
+      svg += fmt::format("<text x=\"{}\" y=\"{:.1f}\" text-anchor=\"end\" fill=\"#444\">{}</text>",
+                         left - 6, ya.map(v) + 4, tickLabel(v));
+    svg += "\n";
+  }
   svg += fmt::format(
       "<rect x=\"{0}\" y=\"{1}\" width=\"{2}\" height=\"{3}\" fill=\"none\" stroke=\"#888\"/>\n"
       "<text x=\"{4}\" y=\"{5}\" text-anchor=\"middle\">{6}</text>\n"
-      "<text transform=\"translate(18 {7}) rotate(-90)\" text-anchor=\"middle\">{8}</text>\n",
+      "<text transform=\"translate(16 {7}) rotate(-90)\" text-anchor=\"middle\">{8}</text>\n",
       left, top, right - left, bottom - top, (left + right) / 2, h - 12, escapeHtml(plot.x_label),
       (top + bottom) / 2, escapeHtml(plot.y_label));
 
-  // One polyline per series (even with a single point, so a reader can count series), markers
-  // with tooltips, and a legend entry.
+  // Per series: error bars, the line through the points in x order (even a single point, so a
+  // reader can count series), markers with tooltips, and a legend entry with line and marker.
   for (size_t i = 0; i < plot.series.size(); ++i) {
     const PlotSeries& s = plot.series[i];
     std::vector<PlotPoint> pts;
     for (const PlotPoint& p : s.points)
       if (drawable(p)) pts.push_back(p);
-    std::sort(pts.begin(), pts.end(), [](auto& a, auto& b) { return a.x < b.x; });
-    std::string color = seriesColor(i);
+    std::stable_sort(pts.begin(), pts.end(), [](auto& a, auto& b) { return a.x < b.x; });
+    const std::string color = seriesColor(i);
+    const MarkerShape shape = seriesMarker(i);
+    std::string name = escapeHtml(s.name);
+    svg += fmt::format("<g class=\"series\" data-series=\"{}\">\n", name);
+    for (const PlotPoint& p : pts) {
+      double err = errorOf(p);
+      if (!(err > 0)) continue;
+      double x = xa.map(p.x), y_hi = ya.map(p.y + err);
+      double y_lo = ya.map(p.y - err > ya.lo() ? p.y - err : ya.lo());
+      svg += fmt::format(
+          "<path class=\"error-bar\" d=\"M{0:.1f} {1:.1f}V{2:.1f}M{3:.1f} {1:.1f}H{4:.1f}M{3:.1f} "
+          "{2:.1f}H{4:.1f}\" stroke=\"{5}\" stroke-width=\"1.2\" fill=\"none\"/>\n",
+          x, y_lo, y_hi, x - 4, x + 4, color);
+    }
     std::string coords;
     for (const PlotPoint& p : pts)
       coords += fmt::format("{:.1f},{:.1f} ", xa.map(p.x), ya.map(p.y));
     svg += fmt::format(
-        "<polyline class=\"series\" data-series=\"{}\" points=\"{}\" fill=\"none\" "
-        "stroke=\"{}\" stroke-width=\"2\"/>\n",
-        escapeHtml(s.name), coords, color);
-    for (const PlotPoint& p : pts)
-      svg += fmt::format(
-          "<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"3.5\" fill=\"{}\"><title>{}: {}x = {:.3g}, "
-          "y = {:.3g}</title></circle>\n",
-          xa.map(p.x), ya.map(p.y), color, escapeHtml(s.name),
-          p.label.empty() ? std::string() : escapeHtml(p.label) + ", ", p.x, p.y);
-    double ly = top + 8 + 20.0 * double(i);
+        "<polyline points=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.8\" "
+        "stroke-opacity=\"0.85\"/>\n",
+        coords, color);
+    for (const PlotPoint& p : pts) {
+      std::string tip =
+          fmt::format("{}: {}x = {:.3g}, y = {:.3g}", name,
+                      p.label.empty() ? std::string() : escapeHtml(p.label) + ", ", p.x, p.y);
+      if (errorOf(p) > 0) tip += fmt::format(" ± {:.2g}", p.y_err);
+      svg += fmt::format("<g><title>{}</title>{}</g>\n", tip,
+                         markerSvg(shape, xa.map(p.x), ya.map(p.y), 4.5, color));
+    }
+    double ly = top + 10 + 20.0 * double(i);
     svg += fmt::format(
-        "<line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" stroke=\"{3}\" "
-        "stroke-width=\"3\"/><text x=\"{4}\" y=\"{5:.1f}\">{6}</text>\n",
-        right + 14, ly, right + 38, color, right + 44, ly + 4, escapeHtml(s.name));
+        "<g class=\"legend\"><line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" "
+        "stroke=\"{3}\" stroke-width=\"1.8\"/>{4}<text x=\"{5}\" y=\"{6:.1f}\">{7}</text></g>\n",
+        right + 12, ly, right + 40, color, markerSvg(shape, right + 26, ly, 4.5, color), right + 46,
+        ly + 4, name);
+    svg += "</g>\n";
   }
   svg += "</svg>\n";
   return svg;

@@ -1,6 +1,8 @@
 #pragma once
 // Log-log line plots as inline SVG (no JavaScript, no external files): one <polyline> per
-// series, a marker per point, decade grid lines and a legend.
+// series through its points in x order, a marker per point (shape and colour differ per series,
+// so the series stay apart in greyscale and for colour-blind readers), optional ± error bars,
+// decade grid lines and a legend.
 #include <string>
 #include <vector>
 
@@ -26,6 +28,7 @@ class LogAxis {
 struct PlotPoint {
   double x = 0, y = 0;
   std::string label;  // tooltip (e.g. "16 spp"); may be empty
+  double y_err = 0;   // half-length of the vertical error bar (e.g. a standard error); 0: none
 };
 
 struct PlotSeries {
@@ -39,8 +42,16 @@ struct LogLogPlot {
   int width = 720, height = 440;
 };
 
-// The colour of series i (a palette readable on white, cycling after 8).
+// The colour of series i: the Okabe-Ito palette (distinguishable with every common colour-vision
+// deficiency) without its yellow, which is unreadable on white; cycles after 7.
 std::string seriesColor(size_t i);
+
+enum class MarkerShape { kCircle, kSquare, kTriangleUp, kDiamond, kTriangleDown, kPlus, kCross };
+// The marker of series i; cycles after 7, out of step with the colours only past 7 series.
+MarkerShape seriesMarker(size_t i);
+
+// An SVG element drawing `shape` centred at (x, y), about 2·r across, filled with `color`.
+std::string markerSvg(MarkerShape shape, double x, double y, double r, const std::string& color);
 
 // An <svg> element; a plot without any positive point shows a "no data" note.
 std::string logLogPlotSvg(const LogLogPlot& plot);

@@ -42,6 +42,19 @@ std::string tableTitle(std::string_view table) {
   return std::string(table);
 }
 
+nlohmann::json learnedToJson(const ReportLearned& l) {
+  return {{"regions", l.regions},
+          {"regions_roulette", l.regions_roulette},
+          {"p_proxy_blocked", l.p_proxy_blocked},
+          {"error_given_blocked", l.error_given_blocked},
+          {"error_given_visible", l.error_given_visible},
+          {"var_exact", l.var_exact},
+          {"cost_proxy", {l.cost_proxy[0], l.cost_proxy[1]}},
+          {"cost_original", {l.cost_original[0], l.cost_original[1]}},
+          {"cost_per_sample", l.cost_per_sample},
+          {"predicted_efficiency", l.predicted_efficiency}};
+}
+
 }  // namespace
 
 void fillRelativeEfficiency(std::vector<ReportRow>& rows, std::string_view table,
@@ -71,10 +84,14 @@ nlohmann::json rowToJson(const ReportRow& r) {
        {{"proxy", r.rays.proxy / px},
         {"original", r.rays.original / px},
         {"probe", r.rays.probe / px}}},
-      {"seeds", r.seeds}};
-  // The contract keys win over extras of the same name.
-  for (auto it = r.extra.begin(); it != r.extra.end(); ++it)
-    if (!j.contains(it.key())) j[it.key()] = it.value();
+      {"seeds", r.seeds},
+      {"spp_max", r.spp_max},
+      {"shading_seconds", r.shading_seconds},
+      {"visibility_seconds", r.visibility_seconds},
+      {"proxy_class", r.proxy_class},
+      {"mse_per_seed", r.mse_per_seed}};
+  if (r.time_budget > 0) j["time_budget"] = r.time_budget;
+  if (r.learned) j["learned"] = learnedToJson(*r.learned);
   return j;
 }
 
@@ -82,6 +99,7 @@ nlohmann::json reportToJson(const Report& report) {
   nlohmann::json rows = nlohmann::json::array();
   for (const ReportRow& r : report.rows) rows.push_back(rowToJson(r));
   return {{"title", report.title},
+          {"scene_name", report.scene_name},
           {"relmse_epsilon", kRelMseEpsilon},
           {"efficiency_definition", "1/(MSE*seconds) relative to exact"},
           {"meta", report.meta},
@@ -118,7 +136,8 @@ std::string markdownTable(const std::vector<ReportRow>& rows, std::string_view t
 }
 
 std::string reportToMarkdown(const Report& report) {
-  std::string out = "# " + report.title + "\n\n";
+  std::string out = "# " + (report.scene_name.empty() ? report.title : report.scene_name) + "\n\n";
+  if (!report.scene_name.empty() && !report.title.empty()) out += report.title + "\n\n";
   for (const std::string& note : report.notes) out += "- " + note + "\n";
   if (!report.notes.empty()) out += "\n";
   out += fmt::format(

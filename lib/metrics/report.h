@@ -4,6 +4,7 @@
 // the keys `estimator`, `spp`, `seconds`, `mse`, `relmse`, `efficiency`, `rays` (the contract
 // other tools read); more keys are added freely.
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -19,6 +20,17 @@ struct ReportRays {
   double total() const { return proxy + original + probe; }
 };
 
+// What the roulette estimator learned in its first seed's render (JSON key "learned").
+struct ReportLearned {
+  int regions = 0, regions_roulette = 0;  // regions with statistics; of those, using roulette
+  double p_proxy_blocked = 0;             // P(V' = 0)
+  double error_given_blocked = 0, error_given_visible = 0;   // P(V != V' | V' = i)
+  double var_exact = 0;                                      // mean V_p(1 - V_p)
+  double cost_proxy[2] = {0, 0}, cost_original[2] = {0, 0};  // mean ray cost given V' = 0, 1
+  double cost_per_sample = 0;
+  double predicted_efficiency = 0;  // relative to exact everywhere; 0 when unknown
+};
+
 struct ReportRow {
   std::string table;                     // kEqualSppTable or kEqualTimeTable
   std::string estimator;                 // "exact", "culling", ...
@@ -30,11 +42,19 @@ struct ReportRow {
   ReportRays rays;
   double pixels = 1;  // for rays per pixel
   int seeds = 0;
-  nlohmann::json extra = nlohmann::json::object();  // more keys for the JSON row (e.g. timings)
+  // Beyond the contract keys; each is written under its own name in the JSON row.
+  int spp_max = 0;                // most samples per pixel one seed reached
+  double shading_seconds = 0;     // mean over seeds
+  double visibility_seconds = 0;  // mean over seeds
+  double time_budget = 0;         // equal-time budget per render; 0 (not written) for equal-spp
+  std::string proxy_class;        // the class the estimators relied on ("outside", ...)
+  std::vector<double> mse_per_seed;
+  std::optional<ReportLearned> learned;  // roulette rows only
 };
 
 struct Report {
-  std::string title;
+  std::string title;       // what the report is (e.g. "render-compare: equal time and samples")
+  std::string scene_name;  // the scene's name: the page's heading (the title when empty)
   nlohmann::json meta = nlohmann::json::object();  // scene, settings, reference, baseline...
   std::vector<ReportRow> rows;
   std::vector<std::string> notes;  // plain-text remarks (warnings, what is missing)
@@ -47,7 +67,7 @@ void fillRelativeEfficiency(std::vector<ReportRow>& rows, std::string_view table
                             std::string_view baseline = "exact");
 
 nlohmann::json rowToJson(const ReportRow& row);
-// {"title", "relmse_epsilon", "meta": {...}, "notes": [...], "rows": [...]}.
+// {"title", "scene_name", "relmse_epsilon", "meta": {...}, "notes": [...], "rows": [...]}.
 nlohmann::json reportToJson(const Report& report);
 
 // One header line, then one line per row; numbers in full precision.
@@ -56,7 +76,7 @@ std::string reportToCsv(const std::vector<ReportRow>& rows);
 // A GitHub Markdown table of the rows of `table` (all rows if `table` is empty).
 std::string markdownTable(const std::vector<ReportRow>& rows, std::string_view table = {});
 
-// Title, notes and one table per kind.
+// Heading (scene name, else title), notes and one table per kind.
 std::string reportToMarkdown(const Report& report);
 
 }  // namespace proxyvis

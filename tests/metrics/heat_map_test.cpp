@@ -2,33 +2,35 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <vector>
 
 namespace proxyvis {
 namespace {
 
-TEST(HeatMap, EndsAndMonotoneBrightness) {
-  auto dark = infernoColor(0), bright = infernoColor(1);
-  EXPECT_LT(dark[0] + dark[1] + dark[2], 0.05f);
-  EXPECT_GT(bright[0] + bright[1] + bright[2], 2.5f);
-  float last = -1;
-  for (int i = 0; i <= 16; ++i) {
-    auto c = infernoColor(i / 16.0);
-    float luma = 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2];
-    EXPECT_GT(luma, last) << "t = " << i / 16.0;
-    last = luma;
-  }
-}
-
 TEST(HeatMap, LogRangeMapsDecades) {
   HeatMapRange range{1e-4, 1, true};
   std::vector<float> v = {1e-6f, 1e-4f, 1e-2f, 1.0f, 10.0f};
-  auto rgb = heatMapRgb(v, range);
-  ASSERT_EQ(rgb.size(), 15u);
-  auto mid = infernoColor(0.5);
-  EXPECT_NEAR(rgb[6], mid[0], 1e-5);  // 1e-2 is halfway between 1e-4 and 1 in log10
-  EXPECT_EQ(rgb[0], infernoColor(0)[0]);
-  EXPECT_EQ(rgb[12], infernoColor(1)[0]);
+  auto t = heatMapUnit(v, range);
+  ASSERT_EQ(t.size(), 5u);
+  EXPECT_EQ(t[0], 0.0f);          // below the range
+  EXPECT_EQ(t[1], 0.0f);          // lo
+  EXPECT_NEAR(t[2], 0.5f, 1e-6);  // 1e-2 is halfway between 1e-4 and 1 in log10
+  EXPECT_NEAR(t[3], 1.0f, 1e-6);  // hi
+  EXPECT_EQ(t[4], 1.0f);          // above the range
+}
+
+TEST(HeatMap, LinearRangeClampsAndMapsNanToZero) {
+  HeatMapRange range{2, 6, false};
+  std::vector<float> v = {0, 3, 6, 9, std::numeric_limits<float>::quiet_NaN()};
+  auto t = heatMapUnit(v, range);
+  ASSERT_EQ(t.size(), 5u);
+  EXPECT_EQ(t[0], 0.0f);
+  EXPECT_NEAR(t[1], 0.25f, 1e-6);
+  EXPECT_NEAR(t[2], 1.0f, 1e-6);
+  EXPECT_EQ(t[3], 1.0f);
+  EXPECT_EQ(t[4], 0.0f);
 }
 
 TEST(HeatMap, RobustRangeIgnoresFireflies) {

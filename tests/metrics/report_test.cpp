@@ -62,6 +62,35 @@ TEST(Report, JsonHasTheContractKeys) {
   EXPECT_DOUBLE_EQ(j["rows"][1]["rays_per_pixel"]["original"].get<double>(), 5.0);
 }
 
+TEST(Report, TypedRowFieldsKeepTheirJsonKeys) {
+  ReportRow r = row("equal-time", "roulette", 30, 2.0, 5e-4);
+  r.spp_max = 33;
+  r.shading_seconds = 0.25;
+  r.visibility_seconds = 1.5;
+  r.time_budget = 2.0;
+  r.proxy_class = "outside";
+  r.mse_per_seed = {4e-4, 6e-4};
+  ReportLearned learned;
+  learned.regions = 12;
+  learned.regions_roulette = 5;
+  learned.cost_proxy[1] = 7;
+  r.learned = learned;
+  nlohmann::json j = rowToJson(r);
+  EXPECT_EQ(j.at("spp_max"), 33);
+  EXPECT_DOUBLE_EQ(j.at("shading_seconds").get<double>(), 0.25);
+  EXPECT_DOUBLE_EQ(j.at("visibility_seconds").get<double>(), 1.5);
+  EXPECT_DOUBLE_EQ(j.at("time_budget").get<double>(), 2.0);
+  EXPECT_EQ(j.at("proxy_class"), "outside");
+  EXPECT_EQ(j.at("mse_per_seed").size(), 2u);
+  EXPECT_EQ(j.at("learned").at("regions"), 12);
+  EXPECT_EQ(j.at("learned").at("regions_roulette"), 5);
+  EXPECT_DOUBLE_EQ(j.at("learned").at("cost_proxy").at(1).get<double>(), 7.0);
+  // An equal-spp row has no budget and a non-roulette row learned nothing: no such keys.
+  nlohmann::json plain = rowToJson(row("equal-spp", "exact", 4, 1.0, 4e-3));
+  EXPECT_FALSE(plain.contains("time_budget"));
+  EXPECT_FALSE(plain.contains("learned"));
+}
+
 TEST(Report, CsvHasHeaderAndOneLinePerRow) {
   Report rep = sampleReport();
   std::istringstream in(reportToCsv(rep.rows));
@@ -107,7 +136,7 @@ TEST(Report, HtmlHasOnePolylinePerEstimatorAndEscapesText) {
     plot.series.push_back(s);
   }
   layout.plots.push_back(plot);
-  layout.galleries.push_back({"Images", "", {{"exact_16.png", "exact", "MSE 1e-3"}}});
+  layout.galleries.push_back({"Images", "", {{"exact_16.png", "exact", "MSE 1e-3", {}}}, {}});
   std::string html = reportToHtml(rep, layout);
   EXPECT_EQ(countOccurrences(html, "<svg"), 1u);
   EXPECT_EQ(countOccurrences(html, "<polyline"), 3u);
@@ -117,6 +146,69 @@ TEST(Report, HtmlHasOnePolylinePerEstimatorAndEscapesText) {
   EXPECT_EQ(html.find("<test>"), std::string::npos);
   EXPECT_NE(html.find("<img src=\"exact_16.png\""), std::string::npos);
   EXPECT_NE(html.find("</html>"), std::string::npos);
+}
+
+TEST(Report, HtmlHeadingIsTheSceneNameAndTheMarkdownToo) {
+  Report rep = sampleReport();
+  rep.scene_name = "dragon-plane";
+  std::string html = reportToHtml(rep, {});
+  EXPECT_NE(html.find("<h1>dragon-plane</h1>"), std::string::npos);
+  EXPECT_NE(html.find("<title>dragon-plane · render-compare</title>"), std::string::npos);
+  EXPECT_EQ(reportToMarkdown(rep).rfind("# dragon-plane\n", 0), 0u);
+  EXPECT_EQ(reportToJson(rep).at("scene_name"), "dragon-plane");
+  rep.scene_name.clear();  // no name: the title
+  EXPECT_NE(reportToHtml(rep, {}).find("<h1>render-compare: &lt;test&gt; &amp; co</h1>"),
+            std::string::npos);
+}
+
+TEST(Report, HtmlKeepsNumbersWholeAndTablesInAScrollBox) {
+  Report rep = sampleReport();
+  rep.notes.push_back("variance 1.06e-05 = 50% of 2.09e-05 & more");
+  std::string html = reportToHtml(rep, {});
+  EXPECT_NE(html.find("<span class=\"num\">1.06e-05</span> = <span class=\"num\">50%</span>"),
+            std::string::npos);
+  EXPECT_NE(html.find("&amp; more"), std::string::npos);
+  EXPECT_EQ(countOccurrences(html, "<div class=\"scroll\"><table class=\"rows\">"), 2u);
+  EXPECT_NE(html.find(".num, td { white-space: nowrap; }"), std::string::npos);
+  EXPECT_NE(html.find("max-width: 100%"), std::string::npos);
+}
+
+TEST(Report, HtmlMetaHasReadableLabelsLinksAndRecordTables) {
+  Report rep = sampleReport();
+  rep.meta["reference_spp"] = 1024;
+  rep.meta["reference_file"] = "reference-ab12.exr";
+  rep.meta["uses_proxies"] = true;
+  rep.meta["warnings"] = nlohmann::json::array();
+  rep.meta["proxy_classes"] = nlohmann::json::array(
+      {{{"mesh", "box"}, {"class", "outside"}}, {{"mesh", "bunny"}, {"class", "general"}}});
+  HtmlReportLayout layout;
+  layout.files.push_back({"Reference", {{"reference-ab12.exr", "reference-ab12.exr"}}});
+  std::string html = reportToHtml(rep, layout);
+  EXPECT_NE(html.find("<b>reference: samples per pixel</b>"), std::string::npos);
+  EXPECT_EQ(html.find("reference_spp"), std::string::npos);
+  EXPECT_NE(html.find("<b>scene has proxies</b>yes"), std::string::npos);
+  EXPECT_NE(html.find("<b>warnings</b>none"), std::string::npos);
+  // A meta value naming a written file links it; the file list links it too.
+  EXPECT_EQ(countOccurrences(html, "<a href=\"reference-ab12.exr\">"), 2u);
+  EXPECT_NE(html.find("<h3>proxies</h3>"), std::string::npos);
+  EXPECT_NE(html.find("<td>bunny</td><td>general</td>"), std::string::npos);
+}
+
+TEST(Report, HtmlHeatMapGalleryHasAColourBarWithItsRangeUnderEachImage) {
+  Report rep = sampleReport();
+  HtmlReportLayout layout;
+  HtmlGallery g{"Errors", "", {}, HtmlColorBar{"colorbar.png", {2e-5, 3e-2, true}, "rays/px"}};
+  g.images.push_back({"a_error.png", "a", "1 spp · MSE 1.0e-03", {{"a.exr", "EXR"}}});
+  g.images.push_back({"b_error.png", "b", "", {}});
+  layout.galleries.push_back(g);
+  std::string html = reportToHtml(rep, layout);
+  EXPECT_EQ(countOccurrences(html, "<img src=\"colorbar.png\""), 2u);
+  EXPECT_EQ(countOccurrences(html, "<span class=\"num\">2.0e-05</span>"), 2u);
+  EXPECT_EQ(countOccurrences(html, "<span class=\"num\">3.0e-02</span>"), 2u);
+  EXPECT_NE(html.find("rays/px, log scale"), std::string::npos);
+  EXPECT_NE(html.find("<span class=\"num\">1 spp</span> · <span class=\"num\">MSE 1.0e-03</span>"),
+            std::string::npos);
+  EXPECT_NE(html.find("<a href=\"a.exr\">EXR</a>"), std::string::npos);
 }
 
 }  // namespace
