@@ -12,7 +12,7 @@
 #include <string>
 #include <typeinfo>
 
-#include "proxies/general/proxy_pipeline.h"
+#include "proxies/pipeline/proxy_pipeline.h"
 #include "util/error.h"
 
 namespace {

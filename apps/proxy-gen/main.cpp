@@ -1,6 +1,6 @@
 // proxy-gen: builds an outside, inside or general proxy of a mesh, or of every mesh of a scene,
 // verifies its guarantee and writes it (docs/design.md). Thin CLI over
-// proxies/general/proxy_pipeline.h.
+// proxies/pipeline/proxy_pipeline.h.
 #include <fmt/core.h>
 #include <tbb/parallel_for.h>
 #include <CLI/CLI.hpp>
@@ -12,8 +12,8 @@
 
 #include "mesh/mesh_io.h"
 #include "output_paths.h"
-#include "proxies/general/proxy_pipeline.h"
-#include "proxies/general/written_class.h"
+#include "proxies/pipeline/proxy_pipeline.h"
+#include "proxies/pipeline/written_class.h"
 #include "scene/scene_desc.h"
 #include "stage_progress.h"
 #include "summary_text.h"

@@ -18,7 +18,7 @@
 #include "mesh/mesh_io.h"
 #include "mesh/primitives.h"
 #include "proxies/check/ray_classify.h"
-#include "proxies/general/proxy_pipeline.h"
+#include "proxies/pipeline/proxy_pipeline.h"
 #include "util/error.h"
 
 using namespace proxyvis;

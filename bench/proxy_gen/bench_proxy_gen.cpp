@@ -21,7 +21,7 @@
 #include "child_process.h"
 #include "mesh/mesh_io.h"
 #include "mesh/validation.h"
-#include "proxies/general/proxy_pipeline.h"
+#include "proxies/pipeline/proxy_pipeline.h"
 #include "util/app_main.h"
 #include "util/error.h"
 

@@ -6,6 +6,7 @@
 #include <numeric>
 #include <vector>
 
+#include "mesh/edge_counts.h"
 #include "mesh/internal/self_intersections.h"
 
 namespace proxyvis {
@@ -47,11 +48,6 @@ std::vector<uint32_t> weldExactDuplicates(const std::vector<Vec3f>& v) {
     weld[i] = same ? weld[order[k - 1]] : i;
   }
   return weld;
-}
-
-uint64_t edgeKey(uint32_t a, uint32_t b) {
-  if (a > b) std::swap(a, b);
-  return (uint64_t(a) << 32) | b;
 }
 
 // Vertices whose incident triangles form more than one fan: per vertex, the "link" graph joins
@@ -140,22 +136,10 @@ MeshReport validateMesh(const TriMesh& mesh, const ValidationOptions& options) {
   for (size_t i = 1; i < sorted_tris.size(); ++i)
     r.duplicate_faces += sorted_tris[i] == sorted_tris[i - 1];
 
-  // Undirected edges with the triangle that uses them, sorted so each edge is one run.
-  std::vector<std::pair<uint64_t, uint32_t>> edges;
-  edges.reserve(tris.size() * 3);
-  for (uint32_t f = 0; f < tris.size(); ++f)
-    for (int k = 0; k < 3; ++k) edges.emplace_back(edgeKey(tris[f][k], tris[f][(k + 1) % 3]), f);
-  std::sort(edges.begin(), edges.end());
-  uint64_t distinct_edges = 0;
-  for (size_t begin = 0; begin < edges.size();) {
-    size_t end = begin + 1;
-    while (end < edges.size() && edges[end].first == edges[begin].first) ++end;
-    ++distinct_edges;
-    r.boundary_edges += (end - begin) == 1;
-    r.non_manifold_edges += (end - begin) > 2;
-    r.odd_edges += (end - begin) > 2 && (end - begin) % 2 == 1;
-    begin = end;
-  }
+  const EdgeCounts edges = countEdges(tris);
+  r.boundary_edges = edges.boundary;
+  r.non_manifold_edges = edges.non_manifold;
+  r.odd_edges = edges.odd;
   // Components share a (welded) vertex, as in the MANIFEST: a pinched vertex joins its fans.
   DisjointSets vertex_sets(nv);
   std::vector<char> used(nv, 0);
@@ -172,7 +156,7 @@ MeshReport validateMesh(const TriMesh& mesh, const ValidationOptions& options) {
   r.manifold = r.non_manifold_edges == 0 && r.non_manifold_vertices == 0;
   if (r.closed && r.manifold) {
     const int64_t v = std::count(used.begin(), used.end(), 1);
-    const int64_t euler = v - int64_t(distinct_edges) + int64_t(tris.size());
+    const int64_t euler = v - int64_t(edges.edges) + int64_t(tris.size());
     r.genus = (2 * int64_t(r.components) - euler) / 2;
   }
   if (r.closed && r.nonfinite_vertices == 0) r.volume = mesh.signedVolume();

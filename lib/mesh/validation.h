@@ -31,7 +31,7 @@ struct MeshReport {
   uint64_t odd_edges = 0;              // non-manifold edges with an odd number (3, 5, ...) of faces
   bool closed = false;                 // no boundary and no non-manifold edges
   // Every edge has an even number of faces (closed, or non-manifold edges with 4, 6, ... faces):
-  // the surface bounds a volume by ray parity (proxies/limits/parity_solid.h).
+  // the surface bounds a volume by ray parity (proxies/shared/parity_solid.h).
   bool watertight = false;
   bool manifold = false;                            // no non-manifold edges or vertices
   std::optional<int64_t> genus;                     // closed manifold meshes only

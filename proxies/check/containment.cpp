@@ -3,7 +3,7 @@
 // Method (all predicates exact: CGAL Exact_predicates_inexact_constructions_kernel):
 //  1. Each mesh becomes a repaired polygon soup (exactly equal positions welded, faces with a
 //     repeated corner and duplicated faces dropped: the same point set) for the intersection test,
-//     and a ray-parity solid (proxies/limits/parity_solid.h) for point location. A surface is
+//     and a ray-parity solid (proxies/shared/parity_solid.h) for point location. A surface is
 //     closed when every welded edge has an even number of faces: a closed manifold, or a
 //     watertight surface with non-manifold edges (four faces meeting at an edge), whose inside is
 //     the set of points a ray leaves after an odd number of crossings. Point location counts
@@ -19,7 +19,6 @@
 //     not one, also handles several components and cavities.
 #include "proxies/check/containment.h"
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
 #include <CGAL/box_intersection_d.h>
 #include <fmt/core.h>
@@ -30,15 +29,16 @@
 #include <optional>
 #include <vector>
 
-#include "proxies/limits/internal/parity_solid_mesh.h"
+#include "mesh/cgal_bridge.h"
+#include "proxies/shared/cgal/parity_solid_mesh.h"
 #include "util/error.h"
 
 namespace proxyvis {
 
 namespace {
 
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Point = Kernel::Point_3;
+using cgal::Kernel;
+using Point = cgal::Point3;
 using Segment3 = Kernel::Segment_3;
 using Triangle3 = Kernel::Triangle_3;
 using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::size_t>;
@@ -56,28 +56,23 @@ ExactMesh prepare(const TriMesh& mesh, const char* role) {
   if (mesh.empty())
     throw Error(mesh.source, fmt::format("the {} has no triangles", role),
                 "containment needs two non-empty surfaces");
-  ExactMesh m;
-  m.points.reserve(mesh.vertices.size());
-  for (const Vec3f& v : mesh.vertices) {
+  for (const Vec3f& v : mesh.vertices)
     if (!isFinite(v))
       throw Error(mesh.source, fmt::format("the {} has a non-finite vertex", role),
                   "exact predicates need finite coordinates");
-    m.points.emplace_back(v.x, v.y, v.z);
-  }
-  std::vector<std::vector<std::size_t>> polygons;
-  polygons.reserve(mesh.triangles.size());
-  for (const Triangle& t : mesh.triangles) {
+  for (const Triangle& t : mesh.triangles)
     for (uint32_t i : t)
       if (i >= mesh.vertices.size())
         throw Error(mesh.source, fmt::format("the {} has a vertex index out of range", role));
-    polygons.push_back({t[0], t[1], t[2]});
-  }
-  PMP::repair_polygon_soup(m.points, polygons);
+  auto [points, polygons] = cgal::toSoup<std::vector<std::size_t>>(mesh);
+  PMP::repair_polygon_soup(points, polygons);
   if (polygons.empty())
     throw Error(mesh.source, fmt::format("the {} has only degenerate triangles", role),
                 "containment needs a surface");
   // Closed = bounds a volume by ray parity. Built from the unrepaired triangles: duplicated faces
   // count modulo 2 there, which repair_polygon_soup's merge would not respect.
+  ExactMesh m;
+  m.points = std::move(points);
   m.solid = parity::makeParitySolid(mesh);
   m.closed = m.solid.watertight();
   m.faces.reserve(polygons.size());

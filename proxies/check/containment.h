@@ -28,7 +28,7 @@ struct ContainmentResult {
   ContainmentVerdict verdict = ContainmentVerdict::kUndecidable;
   bool proxy_closed = false, original_closed = false;
   uint64_t intersecting_face_pairs = 0;  // 0 unless kIntersecting (may stop counting early)
-  // The volume each closed mesh bounds by ray parity (proxies/limits/parity_solid.h).
+  // The volume each closed mesh bounds by ray parity (proxies/shared/parity_solid.h).
   std::optional<double> original_volume, proxy_volume;
   std::string detail;  // human-readable reason, e.g. where they intersect
 };

@@ -5,9 +5,9 @@
 #include <CGAL/Surface_mesh_simplification/edge_collapse.h>
 
 #include "proxies/general/general_proxy.h"
-#include "proxies/limits/input_geometry.h"
-#include "proxies/outside/internal/budget_stop.h"
-#include "proxies/outside/internal/cgal_weld.h"
+#include "proxies/shared/cgal/budget_stop.h"
+#include "proxies/shared/cgal/weld.h"
+#include "proxies/shared/input_geometry.h"
 
 namespace proxyvis {
 

@@ -5,7 +5,7 @@
 #include <cstddef>
 
 #include "mesh/tri_mesh.h"
-#include "proxies/limits/time_budget.h"
+#include "proxies/shared/time_budget.h"
 
 namespace proxyvis {
 
@@ -25,7 +25,7 @@ size_t generalTargetFaces(const TriMesh& input, const GeneralOptions& options);
 // vertices dropped.
 TriMesh weldVertices(const TriMesh& input);
 
-// The three simplifiers throw Error when requireProxyGeometry (proxies/limits) refuses the input
+// The three simplifiers throw Error when requireProxyGeometry (proxies/shared) refuses the input
 // (it needs a surface) or when options.budget is spent.
 
 // Work done by simplifyQem (for tests and benchmarks: counts, not times).

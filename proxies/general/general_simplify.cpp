@@ -16,7 +16,7 @@
 #include "proxies/general/general_proxy.h"
 #include "proxies/general/openmesh_faces.h"
 #include "proxies/general/qem_decimater.h"
-#include "proxies/limits/input_geometry.h"
+#include "proxies/shared/input_geometry.h"
 #include "util/error.h"
 
 namespace proxyvis {

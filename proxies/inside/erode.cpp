@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "proxies/inside/inside_proxy.h"
-#include "proxies/limits/input_geometry.h"
+#include "proxies/shared/input_geometry.h"
 #include "util/error.h"
 
 namespace proxyvis {

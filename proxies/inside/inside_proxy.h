@@ -1,11 +1,11 @@
 #pragma once
 // Inside proxies: closed meshes contained in a closed input (no MH' rays, docs/design.md). Sizes
 // are fractions of the input's bounding-box diagonal. These functions only build; the caller
-// (proxies/general/proxy_pipeline.h) verifies containment exactly before anything is written.
+// (proxies/pipeline/proxy_pipeline.h) verifies containment exactly before anything is written.
 #include <cstddef>
 
 #include "mesh/tri_mesh.h"
-#include "proxies/limits/time_budget.h"
+#include "proxies/shared/time_budget.h"
 
 namespace proxyvis {
 
@@ -32,9 +32,6 @@ struct InsideStats {
   size_t voxels = 0;  // erode: voxels left after erosion
 };
 
-// Number of boundary edges of `input` after welding equal positions (0 = closed).
-size_t countBoundaryEdges(const TriMesh& input);
-
 // Fills every hole of `input` (CGAL triangulate_refine_and_fair_hole; plain triangulation when
 // fairing fails) after welding equal positions and dropping unreferenced vertices. Throws
 // Error when the result is still not closed (e.g. non-manifold edges). `holes` (optional)
@@ -43,10 +40,10 @@ TriMesh fillHoles(const TriMesh& input, size_t* holes = nullptr);
 
 // Inner alpha-wrap from interior seeds (CGAL alpha_wrap_3 with seed_points). `input` must bound
 // a volume by ray parity (every welded edge has an even number of faces, non-manifold edges
-// allowed; proxies/limits/parity_solid.h): otherwise throws Error naming the boundary and odd
+// allowed; proxies/shared/parity_solid.h): otherwise throws Error naming the boundary and odd
 // edges with advice that works for them. Throws Error when no interior point is deeper than the
-// offset, when requireProxyGeometry (proxies/limits) refuses the input, when the wrap's estimate
-// exceeds kMaxEstimatedWrapFaces, or when options.budget is spent.
+// offset, when requireProxyGeometry (proxies/shared) refuses the input, when the wrap's estimate
+// exceeds kMaxEstimatedWrapFaces (proxies/shared/wrap_size.h), or when options.budget is spent.
 TriMesh makeInsideWrapProxy(const TriMesh& input, const InsideWrapOptions& options = {},
                             InsideStats* stats = nullptr);
 

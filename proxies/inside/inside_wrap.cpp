@@ -16,12 +16,12 @@
 #include <cmath>
 
 #include "proxies/inside/inside_proxy.h"
-#include "proxies/limits/input_geometry.h"
-#include "proxies/limits/internal/parity_solid_mesh.h"
-#include "proxies/limits/parity_solid.h"
-#include "proxies/outside/internal/cgal_weld.h"
-#include "proxies/outside/internal/wrap_budget.h"
-#include "proxies/outside/outside_proxy.h"
+#include "proxies/shared/cgal/parity_solid_mesh.h"
+#include "proxies/shared/cgal/weld.h"
+#include "proxies/shared/cgal/wrap_budget.h"
+#include "proxies/shared/input_geometry.h"
+#include "proxies/shared/parity_solid.h"
+#include "proxies/shared/wrap_size.h"
 #include "util/error.h"
 
 namespace proxyvis {
@@ -132,10 +132,6 @@ std::vector<Point3> findSeeds(const SurfaceMesh& sm, const InsideWrapOptions& op
 }
 
 }  // namespace
-
-size_t countBoundaryEdges(const TriMesh& input) {
-  return countBorderHalfedges(toWeldedMesh(input));
-}
 
 TriMesh fillHoles(const TriMesh& input, size_t* holes) {
   SurfaceMesh sm = toWeldedMesh(input);

@@ -8,10 +8,11 @@
 
 #include <fmt/core.h>
 
-#include "proxies/limits/input_geometry.h"
-#include "proxies/outside/internal/cgal_mesh.h"
-#include "proxies/outside/internal/wrap_budget.h"
+#include "mesh/cgal_bridge.h"
 #include "proxies/outside/outside_proxy.h"
+#include "proxies/shared/cgal/wrap_budget.h"
+#include "proxies/shared/input_geometry.h"
+#include "proxies/shared/wrap_size.h"
 #include "util/error.h"
 
 namespace proxyvis {
@@ -69,35 +70,6 @@ TriMesh makeHullProxy(const TriMesh& input, const HullOptions& options) {
   return cgal::fromSurfaceMesh(hull, "hull of " + input.source);
 }
 
-double estimateWrapFaces(const TriMesh& input, double alpha, double offset) {
-  Bounds3d box;
-  double area = 0;
-  for (const Triangle& t : input.triangles) {
-    const Vec3d a(input.vertices[t[0]]), b(input.vertices[t[1]]), c(input.vertices[t[2]]);
-    box.extend(a);
-    box.extend(b);
-    box.extend(c);
-    area += 0.5 * length(cross(b - a, c - a));
-  }
-  const double diag = box.diagonal();
-  const Vec3d e = box.extent() + Vec3d(2, 2, 2) * (offset * diag);
-  const double box_area = 2 * (e.x * e.y + e.y * e.z + e.z * e.x);
-  const double edge = alpha * diag;
-  // An equilateral triangle of edge `edge` covers 0.433 edge^2; count both sides of the input.
-  return (box_area + 2 * area) / (0.433 * edge * edge);
-}
-
-void requireWrapSize(const TriMesh& input, double alpha, double offset, const char* what) {
-  const double faces = estimateWrapFaces(input, alpha, offset);
-  if (!(faces <= kMaxEstimatedWrapFaces))
-    throw Error(input.source,
-                fmt::format("{} with alpha {:g} and offset {:g} would have about {:.3g} faces, "
-                            "more than {:g}",
-                            what, alpha, offset, faces, kMaxEstimatedWrapFaces),
-                "it would take too much memory and time",
-                "use a larger --alpha or a smaller --offset");
-}
-
 TriMesh makeWrapProxy(const TriMesh& input, const WrapOptions& options) {
   if (!(options.alpha > 0) || !(options.offset > 0))
     throw Error("", "alpha and offset must be positive fractions of the diagonal",
@@ -105,7 +77,7 @@ TriMesh makeWrapProxy(const TriMesh& input, const WrapOptions& options) {
   requireProxyGeometry(input, GeometryNeed::kSurface, "an outside wrap");
   requireWrapSize(input, options.alpha, options.offset, "the outside wrap");
   const double diag = input.diagonal();
-  cgal::Soup soup = cgal::toSoup(input);
+  auto soup = cgal::toSoup(input);
   SurfaceMesh wrap;
   cgal::WrapBudgetVisitor visitor(options.budget, kMaxEstimatedWrapFaces / 4, input.source);
   CGAL::alpha_wrap_3(soup.points, soup.faces, options.alpha * diag, options.offset * diag, wrap,

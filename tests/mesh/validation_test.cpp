@@ -2,11 +2,13 @@
 // and against hand-made meshes whose answers are known in closed form.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <regex>
 
+#include "mesh/edge_counts.h"
 #include "mesh/mesh_io.h"
 #include "mesh/validation.h"
 #include "mesh_test_util.h"
@@ -101,6 +103,26 @@ TEST(SharedManifest, EveryTopologyRowMatches) {
     ++checked;
   }
   EXPECT_GE(checked, 60);
+}
+
+// countEdges (mesh/edge_counts.h) serves validation, the ray-parity solid and the check with any
+// index type: a "book" of pages on edge (0, 1), counted by hand.
+TEST(EdgeCounts, PagesOnOneEdge) {
+  std::vector<std::array<std::size_t, 3>> book = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
+  EdgeCounts c = countEdges(book);
+  EXPECT_EQ(c.edges, 7u);  // (0,1) and two free edges per page
+  EXPECT_EQ(c.boundary, 6u);
+  EXPECT_EQ(c.non_manifold, 1u);
+  EXPECT_EQ(c.odd, 1u);  // three pages
+  book.push_back({1, 0, 5});
+  c = countEdges(book);
+  EXPECT_EQ(c.edges, 9u);
+  EXPECT_EQ(c.boundary, 8u);
+  EXPECT_EQ(c.non_manifold, 1u);
+  EXPECT_EQ(c.odd, 0u);  // four pages: even again
+  const std::vector<Triangle> one = {{7, 8, 9}};
+  EXPECT_EQ(countEdges(one).boundary, 3u);
+  EXPECT_EQ(countEdges(std::vector<Triangle>{}).edges, 0u);
 }
 
 TEST(Validate, UnitCubeIsClosedGenusZeroVolumeOne) {

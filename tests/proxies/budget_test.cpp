@@ -1,4 +1,4 @@
-// The face budget's fallbacks (proxies/general/budget_*): enclosing and inscribed boxes and
+// The face budget's fallbacks (proxies/pipeline/budget_*): enclosing and inscribed boxes and
 // tetrahedra hold their side under the exact containment check; OpenMesh gets every face of a
 // non-manifold soup without rejecting one; hard budgets throw, soft ones report.
 #include <gtest/gtest.h>
@@ -9,9 +9,9 @@
 
 #include "mesh/mesh_io.h"
 #include "proxies/check/containment.h"
-#include "proxies/general/budget_shapes.h"
 #include "proxies/general/openmesh_faces.h"
-#include "proxies/general/proxy_pipeline.h"
+#include "proxies/pipeline/budget_shapes.h"
+#include "proxies/pipeline/proxy_pipeline.h"
 #include "tests/proxies/gen_test_util.h"
 #include "util/error.h"
 

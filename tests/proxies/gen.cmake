@@ -1,7 +1,7 @@
 # proxy-gen: outside, inside and general proxies and their pipeline (proxies/outside, inside,
 # general). The placement LP needs nothing else; the rest needs pv_mesh and pv_proxy_check.
-if(TARGET pv_proxy_outside)
-  proxyvis_add_test(proxy_lp_tests SOURCES ${CMAKE_CURRENT_LIST_DIR}/plane_lp_test.cpp LIBS pv_proxy_outside)
+if(TARGET pv_proxy_shared)
+  proxyvis_add_test(proxy_lp_tests SOURCES ${CMAKE_CURRENT_LIST_DIR}/plane_lp_test.cpp LIBS pv_proxy_shared)
 endif()
 if(TARGET pv_proxy_pipeline)
   proxyvis_add_test(proxy_gen_tests

@@ -12,7 +12,7 @@
 
 #include "mesh/mesh_io.h"
 #include "proxies/check/containment.h"
-#include "proxies/general/proxy_pipeline.h"
+#include "proxies/pipeline/proxy_pipeline.h"
 
 namespace proxyvis::gen_test {
 

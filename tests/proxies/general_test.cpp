@@ -5,7 +5,7 @@
 #include <string>
 
 #include "proxies/general/general_proxy.h"
-#include "proxies/general/proxy_pipeline.h"
+#include "proxies/pipeline/proxy_pipeline.h"
 #include "tests/proxies/gen_test_util.h"
 #include "util/error.h"
 

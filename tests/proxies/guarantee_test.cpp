@@ -11,8 +11,8 @@
 #include "mesh/validation.h"
 #include "proxies/check/containment.h"
 #include "proxies/check/pair_check.h"
-#include "proxies/general/proxy_pipeline.h"
-#include "proxies/limits/parity_solid.h"
+#include "proxies/pipeline/proxy_pipeline.h"
+#include "proxies/shared/parity_solid.h"
 #include "tests/proxies/gen_test_util.h"
 #include "util/error.h"
 

@@ -8,11 +8,12 @@
 #include <string>
 #include <thread>
 
+#include "mesh/validation.h"
 #include "proxies/general/general_proxy.h"
-#include "proxies/general/proxy_pipeline.h"
 #include "proxies/inside/inside_proxy.h"
-#include "proxies/limits/input_geometry.h"
-#include "proxies/limits/time_budget.h"
+#include "proxies/pipeline/proxy_pipeline.h"
+#include "proxies/shared/input_geometry.h"
+#include "proxies/shared/time_budget.h"
 #include "tests/proxies/gen_test_util.h"
 #include "util/error.h"
 
@@ -216,7 +217,7 @@ TEST(SmallMeshes, ATriangleDegenerateAfterWeldingIsDropped) {
   m.vertices.push_back(m.vertices[0]);  // vertex 5 = vertex 0
   m.triangles.push_back({0, 4, 1});
   m.triangles.push_back({4, 5, 0});
-  EXPECT_EQ(countBoundaryEdges(m), 0u);
+  EXPECT_EQ(validateMesh(m).boundary_edges, 0u);
   size_t holes = 99;
   const TriMesh filled = fillHoles(m, &holes);
   EXPECT_EQ(holes, 0u);

@@ -5,9 +5,10 @@
 
 #include <string>
 
+#include "mesh/validation.h"
 #include "proxies/check/containment.h"
-#include "proxies/general/proxy_pipeline.h"
 #include "proxies/inside/inside_proxy.h"
+#include "proxies/pipeline/proxy_pipeline.h"
 #include "tests/proxies/gen_test_util.h"
 #include "util/error.h"
 
@@ -81,14 +82,14 @@ TEST(InsideOpenInput, IsAnErrorNamingBoundaryEdges) {
     EXPECT_NE(what.find("--kind outside"), std::string::npos) << what;
     EXPECT_EQ(e.exitCode(), kExitBadInput);
   }
-  EXPECT_EQ(countBoundaryEdges(input), 223u);
+  EXPECT_EQ(validateMesh(input).boundary_edges, 223u);
 }
 
 TEST(InsideOpenInput, FillHolesMakesBunZipperWork) {
   const TriMesh& input = mesh("bun_zipper.ply");
   size_t holes = 0;
   const TriMesh filled = fillHoles(input, &holes);
-  EXPECT_EQ(countBoundaryEdges(filled), 0u);
+  EXPECT_EQ(validateMesh(filled).boundary_edges, 0u);
   EXPECT_GT(holes, 0u);
   ProxyGenOptions o = genOptions(ProxyClass::kInside, "", 0, 2000);
   o.fill_holes = true;

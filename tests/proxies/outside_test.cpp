@@ -7,9 +7,9 @@
 #include <tuple>
 
 #include "proxies/check/containment.h"
-#include "proxies/general/proxy_pipeline.h"
-#include "proxies/outside/bounded_simplify.h"
 #include "proxies/outside/outside_proxy.h"
+#include "proxies/pipeline/proxy_pipeline.h"
+#include "proxies/shared/bounded_simplify.h"
 #include "tests/proxies/gen_test_util.h"
 #include "util/error.h"
 

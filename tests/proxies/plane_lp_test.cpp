@@ -1,7 +1,7 @@
 // The placement LP of the bounded edge collapse, on programs whose optimum is known by hand.
 #include <gtest/gtest.h>
 
-#include "proxies/outside/internal/plane_lp.h"
+#include "proxies/shared/plane_lp.h"
 
 namespace proxyvis::lp {
 namespace {

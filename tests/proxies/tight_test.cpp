@@ -6,10 +6,10 @@
 
 #include "mesh/validation.h"
 #include "proxies/check/containment.h"
-#include "proxies/general/proxy_pipeline.h"
 #include "proxies/inside/inside_proxy.h"
-#include "proxies/outside/bounded_simplify.h"
 #include "proxies/outside/outside_proxy.h"
+#include "proxies/pipeline/proxy_pipeline.h"
+#include "proxies/shared/bounded_simplify.h"
 #include "tests/proxies/gen_test_util.h"
 
 namespace proxyvis {

@@ -1,4 +1,4 @@
-#include "proxies/limits/input_geometry.h"
+#include "proxies/shared/input_geometry.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <fmt/core.h>

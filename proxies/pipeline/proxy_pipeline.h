@@ -67,10 +67,10 @@ struct ProxyGenResult {
 };
 
 // Builds and checks the proxy of `input` (report key "input.path" = input.source); a face budget
-// that the built proxy misses is met by the fallbacks of proxies/general/budget_ladder.h when
+// that the built proxy misses is met by the fallbacks of proxies/pipeline/budget_ladder.h when
 // any of them can. Throws Error
 // on bad input or options (e.g. an open mesh for --kind inside without fill_holes, naming the
-// boundary edges; geometry the generator cannot handle, see proxies/limits/input_geometry.h; an
+// boundary edges; geometry the generator cannot handle, see proxies/shared/input_geometry.h; an
 // option outside its range; a spent max_seconds), CheckFailed when an outside/inside proxy fails
 // its guarantee or a hard budget is not met. A general proxy
 // that is not closed/manifold/free of self-intersections is returned with verified = false.

@@ -1,6 +1,6 @@
 // Vertex enumeration for a 3-D linear program: the optimum of a bounded feasible LP is attained
 // at a vertex of the feasible polytope, i.e. at the intersection of three constraint planes.
-#include "proxies/outside/internal/plane_lp.h"
+#include "proxies/shared/plane_lp.h"
 
 #include <algorithm>
 #include <cmath>

@@ -11,10 +11,10 @@
 #include "mesh/tri_mesh.h"
 #include "mesh/validation.h"
 #include "proxies/check/containment.h"
-#include "proxies/general/proxy_pipeline.h"
-#include "proxies/general/stage_timer.h"
-#include "proxies/limits/time_budget.h"
-#include "proxies/outside/bounded_simplify.h"
+#include "proxies/pipeline/proxy_pipeline.h"
+#include "proxies/pipeline/stage_timer.h"
+#include "proxies/shared/bounded_simplify.h"
+#include "proxies/shared/time_budget.h"
 
 namespace proxyvis {
 

@@ -1,10 +1,10 @@
 #pragma once
-// Private to proxies/: the test that lets a bounded collapse move a vertex inward, not only
-// outward. A proxy that contains (or is contained in) the input keeps doing so after a local
+// Private to pv_proxy_shared: the test that lets a bounded collapse move a vertex inward, not
+// only outward. A proxy that contains (or is contained in) the input keeps doing so after a local
 // change from the old star of faces to a new one when (1) no new face touches an input triangle
 // and (2) no input piece lies in the region swept between the old and the new star. Without it
 // the collapse must keep each mesh nested in the previous one, which piles up volume at small
-// budgets. Including this header pulls in CGAL; only proxies/**/*.cpp may include it.
+// budgets.
 #include <array>
 #include <memory>
 #include <vector>

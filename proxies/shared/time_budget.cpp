@@ -1,4 +1,4 @@
-#include "proxies/limits/time_budget.h"
+#include "proxies/shared/time_budget.h"
 
 #include <fmt/core.h>
 

@@ -1,13 +1,13 @@
-#include "proxies/general/budget_ladder.h"
+#include "proxies/pipeline/budget_ladder.h"
 
 #include <fmt/core.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "proxies/general/budget_shapes.h"
 #include "proxies/general/general_proxy.h"
 #include "proxies/outside/outside_proxy.h"
+#include "proxies/pipeline/budget_shapes.h"
 #include "util/error.h"
 
 namespace proxyvis {

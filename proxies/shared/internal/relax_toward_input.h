@@ -1,11 +1,10 @@
 #pragma once
-// Private to proxies/: after a bounded collapse has reached its face budget, moves each vertex
-// toward the input as far as the input test (input_bound.h) and a self-intersection test allow.
-// The face count stays; the volume between proxy and input shrinks. Including this header pulls
-// in CGAL; only proxies/**/*.cpp may include it.
+// Private to pv_proxy_shared: after a bounded collapse has reached its face budget, moves each
+// vertex toward the input as far as the input test (input_bound.h) and a self-intersection test
+// allow. The face count stays; the volume between proxy and input shrinks.
 #include "mesh/tri_mesh.h"
-#include "proxies/limits/time_budget.h"
-#include "proxies/outside/internal/input_bound.h"
+#include "proxies/shared/internal/input_bound.h"
+#include "proxies/shared/time_budget.h"
 
 namespace proxyvis::cgal {
 

@@ -1,13 +1,14 @@
 #pragma once
-// Private to proxies/: an alpha_wrap_3 visitor that stops a running wrap when its time budget is
+// An alpha_wrap_3 visitor that stops a running wrap when its time budget is
 // spent or it inserts far more points than its estimate allowed. CGAL 5.5's wrapper has no
 // go_further() hook; the visitor throws instead, from between two facet steps (the wrapper's
 // state is then discarded by its destructors and nothing has been written to the output mesh).
+// Pulls in CGAL; include it only from .cpp files.
 #include <CGAL/alpha_wrap_3.h>
 
 #include <cstddef>
 
-#include "proxies/limits/time_budget.h"
+#include "proxies/shared/time_budget.h"
 #include "util/error.h"
 
 namespace proxyvis::cgal {

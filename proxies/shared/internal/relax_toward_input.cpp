@@ -3,14 +3,14 @@
 // distance to the input, the first admissible one is kept. A step is admissible when no face
 // of the star flips, the input test allows the new star, and no new face crosses a face of the
 // mesh that shares no corner with it (a linear scan over face boxes: the meshes are small).
-#include "proxies/outside/internal/relax_toward_input.h"
+#include "proxies/shared/internal/relax_toward_input.h"
 
 #include <CGAL/intersections.h>
 
 #include <array>
 #include <vector>
 
-#include "proxies/outside/internal/cgal_mesh.h"
+#include "mesh/cgal_bridge.h"
 
 namespace proxyvis::cgal {
 namespace {

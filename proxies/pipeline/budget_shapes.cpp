@@ -1,7 +1,7 @@
 // Boxes and tetrahedra for the face-budget ladder. An enclosing shape contains the input's
 // vertices, hence their convex hull, hence the input; an inscribed one lies in a ball of the
 // interior, hence inside. Both are verified exactly by the caller anyway.
-#include "proxies/general/budget_shapes.h"
+#include "proxies/pipeline/budget_shapes.h"
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
@@ -15,7 +15,7 @@
 #include <limits>
 #include <utility>
 
-#include "proxies/outside/internal/cgal_weld.h"
+#include "proxies/shared/cgal/weld.h"
 
 namespace proxyvis {
 namespace {

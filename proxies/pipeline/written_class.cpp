@@ -1,4 +1,4 @@
-#include "proxies/general/written_class.h"
+#include "proxies/pipeline/written_class.h"
 
 #include <fmt/core.h>
 

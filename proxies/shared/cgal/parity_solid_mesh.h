@@ -1,10 +1,7 @@
 #pragma once
-// Private to proxies/: a triangle soup as a CGAL Surface_mesh with the same triangles, for point
-// location by ray parity and the volume it bounds (proxies/limits/parity_solid.h says which
-// surfaces have an inside). Including this header pulls in CGAL; only proxies/**/*.cpp may
-// include it.
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Surface_mesh.h>
+// A triangle soup as a CGAL Surface_mesh with the same triangles, for point location by ray
+// parity and the volume it bounds (proxies/shared/parity_solid.h says which surfaces have an
+// inside). Pulls in CGAL; include it only from .cpp files.
 #include <CGAL/enum.h>
 
 #include <array>
@@ -12,14 +9,15 @@
 #include <memory>
 #include <vector>
 
+#include "mesh/cgal_bridge.h"
 #include "mesh/tri_mesh.h"
 
 namespace proxyvis::parity {
 
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Point3 = Kernel::Point_3;
-using SurfaceMesh = CGAL::Surface_mesh<Point3>;
-using Face = std::array<std::size_t, 3>;
+using cgal::Kernel;
+using cgal::Point3;
+using cgal::SurfaceMesh;
+using Face = cgal::SoupTriangle;
 
 struct ParitySolid {
   // The soup's triangles after welding exactly equal positions, dropping triangles with a repeated

@@ -1,4 +1,4 @@
-#include "proxies/general/proxy_pipeline.h"
+#include "proxies/pipeline/proxy_pipeline.h"
 
 #include <fmt/core.h>
 
@@ -10,16 +10,16 @@
 #include "proxies/check/containment.h"
 #include "proxies/check/distance_report.h"
 #include "proxies/check/mesh_distance.h"
-#include "proxies/general/budget_ladder.h"
-#include "proxies/general/budget_shapes.h"
 #include "proxies/general/general_proxy.h"
-#include "proxies/general/written_class.h"
 #include "proxies/inside/inside_proxy.h"
-#include "proxies/limits/input_geometry.h"
-#include "proxies/limits/parity_solid.h"
-#include "proxies/limits/time_budget.h"
-#include "proxies/outside/bounded_simplify.h"
 #include "proxies/outside/outside_proxy.h"
+#include "proxies/pipeline/budget_ladder.h"
+#include "proxies/pipeline/budget_shapes.h"
+#include "proxies/pipeline/written_class.h"
+#include "proxies/shared/bounded_simplify.h"
+#include "proxies/shared/input_geometry.h"
+#include "proxies/shared/parity_solid.h"
+#include "proxies/shared/time_budget.h"
 #include "util/error.h"
 
 namespace proxyvis {
@@ -61,7 +61,7 @@ void checkOptionRanges(const ProxyGenOptions& o) {
                                 kMaxSecondsRange.lo, kMaxSecondsRange.hi, o.max_seconds));
 }
 
-// What a method needs of the input geometry (proxies/limits/input_geometry.h): the convex hull
+// What a method needs of the input geometry (proxies/shared/input_geometry.h): the convex hull
 // and the inside methods a volume, the wrap and the simplifiers a surface.
 GeometryNeed geometryNeed(ProxyClass kind, const std::string& method) {
   if (kind == ProxyClass::kInside) return GeometryNeed::kSolid;
@@ -271,7 +271,7 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
   timer.run("metrics", [&] {
     const double diag = reference.diagonal();
     // A closed manifold input's own signed volume (cheap); by ray parity for a watertight
-    // non-manifold input or the hole-filled stand-in (proxies/limits/parity_solid.h).
+    // non-manifold input or the hole-filled stand-in (proxies/shared/parity_solid.h).
     const std::optional<double> ref_volume = !(in_report.watertight || stand_in) ? std::nullopt
                                              : in_report.closed
                                                  ? std::optional<double>(reference.signedVolume())

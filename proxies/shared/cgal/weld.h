@@ -1,11 +1,11 @@
 #pragma once
-// Private to proxies/: a TriMesh as a valid oriented CGAL Surface_mesh, whatever its soup. Pulls
-// in CGAL's polygon-soup repair; only proxies/**/*.cpp may include it.
+// A TriMesh as a valid oriented CGAL Surface_mesh, whatever its soup, built on the one conversion
+// (mesh/cgal_bridge.h). Pulls in CGAL's polygon-soup repair; include it only from .cpp files.
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
 
-#include "proxies/outside/internal/cgal_mesh.h"
+#include "mesh/cgal_bridge.h"
 
 namespace proxyvis::cgal {
 
@@ -14,7 +14,7 @@ namespace proxyvis::cgal {
 // Non-manifold vertices are split by orient_polygon_soup, so the result is always valid.
 inline SurfaceMesh toWeldedMesh(const TriMesh& input) {
   namespace PMP = CGAL::Polygon_mesh_processing;
-  Soup soup = toSoup(input);
+  auto soup = toSoup(input);
   PMP::merge_duplicate_points_in_polygon_soup(soup.points, soup.faces);
   // A triangle whose corners welded together is no polygon: orient_polygon_soup loops for ever
   // on it (found by fuzz_proxy_gen).

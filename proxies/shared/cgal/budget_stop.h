@@ -1,12 +1,12 @@
 #pragma once
-// Private to proxies/: a stop predicate for CGAL's edge_collapse that stops at an edge count or
+// A stop predicate for CGAL's edge_collapse that stops at an edge count or
 // as soon as a time budget is spent. edge_collapse then returns normally; the caller checks the
-// budget afterwards and throws.
+// budget afterwards and throws. Pulls in CGAL; include it only from .cpp files.
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Count_stop_predicate.h>
 
 #include <cstddef>
 
-#include "proxies/limits/time_budget.h"
+#include "proxies/shared/time_budget.h"
 
 namespace proxyvis::cgal {
 

@@ -17,8 +17,9 @@
 #include <optional>
 #include <utility>
 
-#include "proxies/limits/internal/parity_solid_mesh.h"
-#include "proxies/limits/parity_solid.h"
+#include "mesh/edge_counts.h"
+#include "proxies/shared/cgal/parity_solid_mesh.h"
+#include "proxies/shared/parity_solid.h"
 
 namespace proxyvis {
 namespace parity {
@@ -53,22 +54,6 @@ void dropCoincidentPairs(std::vector<Face>& faces) {
   for (std::size_t i = 0; i < faces.size(); ++i)
     if (keep[i]) kept.push_back(faces[i]);
   faces = std::move(kept);
-}
-
-void countEdges(const std::vector<Face>& faces, ParitySolid& s) {
-  std::vector<std::pair<std::size_t, std::size_t>> edges;
-  edges.reserve(faces.size() * 3);
-  for (const Face& f : faces)
-    for (int k = 0; k < 3; ++k) edges.emplace_back(std::minmax(f[k], f[(k + 1) % 3]));
-  std::sort(edges.begin(), edges.end());
-  for (std::size_t begin = 0; begin < edges.size();) {
-    std::size_t end = begin + 1;
-    while (end < edges.size() && edges[end] == edges[begin]) ++end;
-    const std::size_t n = end - begin;
-    s.boundary_edges += n == 1;
-    s.odd_edges += n > 1 && n % 2 == 1;
-    begin = end;
-  }
 }
 
 // Which way a face's normal points, by locating two points just off its centroid: +1 out of the
@@ -141,7 +126,9 @@ ParitySolid makeParitySolid(std::vector<Point3> points, std::vector<Face> faces)
   std::erase_if(faces, [](const Face& f) { return f[0] == f[1] || f[1] == f[2] || f[0] == f[2]; });
   dropCoincidentPairs(faces);
   PMP::remove_isolated_points_in_polygon_soup(points, faces);
-  countEdges(faces, s);
+  const EdgeCounts edges = countEdges(faces);
+  s.boundary_edges = edges.boundary;
+  s.odd_edges = edges.odd;
   PMP::orient_polygon_soup(points, faces);
   PMP::polygon_soup_to_polygon_mesh(points, faces, s.mesh);
   if (s.watertight()) orientPiecesOutward(s.mesh);
@@ -149,13 +136,8 @@ ParitySolid makeParitySolid(std::vector<Point3> points, std::vector<Face> faces)
 }
 
 ParitySolid makeParitySolid(const TriMesh& mesh) {
-  std::vector<Point3> points;
-  points.reserve(mesh.vertices.size());
-  for (const Vec3f& v : mesh.vertices) points.emplace_back(v.x, v.y, v.z);
-  std::vector<Face> faces;
-  faces.reserve(mesh.triangles.size());
-  for (const Triangle& t : mesh.triangles) faces.push_back({t[0], t[1], t[2]});
-  return makeParitySolid(std::move(points), std::move(faces));
+  cgal::Soup<Face> soup = cgal::toSoup<Face>(mesh);
+  return makeParitySolid(std::move(soup.points), std::move(soup.faces));
 }
 
 struct ParityLocator::Impl {

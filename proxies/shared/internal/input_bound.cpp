@@ -3,7 +3,7 @@
 // an input component is either entirely between the stars or not at all, so (2) tests one
 // vertex per component whose bounding box fits in the stars' box, by the winding number of the
 // closed surface old star + reversed new star.
-#include "proxies/outside/internal/input_bound.h"
+#include "proxies/shared/internal/input_bound.h"
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -13,7 +13,7 @@
 #include <cmath>
 #include <numeric>
 
-#include "proxies/outside/internal/cgal_mesh.h"
+#include "mesh/cgal_bridge.h"
 
 namespace proxyvis::cgal {
 namespace {

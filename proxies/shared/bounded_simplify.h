@@ -9,7 +9,7 @@
 #include <cstddef>
 
 #include "mesh/tri_mesh.h"
-#include "proxies/limits/time_budget.h"
+#include "proxies/shared/time_budget.h"
 
 namespace proxyvis {
 
@@ -24,7 +24,7 @@ struct BoundedSimplifyOptions {
   const TimeBudget* budget = nullptr;  // polled between collapses; null = no limit
   // The input the result must keep containing (kOutside) or stay inside of (kInside). With it,
   // a collapse may also move the surface toward the input, tested against the input itself
-  // (proxies/outside/internal/input_bound.h): much tighter at small budgets. Null = every
+  // (proxies/shared/internal/input_bound.h): much tighter at small budgets. Null = every
   // collapse keeps the mesh nested in the previous one (progressive hulls).
   const TriMesh* bound = nullptr;
 };

@@ -1,10 +1,18 @@
 #pragma once
-// Private to proxies/: conversions between TriMesh and CGAL's Surface_mesh / triangle soups.
-// Including this header pulls in CGAL; only proxies/**/*.cpp may include it.
+// The one conversion between TriMesh and CGAL: a triangle soup in CGAL's point type (what
+// alpha_wrap_3 and the Polygon_mesh_processing soup functions take) and a Surface_mesh, and back.
+// Everything that hands a TriMesh to CGAL goes through here (mesh-info's self-intersection test,
+// the proxy generators, the exact containment check); the repairs each needs are built on it.
+// Including this header pulls in CGAL (15-37 s per translation unit): include it only from the
+// .cpp files that use CGAL, never from another header that is not CGAL-only itself.
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
 
 #include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "mesh/tri_mesh.h"
@@ -16,19 +24,25 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point3 = Kernel::Point_3;
 using Vector3 = Kernel::Vector_3;
 using SurfaceMesh = CGAL::Surface_mesh<Point3>;
+using SoupTriangle = std::array<std::size_t, 3>;
 
-// A triangle soup in CGAL's types: what alpha_wrap_3 and the PMP soup functions take.
+// A triangle soup in CGAL's types. Polygon is SoupTriangle, or std::vector<std::size_t> for
+// repair_polygon_soup (which misbehaves on std::array soups in CGAL 5.5).
+template <typename Polygon = SoupTriangle>
 struct Soup {
   std::vector<Point3> points;
-  std::vector<std::array<std::size_t, 3>> faces;
+  std::vector<Polygon> faces;
 };
 
-inline Soup toSoup(const TriMesh& mesh) {
-  Soup soup;
+// The mesh's vertices and triangles as they are: nothing welded, dropped or checked (indices
+// must be in range; non-finite coordinates are the caller's to refuse).
+template <typename Polygon = SoupTriangle>
+Soup<Polygon> toSoup(const TriMesh& mesh) {
+  Soup<Polygon> soup;
   soup.points.reserve(mesh.vertices.size());
   for (const Vec3f& v : mesh.vertices) soup.points.emplace_back(v.x, v.y, v.z);
   soup.faces.reserve(mesh.triangles.size());
-  for (const Triangle& t : mesh.triangles) soup.faces.push_back({t[0], t[1], t[2]});
+  for (const Triangle& t : mesh.triangles) soup.faces.push_back(Polygon{t[0], t[1], t[2]});
   return soup;
 }
 

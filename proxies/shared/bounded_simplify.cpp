@@ -12,7 +12,7 @@
 // Given the input itself (options.bound), the last collapses may also move the surface toward
 // it, tested exactly against the input (internal/input_bound.h), and a relaxation moves the
 // vertices of the result inward (internal/relax_toward_input.h): docs/proxy_tightness.md.
-#include "proxies/outside/bounded_simplify.h"
+#include "proxies/shared/bounded_simplify.h"
 
 #include <CGAL/Surface_mesh_simplification/Edge_collapse_visitor_base.h>
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Count_stop_predicate.h>
@@ -27,11 +27,11 @@
 #include <cmath>
 #include <optional>
 
-#include "proxies/outside/internal/budget_stop.h"
-#include "proxies/outside/internal/cgal_mesh.h"
-#include "proxies/outside/internal/input_bound.h"
-#include "proxies/outside/internal/plane_lp.h"
-#include "proxies/outside/internal/relax_toward_input.h"
+#include "mesh/cgal_bridge.h"
+#include "proxies/shared/cgal/budget_stop.h"
+#include "proxies/shared/internal/input_bound.h"
+#include "proxies/shared/internal/relax_toward_input.h"
+#include "proxies/shared/plane_lp.h"
 #include "util/error.h"
 
 namespace proxyvis {
