@@ -228,8 +228,7 @@ void printOverhead(uint64_t samples) {
   fmt::print("| {:<13} | {:>8} | {:>12} | {:>10}\n", "estimator", "ns/seg", "tracer calls",
              "overhead");
   fmt::print("|{:-<15}|{:-<10}|{:-<14}|{:-<11}\n", "", "", "", "");
-  for (EstimatorKind kind : {EstimatorKind::kExact, EstimatorKind::kCulling,
-                             EstimatorKind::kPaperEqual, EstimatorKind::kRoulette}) {
+  for (EstimatorKind kind : allEstimators()) {
     for (bool measured : {false, true}) {
       if (measured && kind != EstimatorKind::kRoulette) continue;
       EstimatorSetup setup;

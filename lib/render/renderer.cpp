@@ -22,7 +22,7 @@
 
 namespace proxyvis {
 
-using namespace render_internal;
+using namespace detail;
 
 namespace {
 
@@ -41,10 +41,15 @@ void validate(const RenderSettings& s) {
   if (s.samples_per_pass < 0) throw Error("", "samples per pass must be >= 0");
 }
 
+// Light samples per pixel per pass for estimators with probes under a time budget: probes are
+// drawn per shading point and call, so fewer, larger passes amortise them, while 16 still lets
+// the budget end the render within a few percent of its time.
+constexpr int kProbePassSamplesUnderBudget = 16;
+
 int samplesPerPass(const RenderSettings& s, int probes) {
   if (s.samples_per_pass > 0) return s.samples_per_pass;
   if (probes <= 0) return 1;
-  return s.time_budget > 0 ? 16 : std::max(1, s.spp);
+  return s.time_budget > 0 ? kProbePassSamplesUnderBudget : std::max(1, s.spp);
 }
 
 // Per-pixel sums, one cache line per pixel: phase B touches one line per pixel, not four.
@@ -158,13 +163,18 @@ void estimatePixel(const RenderScene& scene, VisibilityEstimator& estimator, con
 
 EstimatorSetup estimatorSetupFor(const RenderScene& scene, const RenderSettings& settings) {
   EstimatorSetup setup = settings.estimator;
-  const render_internal::Tiling tiling(scene.camera().width(), scene.camera().height(),
-                                       std::max(1, settings.tile_size));
+  const detail::Tiling tiling(scene.camera().width(), scene.camera().height(),
+                              std::max(1, settings.tile_size));
   setup.num_regions = uint32_t(tiling.count()) * uint32_t(scene.lights().numLights()) * 2u;
   setup.num_points = uint32_t(scene.camera().width()) * uint32_t(scene.camera().height()) *
                      uint32_t(scene.lights().numLights());
   setup.proxy_class = settings.force_general_proxies ? ProxyClass::kGeneral : scene.proxyClass();
   return setup;
+}
+
+RenderResult render(const RenderScene& scene, const RenderSettings& settings) {
+  const auto estimator = makeEstimator(estimatorSetupFor(scene, settings));
+  return render(scene, settings, *estimator);
 }
 
 RenderResult render(const RenderScene& scene, const RenderSettings& settings,
