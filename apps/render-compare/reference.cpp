@@ -6,7 +6,6 @@
 #include <nlohmann/json.hpp>
 
 #include "metrics/image_variance.h"
-#include "metrics/stopwatch.h"
 #include "render/image_io.h"
 #include "runs.h"
 #include "util/atomic_write.h"
@@ -15,6 +14,7 @@
 #include "util/input_file.h"
 #include "util/progress.h"
 #include "util/rng.h"
+#include "util/stopwatch.h"
 
 namespace proxyvis {
 

@@ -17,7 +17,6 @@
 #include <tbb/parallel_for.h>
 
 #include <CLI/CLI.hpp>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -31,6 +30,7 @@
 #include "util/app_main.h"
 #include "util/error.h"
 #include "util/rng.h"
+#include "util/stopwatch.h"
 
 namespace pv = proxyvis;
 
@@ -205,11 +205,11 @@ double cpuSeconds() {
 
 template <typename F>
 void measure(Rate& best, size_t n, F&& trace) {
-  auto t0 = std::chrono::steady_clock::now();
+  const pv::Stopwatch watch;
   double c0 = cpuSeconds();
   trace();
   double cpu = cpuSeconds() - c0;
-  double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  double wall = watch.seconds();
   best.wall = std::max(best.wall, double(n) / wall / 1e6);
   best.cpu = std::max(best.cpu, double(n) / cpu / 1e6);
 }
