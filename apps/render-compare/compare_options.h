@@ -25,7 +25,7 @@ inline constexpr uint64_t kMaxProbes = 4096;
 struct CompareOptions {
   std::filesystem::path scene;
   std::filesystem::path out;
-  std::string estimators = "exact,culling,paper-equal,paper-optimal,paper-cost,roulette";
+  std::string estimators = allEstimatorNames();
   std::string spp = "4,16";
   double equal_time = 1.0;  // seconds per render; 0 = no equal-time table
   int reference_spp = 0;    // 0 = max(1024, 16 × the largest spp reached), a power of two

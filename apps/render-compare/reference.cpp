@@ -6,14 +6,15 @@
 #include <nlohmann/json.hpp>
 
 #include "metrics/image_variance.h"
-#include "metrics/stopwatch.h"
 #include "render/image_io.h"
 #include "runs.h"
 #include "util/atomic_write.h"
 #include "util/error.h"
+#include "util/fnv1a.h"
 #include "util/input_file.h"
 #include "util/progress.h"
 #include "util/rng.h"
+#include "util/stopwatch.h"
 
 namespace proxyvis {
 
@@ -28,12 +29,6 @@ constexpr int kPartials = 16;
 constexpr uint64_t kReferenceSeed = 0x7265666572656e63ULL;  // "referenc"
 // Bump when the reference's meaning changes (renderer conventions, partial scheme).
 constexpr int kCacheVersion = 1;
-
-uint64_t fnv1a(const std::string& s) {
-  uint64_t h = 0xcbf29ce484222325ULL;
-  for (unsigned char c : s) h = (h ^ c) * 0x100000001b3ULL;
-  return h;
-}
 
 // The build is part of the key: flattened and instanced tracing round differently, and a
 // reference of one build would show the other's renders a small bias.

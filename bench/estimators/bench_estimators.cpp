@@ -10,7 +10,6 @@
 // against both); their closed-form rows use the true class probabilities (an oracle: free probes).
 #include <fmt/core.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -23,6 +22,7 @@
 #include "estimate/synthetic_tracer.h"
 #include "estimate/visibility_estimator.h"
 #include "util/stats.h"
+#include "util/stopwatch.h"
 
 using namespace proxyvis;
 
@@ -212,15 +212,14 @@ void printScenario(const Scenario& s, uint64_t samples) {
 void printOverhead(uint64_t samples) {
   const Scenario s = scenarios()[5];
   SyntheticTracer tracer({s.mix}, 7);
-  using Clock = std::chrono::steady_clock;
   const uint32_t points = 4096;
   const uint64_t passes = std::max<uint64_t>(4, samples / points);
   auto time_calls = [&] {
-    const auto t0 = Clock::now();
+    const Stopwatch watch;
     int sink = 0;
     for (uint64_t i = 0; i < passes * points; ++i)
       sink += tracer.proxyVisible(SyntheticTracer::segment(0, i));
-    const double ns = std::chrono::duration<double, std::nano>(Clock::now() - t0).count();
+    const double ns = 1e9 * watch.seconds();
     return ns / double(passes * points) + (sink == -1 ? 1 : 0);
   };
   const double call_ns = time_calls();
@@ -228,8 +227,7 @@ void printOverhead(uint64_t samples) {
   fmt::print("| {:<13} | {:>8} | {:>12} | {:>10}\n", "estimator", "ns/seg", "tracer calls",
              "overhead");
   fmt::print("|{:-<15}|{:-<10}|{:-<14}|{:-<11}\n", "", "", "", "");
-  for (EstimatorKind kind : {EstimatorKind::kExact, EstimatorKind::kCulling,
-                             EstimatorKind::kPaperEqual, EstimatorKind::kRoulette}) {
+  for (EstimatorKind kind : allEstimators()) {
     for (bool measured : {false, true}) {
       if (measured && kind != EstimatorKind::kRoulette) continue;
       EstimatorSetup setup;
@@ -241,7 +239,7 @@ void printOverhead(uint64_t samples) {
       const auto e = makeEstimator(setup);
       RayCounts counts;
       double out = 0;
-      const auto t0 = Clock::now();
+      const Stopwatch watch;
       for (uint64_t pass = 0; pass < passes; ++pass) {
         e->beginPass(int(pass));
         for (uint32_t p = 0; p < points; ++p) {
@@ -257,7 +255,7 @@ void printOverhead(uint64_t samples) {
         e->endPass();
       }
       const double n = double(passes * points);
-      const double ns = std::chrono::duration<double, std::nano>(Clock::now() - t0).count() / n;
+      const double ns = 1e9 * watch.seconds() / n;
       const double calls = double(counts.proxy + counts.original) / n;
       fmt::print("| {:<13} | {:>8.1f} | {:>12.2f} | {:>10.1f}\n",
                  std::string(estimatorName(kind)) + (measured ? " (timed)" : ""), ns, calls,

@@ -11,7 +11,6 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -24,6 +23,7 @@
 #include "proxies/pipeline/proxy_pipeline.h"
 #include "util/app_main.h"
 #include "util/error.h"
+#include "util/stopwatch.h"
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
@@ -73,11 +73,10 @@ TriMesh unwelded(const TriMesh& m) {
 int runRow(const std::string& path, bool soup, const Case& c, double max_seconds) {
   json out;
   try {
-    const auto start = std::chrono::steady_clock::now();
+    const Stopwatch loading;
     TriMesh input = loadMesh(path);
     if (soup) input = unwelded(input);
-    out["load_seconds"] =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    out["load_seconds"] = loading.seconds();
     ProxyGenOptions o;
     o.kind = kindOf(c.kind);
     o.method = c.method;
@@ -159,7 +158,7 @@ int main(int argc, char** argv) {
       });
 
     const std::string self = fs::read_symlink("/proc/self/exe").string();
-    const auto start = std::chrono::steady_clock::now();
+    const Stopwatch table;
     fmt::print(
         "Each row is one child process that loads the mesh and builds one proxy: seconds = "
         "generateProxy's total (build, budget, verify, metrics; not loading), peak RSS = the "
@@ -223,8 +222,7 @@ int main(int argc, char** argv) {
         std::fflush(stdout);
       }
     }
-    fmt::print("\nTable time: {:.0f} s\n",
-               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    fmt::print("\nTable time: {:.0f} s\n", table.seconds());
     return 0;
   });
 }

@@ -7,17 +7,17 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <cstdlib>
 
 #include "util/error.h"
+#include "util/stopwatch.h"
 
 namespace proxyvis::bench {
 
 ChildResult runChild(const std::vector<std::string>& argv, double time_limit) {
   int pipe_fds[2];
   if (pipe(pipe_fds) != 0) throw Error("", "cannot create a pipe", "the system refused");
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch watch;
   const pid_t pid = fork();
   if (pid < 0) throw Error("", "cannot start a child process", "fork failed");
   if (pid == 0) {
@@ -38,9 +38,7 @@ ChildResult runChild(const std::vector<std::string>& argv, double time_limit) {
   char buffer[4096];
   bool open = true;
   while (open) {
-    const double left =
-        time_limit -
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double left = time_limit - watch.seconds();
     if (left <= 0) {
       kill(pid, SIGKILL);
       r.timed_out = true;
@@ -58,7 +56,7 @@ ChildResult runChild(const std::vector<std::string>& argv, double time_limit) {
   int status = 0;
   rusage usage{};
   wait4(pid, &status, 0, &usage);
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.seconds = watch.seconds();
   r.peak_rss_kb = usage.ru_maxrss;
   if (WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
   if (WIFSIGNALED(status)) r.signal = WTERMSIG(status);

@@ -22,6 +22,7 @@
 #include "render/renderer.h"
 #include "render/scene_tracer.h"
 #include "util/error.h"
+#include "util/stopwatch.h"
 
 namespace proxyvis {
 namespace {
@@ -57,7 +58,7 @@ class NoTrace final : public VisibilityEstimator {
 double bareLoopSeconds(const TraceScene& scene, const std::vector<Segment>& segs, uint64_t& hits) {
   RTCScene handle = scene.handle();
   std::atomic<uint64_t> occluded{0};
-  const auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch watch;
   tbb::parallel_for(tbb::blocked_range<size_t>(0, segs.size(), 256), [&](const auto& r) {
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
@@ -74,7 +75,7 @@ double bareLoopSeconds(const TraceScene& scene, const std::vector<Segment>& segs
     occluded += n;
   });
   hits = occluded;
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return watch.seconds();
 }
 
 // Single-threaded ns per segment of V (originals) and V' (SceneTracer: proxies + self rule) for
@@ -150,10 +151,9 @@ int run(int argc, char** argv) {
       "visible | total s |\n");
   fmt::print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const std::string& path : scenes) {
-    const auto l0 = std::chrono::steady_clock::now();
+    const Stopwatch loading;
     const auto scene = loadRenderScene(path, {});
-    const double load =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - l0).count();
+    const double load = loading.seconds();
     RenderSettings settings;
     settings.spp = spp;
     settings.quiet = true;

@@ -15,7 +15,6 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <vector>
 
@@ -27,6 +26,7 @@
 #include "render/scene_tracer.h"
 #include "scene/scene_desc.h"
 #include "util/app_main.h"
+#include "util/stopwatch.h"
 
 namespace proxyvis {
 namespace {
@@ -39,12 +39,11 @@ struct RegionStats {
 };
 
 double ticksPerNanosecond() {
-  auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch watch;
   uint64_t c0 = cpuTicks();
-  while (std::chrono::steady_clock::now() - t0 < std::chrono::milliseconds(50)) {
+  while (watch.seconds() < 0.05) {
   }
-  double ns =
-      std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - t0).count();
+  const double ns = 1e9 * watch.seconds();
   return double(cpuTicks() - c0) / ns;
 }
 

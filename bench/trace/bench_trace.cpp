@@ -17,7 +17,6 @@
 #include <tbb/parallel_for.h>
 
 #include <CLI/CLI.hpp>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -25,16 +24,13 @@
 #include <string>
 #include <vector>
 
-#ifdef PROXYVIS_HAVE_LOAD_MESH
 #include "mesh/mesh_io.h"
-#else
-#include "test_meshes.h"
-#endif
 #include "trace/internal/embree_ray.h"
 #include "trace/trace_scene.h"
 #include "util/app_main.h"
 #include "util/error.h"
 #include "util/rng.h"
+#include "util/stopwatch.h"
 
 namespace pv = proxyvis;
 
@@ -97,7 +93,7 @@ void bareOccluded(RTCScene scene, const std::vector<pv::Segment>& segs, std::vec
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     for (size_t i = r.begin(); i != r.end(); ++i) {
-      RTCRay ray = pv::toRtcRay(segs[i]);
+      RTCRay ray = pv::detail::toRtcRay(segs[i]);
       rtcOccluded1(scene, &ctx, &ray);
       out[i] = ray.tfar < 0.0f;
     }
@@ -209,23 +205,13 @@ double cpuSeconds() {
 
 template <typename F>
 void measure(Rate& best, size_t n, F&& trace) {
-  auto t0 = std::chrono::steady_clock::now();
+  const pv::Stopwatch watch;
   double c0 = cpuSeconds();
   trace();
   double cpu = cpuSeconds() - c0;
-  double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  double wall = watch.seconds();
   best.wall = std::max(best.wall, double(n) / wall / 1e6);
   best.cpu = std::max(best.cpu, double(n) / cpu / 1e6);
-}
-
-pv::TriMesh benchMesh(const std::string& path) {
-#ifdef PROXYVIS_HAVE_LOAD_MESH
-  return pv::loadMesh(path);
-#else
-  // Until lib/mesh can load files: a 82 k triangle sphere, far easier to trace than the dragon.
-  std::printf("(loadMesh not available: procedural icosphere instead of %s)\n", path.c_str());
-  return pv::test::icosphere(6);
-#endif
 }
 
 // Self-shadowing: segments that leave the surface of instance k towards a random point, traced
@@ -346,7 +332,7 @@ void selfShadowTable(BenchScene& s, const pv::TriMesh& mesh, pv::TraceDevice& de
         RTCIntersectContext ctx;
         rtcInitIntersectContext(&ctx);
         for (size_t i = r.begin(); i != r.end(); ++i) {
-          RTCRay ray = pv::toRtcRay(segs[i], ~(1u << (owner[i] % 32)));
+          RTCRay ray = pv::detail::toRtcRay(segs[i], ~(1u << (owner[i] % 32)));
           rtcOccluded1(s.bare, &ctx, &ray);
           mask_out[i] = ray.tfar < 0.0f;
         }
@@ -390,13 +376,8 @@ void selfShadowTable(BenchScene& s, const pv::TriMesh& mesh, pv::TraceDevice& de
 }
 
 int run(Options& o) {
-  if (o.mesh.empty()) {
-    std::filesystem::path drc = std::filesystem::path(PROXYVIS_DATA_DIR) / "dragon.drc";
-    o.mesh = std::filesystem::exists(drc)
-                 ? drc.string()
-                 : std::string(PROXYVIS_SHARED_DATA_DIR) + "/meshes/dragon.ply";
-  }
-  pv::TriMesh mesh = benchMesh(o.mesh);
+  if (o.mesh.empty()) o.mesh = (std::filesystem::path(PROXYVIS_DATA_DIR) / "dragon.drc").string();
+  pv::TriMesh mesh = pv::loadMesh(o.mesh);
   std::printf(
       "mesh %s: %zu triangles; %llu segments, best of %d; wrapper %s, %s quality\n"
       "Mrays/s by the wall clock; ratios by the wall clock / by CPU time against the "
@@ -477,7 +458,7 @@ int main(int argc, char** argv) {
   app.add_option("--instances", o.instances, "instances in the instanced scene")
       ->capture_default_str();
   app.add_option("--reps", o.reps, "repetitions; the best is reported")->capture_default_str();
-  app.add_option("--mesh", o.mesh, "mesh (default: data/dragon.drc, else shared dragon.ply)");
+  app.add_option("--mesh", o.mesh, "mesh (default: data/dragon.drc)");
   app.add_flag("--robust", o.robust, "wrapper scenes with RTC_SCENE_FLAG_ROBUST");
   app.add_flag("!--medium-quality", o.high_quality, "wrapper scenes with RTC_BUILD_QUALITY_MEDIUM");
   return pv::runApp(app, argc, argv, common, [&] { return run(o); });

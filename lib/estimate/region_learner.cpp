@@ -18,6 +18,17 @@ constexpr double kErrorPriorErrors = 0.5, kErrorPriorSamples = 1.0;
 constexpr double kCostShrinkage = 32.0;
 // Variance pairs a region needs before its own V(1-V) estimate replaces the pooled one.
 constexpr double kMinVariancePairs = 16.0;
+// The tick cap of one timed ray: kTickCapOverWorstMean times the costliest class mean (a ray
+// rarely costs more; a preempted one does), never below kMinTickCap ticks (before costs are
+// known, and so that a cheap scene's slowest honest rays are not cut).
+constexpr double kTickCapOverWorstMean = 64;
+constexpr uint64_t kMinTickCap = 1000;
+// Measured efficiency when roulette adds no variance but exact has some: roulette wins outright
+// (the ratio would be infinite); any large finite value passes every threshold.
+constexpr double kNoAddedVarianceEfficiency = 1e9;
+// Hysteresis: a region already on roulette stays there while its measured efficiency is at least
+// this (switching needs 1 + margin), so timing noise does not flip it every pass.
+constexpr double kStayOnRouletteEfficiency = 1.05;
 
 int64_t toFixed(double x) {
   return int64_t(x * double(RegionLearner::kFixedOne));
@@ -67,6 +78,33 @@ RegionLearner::RegionLearner(uint32_t num_regions, uint32_t num_points, const Op
     global_costs_ = *options_.fixed_costs;
     per_sample_ = options_.fixed_costs->per_sample;
   }
+}
+
+void RegionLearner::recordSegment(RegionTally& t, const SegmentObservation& o) const {
+  const int vp = o.proxy_visible ? 1 : 0;
+  ++t.n[vp];
+  if (o.traced_original) {
+    ++t.traced[vp];
+    if (o.original_visible != o.proxy_visible) {
+      ++t.err[vp];
+      if (o.by_roulette) ++t.err_roulette[vp];
+    }
+  }
+  if (o.proxy_ticks) {
+    ++t.cost_n_p[vp];
+    t.ticks_p[vp] += std::min(*o.proxy_ticks, tick_cap_);
+  }
+  if (o.original_ticks) {
+    ++t.cost_n_o[vp];
+    t.ticks_o[vp] += std::min(*o.original_ticks, tick_cap_);
+  }
+}
+
+void RegionLearner::recordQueryTime(RegionTally& t, bool roulette, uint64_t segments,
+                                    uint64_t ticks) const {
+  const int mode = roulette ? 1 : 0;
+  t.mode_n[mode] += segments;
+  t.mode_ticks[mode] += std::min(ticks, tick_cap_ * segments);
 }
 
 RegionTally& RegionLearner::local(uint32_t region) {
@@ -161,12 +199,13 @@ void RegionLearner::beginPass() {
   if (measuresCosts()) {
     pass_start_ns_ = steadyNs();
     pass_start_ticks_ = cpuTicks();
-    // 64 times the costliest class mean, once there is one.
+    // Once there is a costliest class mean (see kTickCapOverWorstMean).
     double worst_ns = 0;
     for (int i = 0; i < 2; ++i)
       worst_ns = std::max({worst_ns, global_costs_.proxy[i], global_costs_.original[i]});
     if (calib_ticks_ > 0 && worst_ns > 1)
-      tick_cap_ = std::max<uint64_t>(1000, uint64_t(64 * worst_ns / nsPerTick()));
+      tick_cap_ =
+          std::max<uint64_t>(kMinTickCap, uint64_t(kTickCapOverWorstMean * worst_ns / nsPerTick()));
   }
   for (uint32_t r = 0; r < plans_.size(); ++r) {
     Plan& p = plans_[r];
@@ -181,10 +220,12 @@ void RegionLearner::beginPass() {
     if (const std::optional<ModeTimes> t = modeTimes(r)) {
       // Both modes timed here: their measured times replace the per-ray cost model.
       const double var = rouletteVariance(m, d.q);
-      efficiency = var > 0 ? m.var_exact * t->exact / (var * t->roulette)
-                           : (m.var_exact > 0 ? 1e9 : t->exact / t->roulette);
+      efficiency = var > 0
+                       ? m.var_exact * t->exact / (var * t->roulette)
+                       : (m.var_exact > 0 ? kNoAddedVarianceEfficiency : t->exact / t->roulette);
       // Both must agree: the model (per-ray costs) and the measured times (with hysteresis).
-      roulette = d.roulette && efficiency >= (p.roulette ? 1.05 : 1.0 + options_.margin);
+      roulette = d.roulette &&
+                 efficiency >= (p.roulette ? kStayOnRouletteEfficiency : 1.0 + options_.margin);
     }
     const bool trial = measuresCosts() && (roulette || d.roulette);
     const bool settled =

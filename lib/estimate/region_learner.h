@@ -136,9 +136,28 @@ class RegionLearner {
   };
   std::optional<ModeTimes> modeTimes(uint32_t region) const;
 
-  // The calling thread's tally of `region` for this pass: estimate() adds to it without atomics;
-  // endPass() sums every thread's tallies (integer sums: the order does not matter).
+  // The calling thread's tally of `region` for this pass: the record*() calls add to it without
+  // atomics; endPass() sums every thread's tallies (integer sums: the order does not matter).
   RegionTally& local(uint32_t region);
+
+  // What the estimator saw of one segment it classed (V' traced).
+  struct SegmentObservation {
+    bool proxy_visible = false;     // V'
+    bool traced_original = false;   // V was traced (a correction, or exact mode's answer)
+    bool original_visible = false;  // V, when traced
+    bool by_roulette = false;       // traced as a roulette correction (weighted 1/q later)
+    // CPU ticks of the rays that were timed (an original may be timed without being traced
+    // for the estimate: traced_original false, original_ticks set).
+    std::optional<uint64_t> proxy_ticks, original_ticks;
+  };
+  // Records one classed segment: its class, its error if V is known, its ray times (capped at
+  // tickCap()).
+  void recordSegment(RegionTally& t, const SegmentObservation& o) const;
+  // Records `count` segments estimated in the region, whatever the mode (the region's weight).
+  static void recordSamples(RegionTally& t, uint64_t count) { t.samples += count; }
+  // Records one whole query timed in exact (roulette = false) or roulette mode: `segments`
+  // segments in `ticks` (capped at tickCap() per segment).
+  void recordQueryTime(RegionTally& t, bool roulette, uint64_t segments, uint64_t ticks) const;
   // Variance learning for one query's estimates. `point` may be kNoPoint. Each point must be
   // passed at most once per pass (its history must come from earlier passes).
   void addEstimates(uint32_t point, std::span<const double> estimates, RegionTally& t);

@@ -24,6 +24,12 @@ double minimiseOne(double v0, double a, double c0, double b, double lo) {
   return std::clamp(std::sqrt(a * c0 / (v0 * b)), lo, 1.0);
 }
 
+// Coordinate descent on (q0, q1): each step is exact per coordinate and the product is convex in
+// each, so it settles in a handful of rounds; the cap only bounds a pathological oscillation.
+constexpr int kMaxDescentRounds = 200;
+// q changes below this are float noise (q lies in [q_min, 1]): the descent has converged.
+constexpr double kDescentTolerance = 1e-13;
+
 }  // namespace
 
 RouletteModel RouletteModel::fromPoint(const ClassProbabilities& c, const ClassCosts& costs) {
@@ -55,7 +61,7 @@ RouletteQ optimalRouletteQ(const RouletteModel& m, ProxyClass cls, double q_min)
   const double cbar_p = m.costs.per_sample + p0 * m.costs.proxy[0] + p1 * m.costs.proxy[1];
   const double b0 = p0 * m.costs.original[0], b1 = p1 * m.costs.original[1];
   const double base = m.var_exact - (need0 ? m.p_mh : 0) - (need1 ? m.p_hm : 0);
-  for (int iter = 0; iter < 200; ++iter) {
+  for (int round = 0; round < kMaxDescentRounds; ++round) {
     const RouletteQ old = q;
     if (need0) {
       const double v0 = base + (need1 && m.p_hm > 0 ? m.p_hm / q.q1 : 0);
@@ -65,7 +71,8 @@ RouletteQ optimalRouletteQ(const RouletteModel& m, ProxyClass cls, double q_min)
       const double v0 = base + (need0 && m.p_mh > 0 ? m.p_mh / q.q0 : 0);
       q.q1 = minimiseOne(v0, m.p_hm, cbar_p + q.q0 * b0, b1, q_min);
     }
-    if (std::abs(q.q0 - old.q0) < 1e-13 && std::abs(q.q1 - old.q1) < 1e-13) break;
+    if (std::abs(q.q0 - old.q0) < kDescentTolerance && std::abs(q.q1 - old.q1) < kDescentTolerance)
+      break;
   }
   return q;
 }

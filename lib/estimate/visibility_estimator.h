@@ -31,9 +31,9 @@
 #include <vector>
 
 #include "estimate/roulette.h"
-#include "trace/trace_scene.h"
 #include "util/proxy_class.h"
 #include "util/rng.h"
+#include "util/segment.h"
 
 namespace proxyvis {
 
@@ -44,6 +44,8 @@ const char* estimatorName(EstimatorKind kind);
 // Throws proxyvis::Error for an unknown name (message lists the valid ones).
 EstimatorKind parseEstimatorName(const std::string& name);
 std::vector<EstimatorKind> allEstimators();
+// The names of allEstimators(), comma-separated, in that order (a default for option lists).
+std::string allEstimatorNames();
 
 // Rays traced, by kind. Summed per pixel into the cost AOVs and per run into the tables.
 struct RayCounts {

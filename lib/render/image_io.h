@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "render/renderer.h"
+#include "util/image.h"
 
 namespace proxyvis {
 

@@ -6,7 +6,7 @@
 
 #include "util/rng.h"
 
-namespace proxyvis::render_internal {
+namespace proxyvis::detail {
 
 namespace {
 // Primary-ray jitter is keyed on the pixel only, never on the seed: every estimator, seed and the
@@ -80,4 +80,4 @@ void prepareSamples(const RenderScene& scene, const ShadingPoint& sp, uint64_t s
   }
 }
 
-}  // namespace proxyvis::render_internal
+}  // namespace proxyvis::detail

@@ -13,6 +13,12 @@ namespace proxyvis {
 
 namespace {
 
+// Shadow-ray offset as a fraction of the originals' bounding-box diagonal: above float rounding
+// of hit points on every bundled scene (about 1e-7 of the diagonal), below the thinnest gap
+// between distinct surfaces; never below kMinRayEpsilon in absolute units.
+constexpr float kRayEpsilonOfDiagonal = 2e-5f;
+constexpr float kMinRayEpsilon = 1e-6f;
+
 TriMesh transformed(const TriMesh& mesh, const Affine3f& a) {
   TriMesh out = mesh;
   for (Vec3f& v : out.vertices) v = a.apply(v);
@@ -145,7 +151,8 @@ std::unique_ptr<RenderScene> loadRenderScene(const SceneDesc& desc,
     builder.addMesh(originals[m], 0);
     scene->self_[m] = builder.build();
   }
-  scene->epsilon_ = std::max(1e-6f, 2e-5f * scene->originals_->bounds().diagonal());
+  scene->epsilon_ =
+      std::max(kMinRayEpsilon, kRayEpsilonOfDiagonal * scene->originals_->bounds().diagonal());
 
   // The class the estimators may rely on, after the light checks of docs/design.md, pitfall 2.
   std::vector<Bounds3f> light_bounds;

@@ -10,7 +10,6 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
-#include <chrono>
 #include <climits>
 
 #include "render/internal/integrator.h"
@@ -19,17 +18,13 @@
 #include "util/error.h"
 #include "util/progress.h"
 #include "util/rng.h"
+#include "util/stopwatch.h"
 
 namespace proxyvis {
 
-using namespace render_internal;
+using namespace detail;
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point t) {
-  return std::chrono::duration<double>(Clock::now() - t).count();
-}
 
 void validate(const RenderSettings& s) {
   if (s.tile_size < 1 || s.tile_size > 4096)
@@ -41,10 +36,15 @@ void validate(const RenderSettings& s) {
   if (s.samples_per_pass < 0) throw Error("", "samples per pass must be >= 0");
 }
 
+// Light samples per pixel per pass for estimators with probes under a time budget: probes are
+// drawn per shading point and call, so fewer, larger passes amortise them, while 16 still lets
+// the budget end the render within a few percent of its time.
+constexpr int kProbePassSamplesUnderBudget = 16;
+
 int samplesPerPass(const RenderSettings& s, int probes) {
   if (s.samples_per_pass > 0) return s.samples_per_pass;
   if (probes <= 0) return 1;
-  return s.time_budget > 0 ? 16 : std::max(1, s.spp);
+  return s.time_budget > 0 ? kProbePassSamplesUnderBudget : std::max(1, s.spp);
 }
 
 // Per-pixel sums, one cache line per pixel: phase B touches one line per pixel, not four.
@@ -158,8 +158,8 @@ void estimatePixel(const RenderScene& scene, VisibilityEstimator& estimator, con
 
 EstimatorSetup estimatorSetupFor(const RenderScene& scene, const RenderSettings& settings) {
   EstimatorSetup setup = settings.estimator;
-  const render_internal::Tiling tiling(scene.camera().width(), scene.camera().height(),
-                                       std::max(1, settings.tile_size));
+  const detail::Tiling tiling(scene.camera().width(), scene.camera().height(),
+                              std::max(1, settings.tile_size));
   setup.num_regions = uint32_t(tiling.count()) * uint32_t(scene.lights().numLights()) * 2u;
   setup.num_points = uint32_t(scene.camera().width()) * uint32_t(scene.camera().height()) *
                      uint32_t(scene.lights().numLights());
@@ -167,10 +167,15 @@ EstimatorSetup estimatorSetupFor(const RenderScene& scene, const RenderSettings&
   return setup;
 }
 
+RenderResult render(const RenderScene& scene, const RenderSettings& settings) {
+  const auto estimator = makeEstimator(estimatorSetupFor(scene, settings));
+  return render(scene, settings, *estimator);
+}
+
 RenderResult render(const RenderScene& scene, const RenderSettings& settings,
                     VisibilityEstimator& estimator) {
   validate(settings);
-  const auto start = Clock::now();
+  const Stopwatch whole;
   const int w = scene.camera().width(), h = scene.camera().height();
   const size_t num_pixels = size_t(w) * h;
   const Tiling tiling(w, h, settings.tile_size);
@@ -181,7 +186,7 @@ RenderResult render(const RenderScene& scene, const RenderSettings& settings,
   RenderResult result;
   result.proxy_class = estimatorSetupFor(scene, settings).proxy_class;
   const std::vector<ShadingPoint> points = shadingPoints(scene, tiling);
-  result.primary_seconds = secondsSince(start);
+  result.primary_seconds = whole.seconds();
   result.primary_rays = num_pixels;
 
   Accumulators acc(num_pixels);
@@ -195,18 +200,18 @@ RenderResult render(const RenderScene& scene, const RenderSettings& settings,
   const double threads = double(tbb::this_task_arena::max_concurrency());
   int taken = 0, pass = 0;
   while (taken < spp_cap &&
-         (pass == 0 || !(settings.time_budget > 0) || secondsSince(start) < settings.time_budget)) {
+         (pass == 0 || !(settings.time_budget > 0) || whole.seconds() < settings.time_budget)) {
     const int count = std::min(batch, spp_cap - taken);
-    const auto a = Clock::now();
+    const Stopwatch sampling;
     tbb::parallel_for(0, tiling.count(), [&](int t) {
       tiling.forEachPixel(t, [&](int, int, uint32_t pixel) {
         prepareSamples(scene, points[pixel], settings.seed, pixel, pass, count,
                        &samples[size_t(pixel) * batch]);
       });
     });
-    sampling_seconds += secondsSince(a);
+    sampling_seconds += sampling.seconds();
 
-    const auto b = Clock::now();
+    const Stopwatch visibility;
     estimator.beginPass(pass);
     tbb::parallel_for(0, tiling.count(), [&](int t) {
       Scratch& s = scratch.local();
@@ -217,7 +222,7 @@ RenderResult render(const RenderScene& scene, const RenderSettings& settings,
       progress.update();
     });
     estimator.endPass();
-    result.visibility_seconds += secondsSince(b);
+    result.visibility_seconds += visibility.seconds();
     taken += count;
     ++pass;
     if (!settings.estimator.fixed_costs) {
@@ -246,7 +251,7 @@ RenderResult render(const RenderScene& scene, const RenderSettings& settings,
     result.shadow_segments += sums.vis_n;
   }
   result.shading_seconds = result.primary_seconds + sampling_seconds;
-  result.seconds = secondsSince(start);
+  result.seconds = whole.seconds();
   return result;
 }
 

@@ -20,17 +20,11 @@
 #include <vector>
 
 #include "estimate/visibility_estimator.h"
+#include "util/image.h"
 
 namespace proxyvis {
 
 class RenderScene;  // render/render_scene.h: meshes, proxies, Embree scenes, lights, camera
-
-struct Image {
-  int width = 0, height = 0, channels = 0;
-  std::vector<float> pixels;  // row-major, top row first, interleaved channels
-  float& at(int x, int y, int c) { return pixels[(size_t(y) * width + x) * channels + c]; }
-  float at(int x, int y, int c) const { return pixels[(size_t(y) * width + x) * channels + c]; }
-};
 
 struct RenderSettings {
   // kind, probes_per_point, q_min and fixed_costs are used; num_regions, num_points and

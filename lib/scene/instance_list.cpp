@@ -68,7 +68,7 @@ std::vector<SceneInstanceDesc> parseInstanceList(const std::string& text,
     const std::string name(tokens[0]);
     auto it = index.find(name);
     if (it == index.end())
-      failLine(path, line_no, "unknown mesh " + scene_internal::quoteInput(name),
+      failLine(path, line_no, "unknown mesh " + detail::quoteInput(name),
                "every instance must name a mesh of the scene's \"meshes\" list");
     const size_t n = tokens.size() - 1;
     if (n != 3 && n != 12 && n != 16)
@@ -79,7 +79,7 @@ std::vector<SceneInstanceDesc> parseInstanceList(const std::string& text,
     std::vector<float> v(n);
     for (size_t i = 0; i < n; ++i)
       if (!parseFloat(tokens[i + 1], v[i]))
-        failLine(path, line_no, "bad number " + scene_internal::quoteInput(tokens[i + 1]),
+        failLine(path, line_no, "bad number " + detail::quoteInput(tokens[i + 1]),
                  "numbers must be finite decimals");
     SceneInstanceDesc inst;
     inst.mesh = it->second;
@@ -92,7 +92,7 @@ std::vector<SceneInstanceDesc> parseInstanceList(const std::string& text,
       for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 4; ++c) inst.transform.m[r][c] = v[size_t(r * 4 + c)];
     }
-    if (auto problem = scene_internal::transformProblem(inst.transform))
+    if (auto problem = detail::transformProblem(inst.transform))
       failLine(path, line_no, problem->what, problem->why, problem->todo);
     out.push_back(inst);
   }

@@ -5,7 +5,7 @@
 #include "scene/internal/quoted.h"
 #include "util/error.h"
 
-namespace proxyvis::scene_internal {
+namespace proxyvis::detail {
 
 namespace {
 
@@ -96,4 +96,4 @@ Vec3f Field::asVec3() const {
   return {(*this)[size_t(0)].asFloat(), (*this)[1].asFloat(), (*this)[2].asFloat()};
 }
 
-}  // namespace proxyvis::scene_internal
+}  // namespace proxyvis::detail

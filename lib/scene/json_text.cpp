@@ -7,7 +7,7 @@
 
 #include "util/error.h"
 
-namespace proxyvis::scene_internal {
+namespace proxyvis::detail {
 
 using nlohmann::ordered_json;
 
@@ -99,4 +99,4 @@ std::string sceneJsonText(const nlohmann::ordered_json& value) {
   return out;
 }
 
-}  // namespace proxyvis::scene_internal
+}  // namespace proxyvis::detail

@@ -30,8 +30,9 @@
 #include <string>
 #include <vector>
 
-#include "trace/trace_scene.h"
+#include "util/affine3.h"
 #include "util/proxy_class.h"
+#include "util/vec3.h"
 
 namespace proxyvis {
 

@@ -17,13 +17,13 @@
 
 namespace proxyvis {
 
-using scene_internal::Field;
-using scene_internal::json;
-using scene_internal::numberText;
-using scene_internal::positionProblem;
-using scene_internal::quoteInput;
-using scene_internal::RangeProblem;
-using scene_internal::transformProblem;
+using detail::Field;
+using detail::json;
+using detail::numberText;
+using detail::positionProblem;
+using detail::quoteInput;
+using detail::RangeProblem;
+using detail::transformProblem;
 namespace fs = std::filesystem;
 
 namespace {

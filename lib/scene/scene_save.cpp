@@ -9,6 +9,7 @@
 #include "scene/scene_desc.h"
 #include "util/atomic_write.h"
 #include "util/error.h"
+#include "util/fnv1a.h"
 #include "util/input_file.h"
 
 namespace proxyvis {
@@ -94,17 +95,6 @@ json sceneToJson(const SceneDesc& scene, const fs::path& dir, const fs::path& in
   return root;
 }
 
-// FNV-1a 64 (Fowler, Noll, Vo): tiny, dependency-free, and good enough for a cache key.
-struct Fnv1a {
-  uint64_t h = 0xcbf29ce484222325ULL;
-  void add(std::string_view bytes) {
-    for (unsigned char c : bytes) {
-      h ^= c;
-      h *= 0x100000001b3ULL;
-    }
-  }
-};
-
 }  // namespace
 
 void saveSceneDesc(const SceneDesc& scene, const fs::path& path) {
@@ -116,8 +106,8 @@ void saveSceneDesc(const SceneDesc& scene, const fs::path& path) {
     instances_file = dir / (target.stem().string() + ".instances.txt");
     writeTextAtomically(instances_file, instanceLines(scene));
   }
-  writeTextAtomically(
-      target, scene_internal::sceneJsonText(sceneToJson(scene, dir, instances_file)) + "\n");
+  writeTextAtomically(target,
+                      detail::sceneJsonText(sceneToJson(scene, dir, instances_file)) + "\n");
 }
 
 std::string sceneHash(const SceneDesc& scene) {

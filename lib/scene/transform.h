@@ -5,7 +5,7 @@
 #include <cmath>
 #include <optional>
 
-#include "trace/trace_scene.h"
+#include "util/affine3.h"
 
 namespace proxyvis {
 

@@ -7,7 +7,7 @@
 #include "scene/scene_desc.h"
 #include "scene/transform.h"
 
-namespace proxyvis::scene_internal {
+namespace proxyvis::detail {
 
 namespace {
 
@@ -63,4 +63,4 @@ std::optional<RangeProblem> transformProblem(const Affine3f& t) {
   return std::nullopt;
 }
 
-}  // namespace proxyvis::scene_internal
+}  // namespace proxyvis::detail

@@ -16,6 +16,8 @@
 
 namespace proxyvis {
 
+using detail::toRtcRay;
+
 namespace {
 
 // Segments per parallel_for task: large enough that the counter update and the context set-up

@@ -31,43 +31,13 @@
 #include <vector>
 
 #include "mesh/tri_mesh.h"
+#include "util/affine3.h"
+#include "util/segment.h"
 
 struct RTCDeviceTy;
 struct RTCSceneTy;
 
 namespace proxyvis {
-
-// Row-major 3x4 affine transform (the upper three rows of a 4x4): p' = M * [p, 1].
-struct Affine3f {
-  float m[3][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}};
-  Vec3f apply(const Vec3f& p) const {
-    return {m[0][0] * p.x + m[0][1] * p.y + m[0][2] * p.z + m[0][3],
-            m[1][0] * p.x + m[1][1] * p.y + m[1][2] * p.z + m[1][3],
-            m[2][0] * p.x + m[2][1] * p.y + m[2][2] * p.z + m[2][3]};
-  }
-  static Affine3f translation(const Vec3f& t) {
-    Affine3f a;
-    a.m[0][3] = t.x;
-    a.m[1][3] = t.y;
-    a.m[2][3] = t.z;
-    return a;
-  }
-};
-
-// A shadow segment: points org + t*dir for t in [tnear, tfar]. dir need not be normalized.
-struct Segment {
-  Vec3f org;
-  float tnear = 0;
-  Vec3f dir;
-  float tfar = 1;
-  // The segment from `a` to `b`: org = a, dir = b - a, t in [0, 1].
-  static Segment between(const Vec3f& a, const Vec3f& b) {
-    Segment s;
-    s.org = a;
-    s.dir = b - a;
-    return s;
-  }
-};
 
 // Passed as ignore_user_id when nothing is to be ignored; a geometry whose user id is kIgnoreNone
 // can therefore never be ignored. kInvalidId marks "no instance" in Hit.

@@ -19,9 +19,6 @@ if(CMAKE_SCRIPT_MODE_FILE)
   return()
 endif()
 
-if(NOT TARGET proxy-gen OR NOT TARGET proxy-check OR NOT EXISTS ${CMAKE_SOURCE_DIR}/data/hard/cow.off)
-  return()
-endif()
 
 set(gt_dir ${CMAKE_CURRENT_BINARY_DIR}/guarantee)
 set(gt_hard ${CMAKE_SOURCE_DIR}/data/hard)

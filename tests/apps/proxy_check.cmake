@@ -26,9 +26,6 @@ if(CMAKE_SCRIPT_MODE_FILE)
   return()
 endif()
 
-if(NOT TARGET proxy-check)
-  return()
-endif()
 
 set(pc_dir ${CMAKE_CURRENT_BINARY_DIR}/proxy_check)
 file(MAKE_DIRECTORY ${pc_dir})

@@ -36,9 +36,6 @@ if(CMAKE_SCRIPT_MODE_FILE)
   return()
 endif()
 
-if(NOT TARGET proxy-gen)
-  return()
-endif()
 
 set(pb_dir ${CMAKE_CURRENT_BINARY_DIR}/proxy_gen_budget)
 file(MAKE_DIRECTORY ${pb_dir})

@@ -76,9 +76,6 @@ if(CMAKE_SCRIPT_MODE_FILE)
   return()
 endif()
 
-if(NOT TARGET render-compare)
-  return()
-endif()
 
 set(rc_dir ${CMAKE_CURRENT_BINARY_DIR}/render_compare)
 file(MAKE_DIRECTORY ${rc_dir})
@@ -128,11 +125,9 @@ rc_test(smoke 0 "${rc_dir}/tiny.json --out ${rc_dir}/smoke ${tiny} --quiet --jso
 rc_test(reference_cache 0
   "${rc_dir}/tiny.json --out ${rc_dir}/cache --width 8 --height 8 --spp 1 --equal-time 0 --seeds 1 --estimators exact,roulette --reference-spp 32"
   RUNS 2 CLEAN ${rc_dir}/cache REGEX "HTML report: .*cached")
-if(EXISTS ${PROXYVIS_SCENES_DIR}/cornell-bunny.json AND EXISTS ${PROXYVIS_DATA_DIR}/bunny.off)
-  rc_test(bundled_scene 0
-    "${PROXYVIS_SCENES_DIR}/cornell-bunny.json --out ${rc_dir}/bundled --width 8 --height 8 --spp 1 --equal-time 0.05 --seeds 2 --reference-spp 32 --quiet --json -"
-    JSON 12)
-endif()
+rc_test(bundled_scene 0
+  "${PROXYVIS_SCENES_DIR}/cornell-bunny.json --out ${rc_dir}/bundled --width 8 --height 8 --spp 1 --equal-time 0.05 --seeds 2 --reference-spp 32 --quiet --json -"
+  JSON 12)
 rc_test(unknown_scene_key 2 "${rc_dir}/bad_key.json --out ${rc_dir}/bad ${tiny} --quiet"
   REGEX "lens")
 rc_test(missing_scene 2 "${rc_dir}/no_such_scene.json --out ${rc_dir}/bad ${tiny} --quiet"

@@ -44,9 +44,6 @@ if(CMAKE_SCRIPT_MODE_FILE)
   return()
 endif()
 
-if(NOT TARGET render-compare OR NOT TARGET proxy-check OR NOT TARGET proxy-gen)
-  return()
-endif()
 
 set(tr_dir ${CMAKE_CURRENT_BINARY_DIR}/trust)
 file(MAKE_DIRECTORY ${tr_dir})

@@ -146,6 +146,58 @@ ImageRun runImage(const std::vector<ClassProbabilities>& mixes, ProxyClass cls, 
 const std::vector<ClassProbabilities> kTwoRegions = {{0.50, 0.01, 0.01, 0.48},
                                                      {0.05, 0.10, 0.25, 0.60}};
 
+// What the estimator records lands in the tally as counts by the proxy's answer; ray and query
+// times are capped, so one preempted ray cannot swamp a mean of nanoseconds.
+TEST(Recording, SegmentsCountClassErrorsAndCappedTimes) {
+  const RegionLearner learner(1, 0, {});
+  const uint64_t cap = learner.tickCap();
+  RegionTally t;
+  using Seen = RegionLearner::SegmentObservation;
+  // V' = 0 corrected by roulette and found visible: an MH' error; the original ray ran long.
+  Seen mh;
+  mh.proxy_visible = false;
+  mh.traced_original = true;
+  mh.original_visible = true;
+  mh.by_roulette = true;
+  mh.proxy_ticks = 10;
+  mh.original_ticks = cap * 1000;
+  learner.recordSegment(t, mh);
+  // V' = 1 with no correction; its original timed only (no class information).
+  Seen timed_only;
+  timed_only.proxy_visible = true;
+  timed_only.original_ticks = 5;
+  learner.recordSegment(t, timed_only);
+  // V' = 1, explored in exact mode and agreeing: traced, no error, untimed.
+  Seen agree;
+  agree.proxy_visible = true;
+  agree.traced_original = true;
+  agree.original_visible = true;
+  learner.recordSegment(t, agree);
+  EXPECT_EQ(t.n[0], 1u);
+  EXPECT_EQ(t.n[1], 2u);
+  EXPECT_EQ(t.traced[0], 1u);
+  EXPECT_EQ(t.traced[1], 1u);
+  EXPECT_EQ(t.err[0], 1u);
+  EXPECT_EQ(t.err[1], 0u);
+  EXPECT_EQ(t.err_roulette[0], 1u);
+  EXPECT_EQ(t.cost_n_p[0], 1u);
+  EXPECT_EQ(t.cost_n_p[1], 0u);
+  EXPECT_EQ(t.ticks_p[0], 10u);
+  EXPECT_EQ(t.cost_n_o[0], 1u);
+  EXPECT_EQ(t.ticks_o[0], cap);
+  EXPECT_EQ(t.cost_n_o[1], 1u);
+  EXPECT_EQ(t.ticks_o[1], 5u);
+
+  RegionLearner::recordSamples(t, 7);
+  EXPECT_EQ(t.samples, 7u);
+  learner.recordQueryTime(t, true, 4, cap * 1000);
+  learner.recordQueryTime(t, false, 2, 30);
+  EXPECT_EQ(t.mode_n[1], 4u);
+  EXPECT_EQ(t.mode_ticks[1], 4 * cap);
+  EXPECT_EQ(t.mode_n[0], 2u);
+  EXPECT_EQ(t.mode_ticks[0], 30u);
+}
+
 TEST(Learning, ChoosesProxyWhereItPaysAndExactElsewhereAndStaysUnbiased) {
   constexpr int kPasses = 120;
   const ImageRun run = runImage(kTwoRegions, ProxyClass::kGeneral, kPasses, 1, false, true);

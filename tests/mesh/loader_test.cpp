@@ -1,5 +1,6 @@
-// Every loader on the real files: counts and bounding boxes against /work/shared/data/MANIFEST.md
-// (numbers computed there by an independent Python reader, copied here by hand).
+// Every loader on the real files: counts and bounding boxes against the shared data set's MANIFEST
+// (numbers computed there by an independent Python reader, copied here by hand), and every file of
+// data/ against its row in data/README.md (counts, size, sha256).
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -7,6 +8,7 @@
 
 #include "mesh/mesh_io.h"
 #include "mesh_test_util.h"
+#include "util/sha256.h"
 
 namespace proxyvis::test {
 namespace {
@@ -120,29 +122,40 @@ INSTANTIATE_TEST_SUITE_P(Data, BundledMesh, ::testing::ValuesIn(kBundled),
                            return name;
                          });
 
-// Every mesh row of the shared MANIFEST (66 files, including the foliage with non-manifold
-// edges that OpenMesh's own mesh kernel would refuse): triangles and vertices as listed.
-TEST(SharedManifest, EveryMeshMatchesItsTriangleAndVertexCounts) {
-  const auto manifest = sharedFile("MANIFEST.md");
-  if (!std::filesystem::exists(manifest)) GTEST_SKIP() << "no ../shared/data (optional)";
-  std::ifstream in(manifest);
-  const std::regex row(
-      R"(^\| ([^ |]+\.(ply|obj|off|drc)) \| ([0-9,]+) \| ([0-9,]+) \| (yes|no) \|)");
-  auto number = [](std::string s) {
-    s.erase(std::remove(s.begin(), s.end(), ','), s.end());
-    return std::stoull(s);
-  };
+// Every mesh row of data/README.md (including the foliage with non-manifold edges that
+// OpenMesh's own mesh kernel would refuse, and the hard set): triangles and vertices as listed.
+TEST(DataReadme, EveryMeshMatchesItsTriangleAndVertexCounts) {
+  std::ifstream in(dataFile("README.md"));
+  const std::regex row(R"(^\| ([^ |]+\.(ply|obj|off|drc)) \| ([0-9,]+) / ([0-9,]+) \|)");
   std::string line;
   int checked = 0;
   while (std::getline(in, line)) {
     std::smatch m;
     if (!std::regex_search(line, m, row)) continue;
-    const TriMesh mesh = loadMesh(sharedFile(m[1].str()));
-    EXPECT_EQ(mesh.numTriangles(), number(m[3].str())) << m[1];
-    EXPECT_EQ(mesh.numVertices(), number(m[4].str())) << m[1];
+    const TriMesh mesh = loadMesh(dataFile(m[1].str()));
+    EXPECT_EQ(mesh.numTriangles(), readmeNumber(m[3].str())) << m[1];
+    EXPECT_EQ(mesh.numVertices(), readmeNumber(m[4].str())) << m[1];
     ++checked;
   }
-  EXPECT_GE(checked, 60);  // the MANIFEST lists 63 meshes
+  EXPECT_EQ(checked, 21);  // every bundled mesh
+}
+
+// Every file row of data/README.md: the bundled bytes are the ones recorded (copies keep the
+// original's sha256; converted files the one recorded when they were made).
+TEST(DataReadme, EveryFileMatchesItsSizeAndSha256) {
+  std::ifstream in(dataFile("README.md"));
+  const std::regex row(R"(^\| ([^ |]+) \|.* \| ([0-9,]+) \| `([0-9a-f]{64})` \|$)");
+  std::string line;
+  int checked = 0;
+  while (std::getline(in, line)) {
+    std::smatch m;
+    if (!std::regex_match(line, m, row)) continue;
+    const auto file = dataFile(m[1].str());
+    EXPECT_EQ(std::filesystem::file_size(file), readmeNumber(m[2].str())) << m[1];
+    EXPECT_EQ(sha256OfFile(file), m[3].str()) << m[1];
+    ++checked;
+  }
+  EXPECT_EQ(checked, 22);  // 21 meshes and the Cornell box's .mtl
 }
 
 TEST(LoadMesh, ExtensionIsCaseInsensitive) {

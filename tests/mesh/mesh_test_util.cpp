@@ -1,6 +1,6 @@
 #include "mesh_test_util.h"
 
-#include <unistd.h>
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -12,18 +12,9 @@ namespace fs = std::filesystem;
 fs::path dataFile(const std::string& relative) {
   return fs::path(PROXYVIS_DATA_DIR) / relative;
 }
-fs::path sharedFile(const std::string& relative) {
-  return fs::path(PROXYVIS_SHARED_DATA_DIR) / relative;
-}
-
-ScratchDir::ScratchDir(const std::string& name) {
-  path_ = fs::temp_directory_path() / ("proxyvis_mesh_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(path_);
-  fs::create_directories(path_);
-}
-ScratchDir::~ScratchDir() {
-  std::error_code ec;
-  fs::remove_all(path_, ec);
+uint64_t readmeNumber(std::string text) {
+  std::erase(text, ',');
+  return std::stoull(text);
 }
 
 void writeBytes(const fs::path& path, const std::string& bytes) {

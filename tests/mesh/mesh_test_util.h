@@ -1,28 +1,17 @@
 #pragma once
 // Shared helpers of mesh_tests: where the data is, scratch directories, small meshes.
+#include <cstdint>
 #include <filesystem>
 #include <string>
 
 #include "mesh/tri_mesh.h"
+#include "tests/support/scratch_dir.h"
 
 namespace proxyvis::test {
 
-std::filesystem::path dataFile(const std::string& relative);    // data/<relative>
-std::filesystem::path sharedFile(const std::string& relative);  // ../shared/data/<relative>
-
-// A fresh empty directory under the system temp dir, removed by the destructor.
-class ScratchDir {
- public:
-  explicit ScratchDir(const std::string& name);
-  ~ScratchDir();
-  ScratchDir(const ScratchDir&) = delete;
-  ScratchDir& operator=(const ScratchDir&) = delete;
-  const std::filesystem::path& path() const { return path_; }
-  std::filesystem::path operator/(const std::string& file) const { return path_ / file; }
-
- private:
-  std::filesystem::path path_;
-};
+std::filesystem::path dataFile(const std::string& relative);  // data/<relative>
+// A number as data/README.md prints it ("69,451").
+uint64_t readmeNumber(std::string text);
 
 void writeBytes(const std::filesystem::path& path, const std::string& bytes);
 std::string readBytes(const std::filesystem::path& path);

@@ -93,13 +93,10 @@ TEST(OpenMeshFaces, NonManifoldSoupKeepsEveryFace) {
   EXPECT_EQ(split.n_faces(), tris.size());
 }
 
-// The hard set's 50-part CAD soup (not bundled: skipped without the shared data). qem stalled
+// The hard set's 50-part CAD soup (data/hard/truck.obj). qem stalled
 // at 919 faces for a budget of 95 with OpenMesh's "complex vertex" lines on stderr.
 TEST(BudgetPolicy, TruckSoupQemMeetsTwoPercentQuietly) {
-  const std::filesystem::path truck =
-      std::filesystem::path(PROXYVIS_SHARED_DATA_DIR) / "meshes" / "hard" / "truck.obj";
-  if (!std::filesystem::exists(truck)) GTEST_SKIP() << truck << " not found";
-  const TriMesh input = loadMesh(truck);
+  const TriMesh input = loadMesh(std::filesystem::path(PROXYVIS_DATA_DIR) / "hard" / "truck.obj");
   ProxyGenOptions o = gen_test::genOptions(ProxyClass::kGeneral, "qem", 0, 500);
   o.ratio = 0.02;
   testing::internal::CaptureStderr();

@@ -5,18 +5,7 @@ proxyvis_add_test(check_stats_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/check_stats
   LIBS pv_proxy_check)
 proxyvis_add_test(check_distance_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/check_distance_test.cpp
   LIBS pv_proxy_check)
-if(TARGET pv_trace)
-  proxyvis_add_test(check_rays_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/check_rays_test.cpp
-    LIBS pv_proxy_check pv_trace)
-endif()
-if(TARGET pv_trace AND TARGET pv_mesh)
-  set(check_data_libs pv_proxy_check pv_trace pv_mesh)
-  if(TARGET pv_proxy_outside)
-    list(APPEND check_data_libs pv_proxy_outside)
-  endif()
-  proxyvis_add_test(check_data_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/check_data_test.cpp
-    LIBS ${check_data_libs})
-  if(TARGET pv_proxy_outside)
-    target_compile_definitions(check_data_test PRIVATE PROXYVIS_HAVE_OUTSIDE=1)
-  endif()
-endif()
+proxyvis_add_test(check_rays_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/check_rays_test.cpp
+  LIBS pv_proxy_check pv_trace)
+proxyvis_add_test(check_data_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/check_data_test.cpp
+  LIBS pv_proxy_check pv_trace pv_mesh pv_proxy_outside)

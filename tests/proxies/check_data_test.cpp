@@ -1,7 +1,6 @@
 // proxy-check on the bundled closed meshes (bunny, dragon, spot): outside proxies must show no
 // HM' and verify as `contains`; a shifted copy (a general proxy) must show both error kinds.
-// The bounding box needs no generator; the convex hull comes from proxies/outside when that
-// library is built (PROXYVIS_HAVE_OUTSIDE).
+// The bounding box needs no generator; the convex hull comes from proxies/outside.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -9,11 +8,9 @@
 
 #include "mesh/mesh_io.h"
 #include "proxies/check/pair_check.h"
+#include "proxies/outside/outside_proxy.h"
 #include "tests/proxies/check_shapes.h"
 #include "tests/proxies/pair_check_util.h"
-#ifdef PROXYVIS_HAVE_OUTSIDE
-#include "proxies/outside/outside_proxy.h"
-#endif
 
 namespace proxyvis {
 namespace {
@@ -21,11 +18,8 @@ namespace {
 class ClosedMesh : public testing::TestWithParam<const char*> {
  protected:
   TriMesh load() const {
-    // The bundled copy (data/), which the project must work with alone; the shared folder only
-    // if a file is not bundled.
-    const std::filesystem::path bundled = std::filesystem::path(PROXYVIS_DATA_DIR) / GetParam();
-    if (std::filesystem::exists(bundled)) return loadMesh(bundled);
-    return loadMesh(std::string(PROXYVIS_SHARED_DATA_DIR) + "/meshes/" + GetParam());
+    // The bundled copy (data/): the project works with it alone.
+    return loadMesh(std::filesystem::path(PROXYVIS_DATA_DIR) / GetParam());
   }
   static PairCheckReport check(const TriMesh& original, const TriMesh& proxy) {
     return test::testCheckPair(original, proxy, 17);
@@ -56,7 +50,6 @@ TEST_P(ClosedMesh, ShiftedCopyIsGeneral) {
   EXPECT_EQ(r.sampled_class, SampledClass::kGeneral);
 }
 
-#ifdef PROXYVIS_HAVE_OUTSIDE
 TEST_P(ClosedMesh, ConvexHullIsOutside) {
   const TriMesh mesh = load();
   const PairCheckReport r = check(mesh, makeHullProxy(mesh));
@@ -65,7 +58,6 @@ TEST_P(ClosedMesh, ConvexHullIsOutside) {
   EXPECT_EQ(r.sampled.counts.hm, 0u);
   EXPECT_FALSE(r.mismatch);
 }
-#endif
 
 INSTANTIATE_TEST_SUITE_P(Data, ClosedMesh,
                          testing::Values("bunny.off", "dragon.drc", "spot_triangulated.obj"));

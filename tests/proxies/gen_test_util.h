@@ -1,6 +1,6 @@
 #pragma once
-// Shared by the proxy-gen tests: where the real meshes are (data/ of the repository, or the
-// shared data folder while data/ is being filled), a cached loader, test options and the
+// Shared by the proxy-gen tests: where the real meshes are (data/ of the repository), a cached
+// loader, test options and the
 // containment cases of the outside and inside suites.
 #include <gtest/gtest.h>
 
@@ -16,16 +16,12 @@
 
 namespace proxyvis::gen_test {
 
-// A bundled mesh by file name: data/ (bunny.off, dragon.drc, foliage/YELLOWFLOWER1.ply, ...),
-// else the shared data folder (meshes/, foliage/ecosys/; dragon.ply for dragon.drc).
+// A bundled mesh by file name: data/<name> (bunny.off, dragon.drc, hard/cow.off, ...), else
+// data/foliage/<name> (YELLOWFLOWER1.ply, ...).
 inline std::filesystem::path meshPath(const std::string& name) {
   namespace fs = std::filesystem;
-  const fs::path data(PROXYVIS_DATA_DIR), shared(PROXYVIS_SHARED_DATA_DIR);
-  const fs::path ply = fs::path(name).replace_extension(".ply");
-  for (const fs::path& p : {data / name, data / "foliage" / name, shared / "meshes" / name,
-                            shared / "foliage" / "ecosys" / name, shared / "meshes" / ply})
-    if (fs::exists(p)) return p;
-  return data / name;
+  const fs::path data(PROXYVIS_DATA_DIR);
+  return fs::exists(data / name) ? data / name : data / "foliage" / name;
 }
 
 // Meshes are loaded once per test executable.

@@ -3,13 +3,7 @@
 # would and checks what it wrote with the other programs (hard_set_case.py): the written class
 # holds against the input file, the budget is met or the run fails with one line and no output,
 # nothing crashes. Refusals (exit 2) are accepted only where a case names the reason.
-if(NOT TARGET proxy-gen OR NOT TARGET proxy-check OR NOT TARGET mesh-info)
-  return()
-endif()
-find_package(Python3 COMPONENTS Interpreter)
-if(NOT Python3_FOUND)
-  return()
-endif()
+find_package(Python3 REQUIRED COMPONENTS Interpreter)
 
 set(hard_dir ${CMAKE_SOURCE_DIR}/data/hard)
 # An open input has no interior: an inside proxy is refused unless its holes are filled.

@@ -1,6 +1,4 @@
 # The trust of a proxy's claimed class: the decision, its use on scene files, and that a downgrade
-# reaches the renderer's class (needs pv_render and pv_mesh, like class_trust.cpp).
-if(TARGET pv_render AND TARGET pv_mesh AND TARGET pv_trace)
-  proxyvis_add_test(class_trust_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/class_trust_test.cpp
-    LIBS pv_proxy_check pv_render pv_mesh pv_scene)
-endif()
+# reaches the renderer's class.
+proxyvis_add_test(class_trust_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/class_trust_test.cpp
+  LIBS pv_proxy_check pv_render pv_mesh pv_scene)

@@ -1,5 +1,5 @@
 #pragma once
-// Shared helpers for the renderer tests: scratch folders with tiny scenes, estimators that need
+// Shared helpers for the renderer tests: tiny scenes for scratch folders, estimators that need
 // no lib/estimate (exact, and culling built on the SegmentTracer), and Lambert's closed form for
 // the irradiance from a polygonal light.
 #include <gtest/gtest.h>
@@ -12,30 +12,10 @@
 
 #include "estimate/visibility_estimator.h"
 #include "render/render_scene.h"
+#include "tests/support/scratch_dir.h"
 #include "util/vec3.h"
 
 namespace proxyvis::test {
-
-class ScratchDir {
- public:
-  ScratchDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = std::filesystem::temp_directory_path() /
-           (std::string("pv_render_") + info->test_suite_name() + "_" + info->name());
-    std::filesystem::remove_all(dir_);
-    std::filesystem::create_directories(dir_);
-  }
-  ~ScratchDir() { std::filesystem::remove_all(dir_); }
-  const std::filesystem::path& path() const { return dir_; }
-  std::filesystem::path write(const std::string& name, const std::string& text) const {
-    const auto p = dir_ / name;
-    std::ofstream(p) << text;
-    return p;
-  }
-
- private:
-  std::filesystem::path dir_;
-};
 
 // Axis-aligned box [lo, hi] as a closed, outward-oriented OBJ (12 triangles).
 inline std::string boxObj(Vec3f lo, Vec3f hi) {

@@ -2,7 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "scene/scene_desc.h"
-#include "scene_test_util.h"
+#include "tests/support/scratch_dir.h"
 #include "util/error.h"
 
 namespace proxyvis {

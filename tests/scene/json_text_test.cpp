@@ -10,7 +10,7 @@
 #include "scene/internal/json_text.h"
 #include "util/rng.h"
 
-namespace proxyvis::scene_internal {
+namespace proxyvis::detail {
 namespace {
 
 using nlohmann::ordered_json;
@@ -81,4 +81,4 @@ TEST(SceneJsonText, LongArraysOfArraysBreakPerElement) {
 }
 
 }  // namespace
-}  // namespace proxyvis::scene_internal
+}  // namespace proxyvis::detail

@@ -8,7 +8,7 @@
 
 #include "scene/scene_desc.h"
 #include "scene/transform.h"
-#include "scene_test_util.h"
+#include "tests/support/scratch_dir.h"
 #include "util/error.h"
 
 namespace proxyvis {

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "scene/scene_desc.h"
-#include "scene_test_util.h"
+#include "tests/support/scratch_dir.h"
 #include "util/error.h"
 
 namespace proxyvis {

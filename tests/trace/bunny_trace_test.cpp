@@ -15,14 +15,8 @@
 namespace proxyvis::test {
 namespace {
 
-std::filesystem::path bunnyPath() {
-  std::filesystem::path bundled = std::filesystem::path(PROXYVIS_DATA_DIR) / "bunny.off";
-  if (std::filesystem::exists(bundled)) return bundled;
-  return std::filesystem::path(PROXYVIS_SHARED_DATA_DIR) / "meshes" / "bunny.off";
-}
-
 void checkBunny(bool robust, uint64_t seed) {
-  TriMesh bunny = loadMesh(bunnyPath());
+  TriMesh bunny = loadMesh(std::filesystem::path(PROXYVIS_DATA_DIR) / "bunny.off");
   ASSERT_EQ(bunny.numTriangles(), 6966u);
   TraceDevice device;
   TraceSceneOptions options;

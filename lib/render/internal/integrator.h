@@ -6,7 +6,7 @@
 #include "render/render_scene.h"
 #include "render/renderer.h"
 
-namespace proxyvis::render_internal {
+namespace proxyvis::detail {
 
 struct ShadingPoint {
   Vec3f p;  // hit point, offset along the normal by RenderScene::epsilon()
@@ -52,4 +52,4 @@ void prepareSamples(const RenderScene& scene, const ShadingPoint& sp, uint64_t s
 bool makeSegment(const RenderScene& scene, const ShadingPoint& sp, const Vec3f& light_point,
                  Segment& out);
 
-}  // namespace proxyvis::render_internal
+}  // namespace proxyvis::detail

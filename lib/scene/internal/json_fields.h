@@ -9,7 +9,7 @@
 
 #include "util/vec3.h"
 
-namespace proxyvis::scene_internal {
+namespace proxyvis::detail {
 
 using nlohmann::json;
 
@@ -46,4 +46,4 @@ class Field {
   const std::filesystem::path& file_;
 };
 
-}  // namespace proxyvis::scene_internal
+}  // namespace proxyvis::detail

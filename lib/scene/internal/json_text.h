@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-namespace proxyvis::scene_internal {
+namespace proxyvis::detail {
 
 // The text of `value` (no trailing newline). Valid JSON; keys in the object's own order.
 std::string sceneJsonText(const nlohmann::ordered_json& value);
@@ -17,4 +17,4 @@ std::string sceneJsonText(const nlohmann::ordered_json& value);
 // narrowed to float), e.g. "0.8", "16", "1e-05"; finite `v` only.
 std::string shortestFloatText(float v);
 
-}  // namespace proxyvis::scene_internal
+}  // namespace proxyvis::detail

@@ -4,7 +4,7 @@
 #include <string>
 #include <string_view>
 
-namespace proxyvis::scene_internal {
+namespace proxyvis::detail {
 
 inline constexpr size_t kMaxQuoted = 60;
 
@@ -23,4 +23,4 @@ inline std::string quoteInput(std::string_view text) {
   return out;
 }
 
-}  // namespace proxyvis::scene_internal
+}  // namespace proxyvis::detail

@@ -5,9 +5,9 @@
 #include <optional>
 #include <string>
 
-#include "trace/trace_scene.h"
+#include "util/affine3.h"
 
-namespace proxyvis::scene_internal {
+namespace proxyvis::detail {
 
 struct RangeProblem {
   std::string what, why, todo;
@@ -24,4 +24,4 @@ std::optional<RangeProblem> transformProblem(const Affine3f& t);
 // A number as messages print it: "1e+30", "0.5", "16384".
 std::string numberText(double v);
 
-}  // namespace proxyvis::scene_internal
+}  // namespace proxyvis::detail

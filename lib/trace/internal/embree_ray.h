@@ -7,7 +7,7 @@
 
 #include "trace/trace_scene.h"
 
-namespace proxyvis {
+namespace proxyvis::detail {
 
 // The ray of `s` for rtcOccluded1 / rtcIntersect1: time 0, id 0, flags 0, the given ray mask.
 inline RTCRay toRtcRay(const Segment& s, uint32_t mask = ~0u) {
@@ -27,4 +27,4 @@ inline RTCRay toRtcRay(const Segment& s, uint32_t mask = ~0u) {
   return r;
 }
 
-}  // namespace proxyvis
+}  // namespace proxyvis::detail

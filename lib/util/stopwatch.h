@@ -1,5 +1,6 @@
 #pragma once
-// Wall-clock timing for the tables (steady clock: immune to clock adjustments).
+// Wall-clock timing: the renderer's phases, the tables and the benches (steady clock: immune to
+// clock adjustments).
 #include <chrono>
 
 namespace proxyvis {

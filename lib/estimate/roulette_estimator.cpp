@@ -1,0 +1,129 @@
+#include "estimate/roulette_estimator.h"
+
+#include "estimate/cpu_ticks.h"
+#include "estimate/sample_estimators.h"
+#include "util/error.h"
+
+namespace proxyvis {
+
+namespace {
+
+// With measured costs, one roulette segment in kTimedSegmentStride has its rays timed: enough
+// samples of the per-class costs at an eighth of the clock reads.
+constexpr uint32_t kTimedSegmentStride = 8;
+// Of the timed roulette segments that trace no correction, one in kTimingOnlyOriginalStride also
+// traces the original just to time it: where q is 0 or tiny, c_o | V' would otherwise go stale.
+constexpr uint32_t kTimingOnlyOriginalStride = 8;
+
+// The setup's class, floor and costs; the learner's own default margin.
+RegionLearner::Options learnerOptions(const EstimatorSetup& setup) {
+  RegionLearner::Options o;
+  o.proxy_class = setup.proxy_class;
+  o.q_min = setup.q_min;
+  o.fixed_costs = setup.fixed_costs;
+  return o;
+}
+
+}  // namespace
+
+RouletteEstimator::RouletteEstimator(const EstimatorSetup& setup)
+    : learner_(setup.num_regions, setup.num_points, learnerOptions(setup)),
+      num_regions_(setup.num_regions) {}
+
+void RouletteEstimator::estimate(const ShadingPointQuery& q, Rng& rng, std::span<double> out,
+                                 RayCounts& counts) {
+  PV_CHECK_MSG(q.region < num_regions_, "query region out of range of EstimatorSetup::num_regions");
+  const RegionLearner::Plan& region_plan = learner_.plan(q.region);
+  // A trial region runs one query in RegionLearner::kAltQueries in its other mode.
+  const bool alt = learner_.alternate(region_plan, q.point);
+  RegionLearner::Plan alt_plan = region_plan;
+  if (alt) alt_plan.roulette = !region_plan.roulette;
+  const RegionLearner::Plan& plan = alt ? alt_plan : region_plan;
+  // The region's tally is fetched (a thread-local lookup) only when something is recorded: a
+  // settled exact region records its rare explored segments and timed queries only, so its
+  // queries cost what the exact estimator's do.
+  RegionTally* tally = nullptr;
+  auto local = [&]() -> RegionTally& {
+    if (!tally) tally = &learner_.local(q.region);
+    return *tally;
+  };
+  const bool sampled_point =
+      q.point == ShadingPointQuery::kNoPoint || q.point % RegionLearner::kVarianceStride == 0;
+  const bool quiet = (!plan.roulette && plan.settled) || !sampled_point;
+  if (sampled_point)
+    RegionLearner::recordSamples(
+        local(), q.segments.size() *
+                     (q.point == ShadingPointQuery::kNoPoint ? 1 : RegionLearner::kVarianceStride));
+  TimingCounters* timing = learner_.measuresCosts() ? &timing_.local() : nullptr;
+  // One query in kAltQueries of a trial region is timed whole, for the cost of its region's mode
+  // (region_learner.h); not while a region still explores every segment (that is not what exact
+  // mode costs later).
+  const bool time_query =
+      timing && (plan.roulette || plan.explore < 1) &&
+      (alt || (region_plan.trial && timing->queries++ % RegionLearner::kAltQueries == 0));
+  const uint64_t query_start = time_query ? cpuTicks() : 0;
+  // Exact mode explores whole queries: one random number per query, and most queries of an
+  // exact region take the exact estimator's path (exploring never changes the estimate).
+  auto explores = [&] {
+    return q.point == ShadingPointQuery::kNoPoint ? rng.uniformFloat() < plan.explore
+                                                  : learner_.exploresPoint(plan, q.point);
+  };
+  if (!plan.roulette && plan.explore < 1 && !explores()) {
+    for (size_t j = 0; j < q.segments.size(); ++j)
+      out[j] = exactSample(*q.tracer, q.segments[j], counts);
+  } else {
+    estimateRecorded(q, rng, plan, out, counts, local(), timing);
+  }
+  if (!quiet) learner_.addEstimates(q.point, out.first(q.segments.size()), local());
+  if (time_query)
+    learner_.recordQueryTime(local(), plan.roulette, q.segments.size(), cpuTicks() - query_start);
+}
+
+// Roulette or exploring exact: every segment is classed (V') and recorded in `t`. Timed rays:
+// every explored segment (they are few and are the only samples of c_o by class in an exact
+// region) and one roulette segment in kTimedSegmentStride per thread.
+void RouletteEstimator::estimateRecorded(const ShadingPointQuery& q, Rng& rng,
+                                         const RegionLearner::Plan& plan, std::span<double> out,
+                                         RayCounts& counts, RegionTally& t,
+                                         TimingCounters* timing) {
+  for (size_t j = 0; j < q.segments.size(); ++j) {
+    const double u = plan.roulette ? double(rng.uniformFloat()) : 1.0;
+    uint32_t timed_index = 0;  // which timed roulette segment this is
+    bool timed = timing != nullptr;
+    if (timed && plan.roulette) {
+      const uint32_t k = timing->roulette_segments++;
+      timed = k % kTimedSegmentStride == 0;
+      timed_index = k / kTimedSegmentStride;
+    }
+    TimedTracer<SegmentTracer> tt{*q.tracer, timed};
+    RegionLearner::SegmentObservation o;
+    if (plan.roulette) {
+      const RouletteOutcome r = rouletteSample(tt, q.segments[j], plan.q, u, counts);
+      out[j] = r.estimate;
+      o.proxy_visible = r.proxy_visible;
+      o.traced_original = r.traced_original;
+      o.original_visible = r.original_visible;
+      o.by_roulette = true;
+      if (timed && !r.traced_original && timed_index % kTimingOnlyOriginalStride == 0) {
+        // An original ray traced only to be timed: its answer is not used, so the estimate is
+        // unchanged; its cost is counted like any other ray.
+        ++counts.original;
+        (void)tt.originalVisible(q.segments[j]);
+        o.original_ticks = tt.original_ticks;
+      }
+    } else {  // exploring: both rays, the exact answer
+      ++counts.proxy;
+      o.proxy_visible = tt.proxyVisible(q.segments[j]);
+      out[j] = exactSample(tt, q.segments[j], counts);
+      o.traced_original = true;
+      o.original_visible = out[j] > 0;
+    }
+    if (timed) {
+      o.proxy_ticks = tt.proxy_ticks;
+      if (o.traced_original) o.original_ticks = tt.original_ticks;
+    }
+    learner_.recordSegment(t, o);
+  }
+}
+
+}  // namespace proxyvis
