@@ -65,7 +65,8 @@ nlohmann::json rowToJson(const ReportRow& r) {
       {"mse_stderr", r.mse_stderr},
       {"relmse", r.relmse},
       {"relmse_stderr", r.relmse_stderr},
-      {"efficiency", r.efficiency},
+      // 0 = undefined (no baseline row, or a zero MSE or time): null, never a number.
+      {"efficiency", r.efficiency > 0 ? nlohmann::json(r.efficiency) : nlohmann::json()},
       {"rays", {{"proxy", r.rays.proxy}, {"original", r.rays.original}, {"probe", r.rays.probe}}},
       {"rays_per_pixel",
        {{"proxy", r.rays.proxy / px},
@@ -96,8 +97,8 @@ std::string reportToCsv(const std::vector<ReportRow>& rows) {
   for (const ReportRow& r : rows)
     out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csvField(r.table),
                        csvField(r.estimator), r.spp, r.seconds, r.mse, r.mse_stderr, r.relmse,
-                       r.relmse_stderr, r.efficiency, r.rays.proxy, r.rays.original, r.rays.probe,
-                       r.seeds);
+                       r.relmse_stderr, r.efficiency > 0 ? fmt::format("{}", r.efficiency) : "",
+                       r.rays.proxy, r.rays.original, r.rays.probe, r.seeds);
   return out;
 }
 
@@ -109,9 +110,10 @@ std::string markdownTable(const std::vector<ReportRow>& rows, std::string_view t
   for (const ReportRow& r : rows) {
     if (!table.empty() && r.table != table) continue;
     double px = r.pixels > 0 ? r.pixels : 1;
-    out += fmt::format("| {} | {:.1f} | {:.3f} | {} | {} | {:.2f}× | {:.1f} | {:.1f} | {:.1f} |\n",
+    out += fmt::format("| {} | {:.1f} | {:.3f} | {} | {} | {} | {:.1f} | {:.1f} | {:.1f} |\n",
                        r.estimator, r.spp, r.seconds, formatValueWithError(r.mse, r.mse_stderr),
-                       formatValueWithError(r.relmse, r.relmse_stderr), r.efficiency,
+                       formatValueWithError(r.relmse, r.relmse_stderr),
+                       r.efficiency > 0 ? fmt::format("{:.2f}×", r.efficiency) : "n/a",
                        r.rays.proxy / px, r.rays.original / px, r.rays.probe / px);
   }
   return out;

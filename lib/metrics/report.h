@@ -42,7 +42,7 @@ struct Report {
 
 // Fills ReportRow::efficiency for every row of `table`: relative to the row of `baseline` with
 // the same table and the closest spp (equal-spp) or the only baseline row (equal-time). Rows
-// without a baseline get 0.
+// without a baseline get 0, written as "n/a" (tables), an empty field (CSV) and null (JSON).
 void fillRelativeEfficiency(std::vector<ReportRow>& rows, std::string_view table,
                             std::string_view baseline = "exact");
 

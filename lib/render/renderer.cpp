@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <climits>
+#include <cmath>
 
 #include "render/internal/integrator.h"
 #include "render/render_scene.h"
@@ -45,6 +46,25 @@ int samplesPerPass(const RenderSettings& s, int probes) {
   if (s.samples_per_pass > 0) return s.samples_per_pass;
   if (probes <= 0) return 1;
   return s.time_budget > 0 ? 16 : std::max(1, s.spp);
+}
+
+// Under a time budget, the samples per pixel of the next pass when passes hold several (estimators
+// with probes): the first pass takes one, to measure; later ones as many as the time left allows
+// at the last pass's rate, so that the render does not overshoot its budget by a whole pass. A
+// pass costs about (2 x probes + samples) ray units: probes are drawn per pixel and pass, traced
+// against proxy and original. 0 = stop (even one sample would overshoot by more than half its
+// own time).
+int passSamplesWithinBudget(double seconds_left, int full_pass, int pass, double last_seconds,
+                            int last_count, int probes) {
+  if (pass == 0) return 1;
+  const double fixed_units = 2.0 * probes;
+  const double unit_seconds = last_seconds / (fixed_units + last_count);
+  if (!(unit_seconds > 0)) return full_pass;
+  const double fit = seconds_left / unit_seconds - fixed_units;
+  if (fit >= full_pass) return full_pass;
+  if (fit >= 1) return int(fit);
+  const double one_sample_seconds = unit_seconds * (fixed_units + 1);
+  return seconds_left >= 0.5 * one_sample_seconds ? 1 : 0;
 }
 
 // Per-pixel sums, one cache line per pixel: phase B touches one line per pixel, not four.
@@ -189,14 +209,24 @@ RenderResult render(const RenderScene& scene, const RenderSettings& settings,
   tbb::enumerable_thread_specific<Scratch> scratch;
   const uint64_t total_passes =
       settings.time_budget > 0 ? 0 : uint64_t((spp_cap + batch - 1) / batch);
-  Progress progress("render", total_passes * uint64_t(tiling.count()),
-                    settings.quiet || total_passes == 0);
+  // Work is tiles rendered, or milliseconds of the time budget spent.
+  const uint64_t budget_ms = uint64_t(std::ceil(settings.time_budget * 1000));
+  Progress progress("render",
+                    settings.time_budget > 0 ? budget_ms : total_passes * uint64_t(tiling.count()),
+                    settings.quiet);
+  uint64_t reported_ms = 0;
   double sampling_seconds = 0;
   const double threads = double(tbb::this_task_arena::max_concurrency());
-  int taken = 0, pass = 0;
-  while (taken < spp_cap &&
-         (pass == 0 || !(settings.time_budget > 0) || secondsSince(start) < settings.time_budget)) {
-    const int count = std::min(batch, spp_cap - taken);
+  const bool timed = settings.time_budget > 0;
+  int taken = 0, pass = 0, last_count = 0;
+  double last_pass_seconds = 0;
+  while (taken < spp_cap && (pass == 0 || !timed || secondsSince(start) < settings.time_budget)) {
+    int count = std::min(batch, spp_cap - taken);
+    if (timed && batch > 1) {
+      count = passSamplesWithinBudget(settings.time_budget - secondsSince(start), count, pass,
+                                      last_pass_seconds, last_count, probes);
+      if (count == 0) break;
+    }
     const auto a = Clock::now();
     tbb::parallel_for(0, tiling.count(), [&](int t) {
       tiling.forEachPixel(t, [&](int, int, uint32_t pixel) {
@@ -214,12 +244,19 @@ RenderResult render(const RenderScene& scene, const RenderSettings& settings,
         estimatePixel(scene, estimator, points[pixel], &samples[size_t(pixel) * batch], count,
                       pixel, pass, settings.seed, uint32_t(t), probes, s, acc);
       });
-      progress.update();
+      if (!timed) progress.update();
     });
     estimator.endPass();
     result.visibility_seconds += secondsSince(b);
     taken += count;
+    last_count = count;
+    last_pass_seconds = secondsSince(a);
     ++pass;
+    if (timed) {
+      const uint64_t spent_ms = std::min(budget_ms, uint64_t(secondsSince(start) * 1000));
+      if (spent_ms > reported_ms) progress.update(spent_ms - reported_ms);
+      reported_ms = std::max(reported_ms, spent_ms);
+    }
     if (!settings.estimator.fixed_costs) {
       // What every light sample costs outside visibility, in CPU ns per sample (the unit of the
       // learned ray costs): light sampling plus the primary ray's share so far.
