@@ -63,7 +63,7 @@ CellResult runCell(const RenderScene& scene, const CompareOptions& options, Esti
       row.extra["proxy_class"] = proxyClassName(r.proxy_class);
       if (kind == EstimatorKind::kRoulette) row.extra["learned"] = learnedToJson(r.learned);
       cell.first = std::move(r);
-      cell.first_seed = settings.seed;
+      cell.first_seed = options.common.seed;
     }
   }
   row.table = std::string(table);
