@@ -48,25 +48,6 @@ int samplesPerPass(const RenderSettings& s, int probes) {
   return s.time_budget > 0 ? 16 : std::max(1, s.spp);
 }
 
-// Under a time budget, the samples per pixel of the next pass when passes hold several (estimators
-// with probes): the first pass takes one, to measure; later ones as many as the time left allows
-// at the last pass's rate, so that the render does not overshoot its budget by a whole pass. A
-// pass costs about (2 x probes + samples) ray units: probes are drawn per pixel and pass, traced
-// against proxy and original. 0 = stop (even one sample would overshoot by more than half its
-// own time).
-int passSamplesWithinBudget(double seconds_left, int full_pass, int pass, double last_seconds,
-                            int last_count, int probes) {
-  if (pass == 0) return 1;
-  const double fixed_units = 2.0 * probes;
-  const double unit_seconds = last_seconds / (fixed_units + last_count);
-  if (!(unit_seconds > 0)) return full_pass;
-  const double fit = seconds_left / unit_seconds - fixed_units;
-  if (fit >= full_pass) return full_pass;
-  if (fit >= 1) return int(fit);
-  const double one_sample_seconds = unit_seconds * (fixed_units + 1);
-  return seconds_left >= 0.5 * one_sample_seconds ? 1 : 0;
-}
-
 // Per-pixel sums, one cache line per pixel: phase B touches one line per pixel, not four.
 struct alignas(64) PixelSums {
   Vec3d radiance;
@@ -175,6 +156,23 @@ void estimatePixel(const RenderScene& scene, VisibilityEstimator& estimator, con
 }
 
 }  // namespace
+
+namespace render_internal {
+
+int passSamplesWithinBudget(double seconds_left, int full_pass, int pass, double last_seconds,
+                            int last_count, int probes) {
+  if (pass == 0) return 1;
+  const double fixed_units = 2.0 * probes;
+  const double unit_seconds = last_seconds / (fixed_units + last_count);
+  if (!(unit_seconds > 0)) return full_pass;
+  const double fit = seconds_left / unit_seconds - fixed_units;
+  if (fit >= full_pass) return full_pass;
+  if (fit >= 1) return int(fit);
+  const double one_sample_seconds = unit_seconds * (fixed_units + 1);
+  return seconds_left >= 0.5 * one_sample_seconds ? 1 : 0;
+}
+
+}  // namespace render_internal
 
 EstimatorSetup estimatorSetupFor(const RenderScene& scene, const RenderSettings& settings) {
   EstimatorSetup setup = settings.estimator;
