@@ -161,7 +161,7 @@ namespace render_internal {
 
 int passSamplesWithinBudget(double seconds_left, int full_pass, int pass, double last_seconds,
                             int last_count, int probes) {
-  if (pass == 0) return 1;
+  if (pass == 0) return full_pass;  // nothing measured yet
   const double fixed_units = 2.0 * probes;
   const double unit_seconds = last_seconds / (fixed_units + last_count);
   if (!(unit_seconds > 0)) return full_pass;

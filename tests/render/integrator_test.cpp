@@ -154,7 +154,7 @@ TEST(Integrator, BadSettingsAreErrors) {
 // sample) = 0.01 s below.
 TEST(Integrator, LastPassFitsTheTimeBudget) {
   using render_internal::passSamplesWithinBudget;
-  EXPECT_EQ(passSamplesWithinBudget(10.0, 16, 0, 0, 0, 16), 1);     // first pass: measure
+  EXPECT_EQ(passSamplesWithinBudget(10.0, 16, 0, 0, 0, 16), 16);    // first pass: whole
   EXPECT_EQ(passSamplesWithinBudget(1.0, 16, 1, 0.33, 1, 16), 16);  // room for a whole pass
   EXPECT_EQ(passSamplesWithinBudget(0.4, 16, 2, 0.33, 1, 16), 8);   // 40 units - 32 of probes
   EXPECT_EQ(passSamplesWithinBudget(0.2, 16, 2, 0.33, 1, 16), 1);   // over half of one sample
