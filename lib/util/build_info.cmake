@@ -1,7 +1,9 @@
 # Writes OUT (a C++ file defining the build text) from the checkout in SRC, run at build time by
 # the pv_build_info_text target. configure_file() leaves OUT untouched when the text is the same,
 # so an unchanged commit recompiles nothing.
-execute_process(COMMAND git -C "${SRC}" describe --always --dirty --abbrev=12
+# GIT_OPTIONAL_LOCKS=0: the build never takes the index lock a concurrent `git commit` needs.
+execute_process(COMMAND ${CMAKE_COMMAND} -E env GIT_OPTIONAL_LOCKS=0
+  git -C "${SRC}" describe --always --dirty --abbrev=12
   OUTPUT_VARIABLE commit ERROR_QUIET OUTPUT_STRIP_TRAILING_WHITESPACE RESULT_VARIABLE failed)
 if(failed OR commit STREQUAL "")
   set(commit "unknown")
