@@ -3,24 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <sstream>
 
 #include "util/error.h"
 
 namespace proxyvis {
-
-namespace {
-
-std::vector<std::string> splitList(const std::string& list) {
-  std::vector<std::string> items;
-  std::stringstream in(list);
-  std::string item;
-  while (std::getline(in, item, ','))
-    if (!item.empty()) items.push_back(item);
-  return items;
-}
-
-}  // namespace
 
 void addCompareOptions(CLI::App& app, CompareOptions& o) {
   app.add_option("scene", o.scene, "Scene file (JSON, scenes/FORMAT.md)")->required();
@@ -33,45 +19,26 @@ void addCompareOptions(CLI::App& app, CompareOptions& o) {
       ->capture_default_str();
   app.add_option("--equal-time", o.equal_time,
                  "Seconds per render for the equal-time table (0 = no such table)")
-      ->check(numberIn(0, kMaxEqualTimeSeconds))
+      ->check(numberIn(0, kMaxRenderSeconds))
       ->capture_default_str();
   app.add_option("--reference-spp", o.reference_spp,
-                 "Samples per pixel of the exact reference (0 = max(1024, 16 x largest --spp))")
+                 "Samples per pixel of the exact reference. 0 = automatic: 16 x the most samples "
+                 "any compared render reached (equal-time renders included), at least 1024, "
+                 "rounded up to a power of two. Either is rounded up to a multiple of its 16 "
+                 "partial renders; a cached reference with at least as many samples is reused")
       ->check(integerIn(0, kMaxSpp))
       ->capture_default_str();
   app.add_option("--seeds", o.seeds,
                  "Independent renders per table cell (standard error over them)")
       ->check(integerIn(1, kMaxSeeds))
       ->capture_default_str();
-  // The scene's own limit (scenes/FORMAT.md): an override may not bypass it.
-  app.add_option("--width", o.width, "Override the scene's image width")
-      ->check(integerIn(1, kMaxImageSide));
-  app.add_option("--height", o.height, "Override the scene's image height")
-      ->check(integerIn(1, kMaxImageSide));
-  app.add_option("--proxy-kind", o.proxy_kind,
-                 "Use each mesh's proxy of this kind (outside, inside, general; default: first)")
-      ->check(CLI::IsMember({"outside", "inside", "general"}));
-  app.add_option("--q-min", o.q_min, "Roulette floor where an error class is possible")
-      ->check(numberIn(1e-6, 1.0))
-      ->capture_default_str();
-  app.add_option("--probes", o.probes, "Probe rays per shading point (paper-optimal, paper-cost)")
-      ->check(integerIn(1, kMaxProbes))
-      ->capture_default_str();
-  app.add_option("--build", o.build,
-                 "Instances as Embree instances, flattened into one BVH, or auto (flat when the "
-                 "flattened scene has at most 8 M triangles)")
-      ->check(CLI::IsMember({"auto", "flat", "instanced"}))
-      ->capture_default_str();
-  app.add_option("--roulette-costs", o.roulette_costs,
-                 "Roulette's ray costs: 'measured' (per region, timing-dependent choices) or "
-                 "'c_p0,c_p1,c_o0,c_o1,c_s' in ns (fixed: bit-reproducible)")
-      ->capture_default_str();
+  addRenderFlags(app, o.render);
   addCommonOptions(app, o.common);
 }
 
 void CompareOptions::resolve() {
   estimator_list.clear();
-  for (const std::string& name : splitList(estimators)) {
+  for (const std::string& name : splitCommaList(estimators)) {
     EstimatorKind kind = parseEstimatorName(name);
     if (std::find(estimator_list.begin(), estimator_list.end(), kind) == estimator_list.end())
       estimator_list.push_back(kind);
@@ -81,35 +48,13 @@ void CompareOptions::resolve() {
                 "name at least one estimator, e.g. exact,roulette");
   spp_list.clear();
   const CLI::Validator spp_check = integerIn(1, kMaxSpp);
-  for (std::string item : splitList(spp)) {
+  for (std::string item : splitCommaList(spp)) {
     const std::string problem = spp_check(item);
     if (!problem.empty())
       throw Error({}, "--spp: " + problem, {}, "give a comma-separated list such as 4,16");
     spp_list.push_back(std::stoi(item));
   }
-  fixed_costs.reset();
-  if (roulette_costs != "measured") {
-    std::vector<double> c;
-    for (const std::string& item : splitList(roulette_costs)) {
-      const std::optional<double> v = parseNumber(item);
-      if (!v || *v < 0) {
-        c.clear();
-        break;
-      }
-      c.push_back(*v);
-    }
-    if (c.size() != 5 || !(c[0] > 0 && c[1] > 0 && c[2] > 0 && c[3] > 0))
-      throw Error({}, "--roulette-costs: '" + roulette_costs + "' is not 'measured' or five costs",
-                  "expected c_p|V'=0, c_p|V'=1, c_o|V'=0, c_o|V'=1 (> 0) and c_s (>= 0) in ns",
-                  "e.g. --roulette-costs 40,20,300,25,60 (bench_render prints measured ones)");
-    ClassCosts costs;
-    costs.proxy[0] = c[0];
-    costs.proxy[1] = c[1];
-    costs.original[0] = c[2];
-    costs.original[1] = c[3];
-    costs.per_sample = c[4];
-    fixed_costs = costs;
-  }
+  render.resolve();
   std::sort(spp_list.begin(), spp_list.end());
   spp_list.erase(std::unique(spp_list.begin(), spp_list.end()), spp_list.end());
   if (spp_list.empty() && !(equal_time > 0))

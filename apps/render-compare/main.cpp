@@ -33,6 +33,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
+constexpr const char* kNoProxiesNote =
+    "no mesh of this scene has a proxy: every estimator traces the originals, so the comparison "
+    "only measures estimator overhead (generate proxies with proxy-gen, then compare the scene "
+    "it writes)";
+
 std::string listText(const std::vector<int>& v) {
   std::string s;
   for (int x : v) s += (s.empty() ? "" : ",") + std::to_string(x);
@@ -45,10 +50,12 @@ void addReferenceNotes(Report& report, const Reference& ref, bool quiet) {
   double ratio = min_mse > 0 ? ref.variance_of_mean / min_mse : 0;
   report.meta["reference_to_min_mse"] = ratio;
   std::string text = fmt::format(
-      "Reference: exact, {} spp ({} partial renders{}); its own estimated variance of the mean, "
-      "averaged over the image, is {:.2e} = {:.2g}% of the smallest MSE compared ({:.2e}).",
-      ref.spp, ref.partials, ref.cached ? ", from cache" : "", ref.variance_of_mean, 100 * ratio,
-      min_mse);
+      "Reference: exact, {} spp ({} partial renders, {:.1f} s{}); its own estimated variance of "
+      "the mean, averaged over the image, is {:.2e} = {:.2g}% of the smallest MSE compared "
+      "({:.2e}).",
+      ref.spp, ref.partials, ref.seconds,
+      ref.cached ? ", rendered by an earlier run and cached" : "", ref.variance_of_mean,
+      100 * ratio, min_mse);
   report.notes.push_back(text);
   if (ratio > 0.1) {
     std::string warning = fmt::format(
@@ -58,6 +65,24 @@ void addReferenceNotes(Report& report, const Reference& ref, bool quiet) {
     report.notes.push_back(warning);
     if (!quiet) std::fprintf(stderr, "render-compare: %s\n", warning.c_str());
   }
+}
+
+// Equal time means equal measured time: the renderer fits its last pass to the budget, but a
+// render can still end past it (its first pass, a slow last sample). Said when any row of the
+// table ends more than 5 % past the budget, so its efficiency is read with that in mind.
+void addOvershootNote(Report& report, double budget) {
+  if (!(budget > 0)) return;
+  double worst = 0;
+  std::string who;
+  for (const ReportRow& r : report.rows)
+    if (r.table == kEqualTimeTable && r.seconds - budget > worst)
+      worst = r.seconds - budget, who = r.estimator;
+  report.meta["equal_time_max_overshoot_seconds"] = worst;
+  if (worst > 0.05 * budget)
+    report.notes.push_back(fmt::format(
+        "Equal time: {} took {:.3f} s for a budget of {:g} s ({:+.0f}%); the efficiency column "
+        "uses the measured times.",
+        who, budget + worst, budget, 100 * worst / budget));
 }
 
 // Each proxy's class status (class_trust.h): a note per proxy whose claim was not taken as is, and
@@ -81,8 +106,8 @@ Report makeReport(const CompareOptions& o, const RenderScene& scene, const Refer
                   const std::vector<ProxyTrust>& trust) {
   const SceneDesc& desc = scene.desc();
   Report report;
-  report.title = "render-compare: " + desc.path.filename().string();
-  report.scene_name = desc.path.stem().string();
+  report.title = "render-compare: visibility estimators compared";
+  report.scene_name = desc.displayName();
   report.meta["scene"] = desc.path.string();
   report.meta["scene_hash"] = sceneHash(desc);
   report.meta["resolution"] = fmt::format("{}x{}", desc.camera.width, desc.camera.height);
@@ -97,16 +122,15 @@ Report makeReport(const CompareOptions& o, const RenderScene& scene, const Refer
   report.meta["original_triangles"] = scene.originalTriangles();
   report.meta["proxy_triangles"] = scene.proxyTriangles();
   report.meta["reference_spp"] = ref.spp;
+  report.meta["reference_partials"] = ref.partials;
+  report.meta["reference_seconds"] = ref.seconds;
   report.meta["reference_variance_of_mean"] = ref.variance_of_mean;
   report.meta["reference_file"] = ref.file.filename().string();
   report.meta["reference_cached"] = ref.cached;
   report.meta["relmse_epsilon"] = kRelMseEpsilon;
   addProxyTrust(report, trust);
   for (const std::string& w : scene.warnings()) report.notes.push_back("Scene: " + w);
-  if (!scene.usesProxies())
-    report.notes.push_back(
-        "No mesh of this scene has a proxy: every estimator traces the originals, so the "
-        "comparison only measures estimator overhead (generate proxies with proxy-gen).");
+  if (!scene.usesProxies()) report.notes.push_back(std::string("Warning: ") + kNoProxiesNote + ".");
   // docs/design.md, costs point 2: the exact baseline should be the fastest exact configuration.
   const bool flat = scene.instancesFlattened() || desc.instances.empty();
   report.meta["scene_build"] = flat ? "flat" : "instanced";
@@ -121,7 +145,7 @@ Report makeReport(const CompareOptions& o, const RenderScene& scene, const Refer
           : "Exact baseline: instanced meshes are traced as Embree instances (--build); "
             "--build flat gives the flattened tables (faster where they fit in memory).");
   report.notes.push_back(
-      o.fixed_costs
+      o.render.fixed_costs
           ? "roulette uses the fixed costs of --roulette-costs: bit-reproducible."
           : "roulette measures its ray costs with the CPU tick counter: its choices (never its "
             "expectation) depend on timing, so its images are unbiased but not bit-reproducible "
@@ -134,27 +158,22 @@ int runCompare(CompareOptions& o) {
                {{"--out", o.out.string(), /*is_folder=*/true}, {"--json", o.common.json_path}});
   o.resolve();
   SceneDesc desc = loadSceneDesc(o.scene);
-  if (o.width > 0) desc.camera.width = o.width;
-  if (o.height > 0) desc.camera.height = o.height;
+  o.render.applyTo(desc);
   // The report folder is written under a temporary name and swapped in at the end: a rerun
   // leaves nothing of the previous report, a failed or killed one leaves it intact. Staged
   // before any rendering, so an unwritable --out fails in a second (exit 3).
   StagedFolder folder(o.out, "render-compare", "report.json");
   const fs::path& dir = folder.path();
 
-  RenderSceneOptions scene_options;
-  scene_options.proxy_kind = o.proxy_kind;
-  scene_options.quiet = o.common.quiet;
-  scene_options.flatten_instances = o.build == "flat";
-  if (o.build == "auto") scene_options.auto_flatten_triangles = CompareOptions::kAutoFlatTriangles;
   // A claimed class the proxy file no longer matches is proven again or dropped before any
   // estimator relies on it; a downgrade is always said on stderr (the tables would hide the bias).
-  const std::vector<ProxyTrust> trust = establishProxyClasses(desc, scene_options);
-  for (const ProxyTrust& t : trust)
-    if (t.trust.status == ClassStatus::kDowngraded)
-      std::fprintf(stderr, "render-compare: warning: %s: %s\n",
-                   desc.path.filename().string().c_str(), describeProxyTrust(t).c_str());
-  std::unique_ptr<RenderScene> scene = loadRenderScene(desc, scene_options);
+  TrustedRenderScene loaded =
+      loadTrustedRenderScene(desc, o.render.sceneOptions(o.common.quiet), "render-compare");
+  const std::vector<ProxyTrust>& trust = loaded.trust;
+  const std::unique_ptr<RenderScene>& scene = loaded.scene;
+  if (!scene->usesProxies() && !o.common.quiet)
+    std::fprintf(stderr, "render-compare: warning: %s: %s\n", desc.path.filename().string().c_str(),
+                 kNoProxiesNote);
 
   // Cells in table order; the stems name their images.
   std::vector<CellResult> cells;
@@ -174,9 +193,11 @@ int runCompare(CompareOptions& o) {
 
   Reference ref = loadOrRenderReference(*scene, o, o.referenceSpp(largest_spp), dir);
   if (!o.common.quiet)
-    std::fprintf(stderr, "render-compare: reference %s (%d spp, variance of mean %.2e)%s\n",
-                 (o.out / ref.file.filename()).string().c_str(), ref.spp, ref.variance_of_mean,
-                 ref.cached ? " [cached]" : "");
+    std::fprintf(stderr,
+                 "render-compare: reference %s (exact, %d spp in %d partial renders, %.1f s, "
+                 "variance of mean %.2e)%s\n",
+                 (o.out / ref.file.filename()).string().c_str(), ref.spp, ref.partials, ref.seconds,
+                 ref.variance_of_mean, ref.cached ? " [cached: rendered by an earlier run]" : "");
   for (CellResult& c : cells) scoreCell(c, ref.radiance);
 
   Report report = makeReport(o, *scene, ref, trust);
@@ -185,8 +206,10 @@ int runCompare(CompareOptions& o) {
   fillRelativeEfficiency(report.rows, kEqualTimeTable);
   if (std::find(o.estimator_list.begin(), o.estimator_list.end(), EstimatorKind::kExact) ==
       o.estimator_list.end())
-    report.notes.push_back("exact was not among --estimators: efficiencies are reported as 0.");
+    report.notes.push_back(
+        "exact was not among --estimators: efficiencies are n/a (null in the JSON).");
   addReferenceNotes(report, ref, o.common.quiet);
+  addOvershootNote(report, o.equal_time);
   requireFiniteRows(report.rows, desc.path);
   for (size_t i = 0; i < cells.size(); ++i) cells[i].row = report.rows[i];
 
@@ -195,7 +218,11 @@ int runCompare(CompareOptions& o) {
   float exposure = autoExposure(ref.radiance);
   const std::string reference_png = "reference.png";
   const std::string reference_exr = ref.file.filename().string();
-  writeImage(ref.radiance, dir / reference_png, {exposure, false, {}});
+  ImageWriteOptions reference_png_options;
+  reference_png_options.exposure = exposure;
+  reference_png_options.attributes =
+      referenceAttributes(desc, ref, "radiance of the exact reference, tone-mapped");
+  writeImage(ref.radiance, dir / reference_png, reference_png_options);
   writeColorBar(dir);
   HtmlReportLayout layout;
   layout.plots.push_back(mseTimePlot(report.rows));
@@ -212,7 +239,8 @@ int runCompare(CompareOptions& o) {
     }
     for (const auto& m : cost_maps) cost_ptrs.push_back(&m);
     HeatMapRange error_range = sharedLogRange(error_maps), cost_range = sharedLogRange(cost_ptrs);
-    for (const CellImages& im : images) writeCellImages(im, dir, exposure, error_range, cost_range);
+    for (const CellImages& im : images)
+      writeCellImages(im, desc, dir, exposure, error_range, cost_range);
     return cellGalleries(title, reference_png, reference_exr, images, error_range, cost_range);
   };
   auto add = [&](const std::vector<HtmlGallery>& g, bool shown) {

@@ -7,6 +7,7 @@
 
 #include "metrics/color_map.h"
 #include "render/image_io.h"
+#include "render/image_metadata.h"
 
 namespace proxyvis {
 
@@ -24,17 +25,6 @@ std::string cellLabel(const ReportRow& row) {
 }
 
 }  // namespace
-
-float autoExposure(const Image& reference) {
-  std::vector<float> brightest;
-  for (size_t p = 0; p + 2 < reference.pixels.size(); p += 3)
-    brightest.push_back(
-        std::max({reference.pixels[p], reference.pixels[p + 1], reference.pixels[p + 2]}));
-  if (brightest.empty()) return 1;
-  size_t k = size_t(0.99 * double(brightest.size() - 1));
-  std::nth_element(brightest.begin(), brightest.begin() + k, brightest.end());
-  return brightest[k] > 0 ? 1.0f / brightest[k] : 1.0f;
-}
 
 std::vector<float> raysPerPixel(const Image& cost) {
   std::vector<float> out(size_t(cost.width) * cost.height, 0.0f);
@@ -55,24 +45,41 @@ Image heatMapImage(const std::vector<float>& values, int width, int height,
   return Image{width, height, 3, heatMapRgb(values, range)};
 }
 
-void writeCellImages(const CellImages& images, const fs::path& dir, float exposure,
-                     const HeatMapRange& error_range, const HeatMapRange& cost_range) {
+void writeCellImages(const CellImages& images, const SceneDesc& scene, const fs::path& dir,
+                     float exposure, const HeatMapRange& error_range,
+                     const HeatMapRange& cost_range) {
   const RenderResult& r = images.cell->first;
-  writeImage(r.radiance, dir / (images.stem + ".exr"));
-  writeImage(r.radiance, dir / (images.stem + ".png"), {exposure, false, {}});
+  const ReportRow& row = images.cell->row;
+  RenderMetadata meta{"render-compare", row.estimator,           r.spp,
+                      r.seconds,        images.cell->first_seed, {{"proxyvis:table", row.table}}};
+  auto attributes = [&](const std::string& content) {
+    RenderMetadata m = meta;
+    m.extra.push_back({"proxyvis:content", content});
+    return renderAttributes(scene, m);
+  };
+  ImageWriteOptions exr;
+  exr.attributes = attributes("radiance (linear RGB), first seed");
+  writeImage(r.radiance, dir / (images.stem + ".exr"), exr);
+  ImageWriteOptions png;
+  png.exposure = exposure;
+  png.attributes = attributes("radiance, tone-mapped: x exposure, clamped, sRGB");
+  png.attributes.push_back({"proxyvis:exposure", exposure});
+  writeImage(r.radiance, dir / (images.stem + ".png"), png);
   const int w = r.radiance.width, h = r.radiance.height;
-  // AOVs: mean visibility and the rays per pixel by kind (the cost heat-map's data), 32-bit.
-  Image aov{w, h, 4, std::vector<float>(size_t(w) * h * 4)};
-  for (size_t i = 0; i < size_t(w) * h; ++i) {
-    aov.pixels[i * 4] = r.visibility.pixels[i];
-    for (int c = 0; c < 3; ++c) aov.pixels[i * 4 + 1 + c] = r.cost.pixels[i * 3 + c];
-  }
-  writeImage(aov, dir / (images.stem + "_aov.exr"),
-             {1.0f, true, {"visibility", "rays_proxy", "rays_original", "rays_probe"}});
+  // AOVs (the cost heat-map's data), 32-bit.
+  ImageWriteOptions aov_options;
+  aov_options.full_float = true;
+  aov_options.channel_names = kAovChannelNames;
+  aov_options.attributes =
+      attributes("AOVs: mean estimated visibility; proxy, original and probe rays per pixel");
+  writeImage(aovImage(r), dir / (images.stem + "_aov.exr"), aov_options);
+  ImageWriteOptions heat;
+  heat.attributes = attributes("squared error per pixel against the reference, log heat-map");
   writeImage(heatMapImage(images.cell->error_map, w, h, error_range),
-             dir / (images.stem + "_error.png"));
+             dir / (images.stem + "_error.png"), heat);
+  heat.attributes = attributes("rays per pixel (proxy + original + 2 x probe), log heat-map");
   writeImage(heatMapImage(raysPerPixel(r.cost), w, h, cost_range),
-             dir / (images.stem + "_cost.png"));
+             dir / (images.stem + "_cost.png"), heat);
 }
 
 void writeColorBar(const fs::path& dir) {

@@ -8,13 +8,10 @@
 #include "metrics/heat_map.h"
 #include "metrics/html_report.h"
 #include "reference.h"
+#include "render/image_io.h"  // autoExposure: the same for every image so they compare
 #include "runs.h"
 
 namespace proxyvis {
-
-// Exposure for the tone-mapped PNGs: the 99th percentile of the reference's brightest channel
-// maps to 1, the same for every image so they compare.
-float autoExposure(const Image& reference);
 
 // Rays per pixel weighted by what they cost in traversals: proxy + original + 2 × probe (a probe
 // is traced against both).
@@ -23,12 +20,15 @@ std::vector<float> raysPerPixel(const Image& cost);
 // One log range covering several maps, so heat-maps of different estimators compare.
 HeatMapRange sharedLogRange(const std::vector<const std::vector<float>*>& maps);
 
-// The images of one cell, written as `stem`.exr / .png / _error.png / _cost.png in `dir`.
+// The images of one cell, written as `stem`.exr / .png / _aov.exr / _error.png / _cost.png in
+// `dir`, each with the render's metadata (render/image_metadata.h); the AOV channels are layers
+// "visibility.Y" and "rays.proxy", "rays.original", "rays.probe".
 struct CellImages {
   std::string stem;
   const CellResult* cell = nullptr;
 };
-void writeCellImages(const CellImages& images, const std::filesystem::path& dir, float exposure,
+void writeCellImages(const CellImages& images, const SceneDesc& scene,
+                     const std::filesystem::path& dir, float exposure,
                      const HeatMapRange& error_range, const HeatMapRange& cost_range);
 
 // A heat-map as an image for writeImage's PNG path (OIIO's colour maps are linear values that its

@@ -7,6 +7,7 @@
 
 #include "metrics/image_variance.h"
 #include "render/image_io.h"
+#include "render/image_metadata.h"
 #include "runs.h"
 #include "util/atomic_write.h"
 #include "util/error.h"
@@ -71,6 +72,16 @@ bool loadCached(Reference& ref, const fs::path& json_file, int width, int height
 
 }  // namespace
 
+std::vector<ImageAttribute> referenceAttributes(const SceneDesc& scene, const Reference& ref,
+                                                const std::string& content) {
+  // The seed of the first partial render; partial r uses hashKeys(seed, r).
+  RenderMetadata meta{
+      "render-compare", estimatorName(EstimatorKind::kExact),
+      ref.spp,          ref.seconds,
+      kReferenceSeed,   {{"proxyvis:content", content}, {"proxyvis:partials", ref.partials}}};
+  return renderAttributes(scene, meta);
+}
+
 Reference loadOrRenderReference(const RenderScene& scene, const CompareOptions& options, int spp,
                                 const fs::path& write_dir) {
   const SceneDesc& desc = scene.desc();
@@ -116,7 +127,10 @@ Reference loadOrRenderReference(const RenderScene& scene, const CompareOptions& 
   ref.radiance = Image{desc.camera.width, desc.camera.height, 3, acc.mean()};
   requireFinitePixels(ref.radiance, desc.path, "the exact reference");
 
-  writeImage(ref.radiance, ref.file, {1.0f, /*full_float=*/true, {}});
+  ImageWriteOptions exr;
+  exr.full_float = true;
+  exr.attributes = referenceAttributes(desc, ref, "radiance (linear RGB), the exact reference");
+  writeImage(ref.radiance, ref.file, exr);
   nlohmann::json j = {{"key", ref.key},
                       {"scene", desc.path.string()},
                       {"scene_hash", sceneHash(desc)},

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "compare_options.h"
+#include "render/image_io.h"
 #include "render/render_scene.h"
 #include "render/renderer.h"
 
@@ -30,5 +31,9 @@ struct Reference {
 // cache, so that the new folder keeps it.
 Reference loadOrRenderReference(const RenderScene& scene, const CompareOptions& options, int spp,
                                 const std::filesystem::path& write_dir);
+
+// The reference's image metadata (render/image_metadata.h); `content` says what the file shows.
+std::vector<ImageAttribute> referenceAttributes(const SceneDesc& scene, const Reference& ref,
+                                                const std::string& content);
 
 }  // namespace proxyvis

@@ -42,10 +42,7 @@ CellResult runCell(const RenderScene& scene, const CompareOptions& options, Esti
   ReportRow& row = cell.row;
   for (int k = 0; k < options.seeds; ++k) {
     RenderSettings settings;
-    settings.estimator.kind = kind;
-    settings.estimator.q_min = options.q_min;
-    settings.estimator.probes_per_point = options.probes;
-    settings.estimator.fixed_costs = options.fixed_costs;
+    settings.estimator = options.render.estimatorSetup(kind);
     settings.spp = time_budget > 0 ? INT_MAX : spp;
     settings.time_budget = time_budget;
     // Seed k of every cell is the same stream key: estimators differ only in what they trace.
@@ -70,6 +67,7 @@ CellResult runCell(const RenderScene& scene, const CompareOptions& options, Esti
       row.proxy_class = proxyClassName(r.proxy_class);
       if (kind == EstimatorKind::kRoulette) row.learned = toReportLearned(r.learned);
       cell.first = std::move(r);
+      cell.first_seed = options.common.seed;
     }
   }
   row.table = std::string(table);
@@ -81,7 +79,12 @@ CellResult runCell(const RenderScene& scene, const CompareOptions& options, Esti
   row.spp_max = int(*std::max_element(spp_reached.begin(), spp_reached.end()));
   row.shading_seconds = summarizeSeeds(shading).mean;
   row.visibility_seconds = summarizeSeeds(visibility).mean;
-  row.time_budget = time_budget;
+  if (time_budget > 0) {
+    // The last pass is fitted to the budget (renderer.cpp), but the first pass and the final
+    // bookkeeping still take what they take: the table's time is what was measured.
+    row.time_budget = time_budget;
+    row.budget_overshoot_seconds = row.seconds - time_budget;
+  }
   return cell;
 }
 

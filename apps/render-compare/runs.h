@@ -16,6 +16,7 @@ namespace proxyvis {
 struct CellResult {
   ReportRow row;       // errors filled by scoreCell(), efficiency by the caller (needs exact's row)
   RenderResult first;  // the render of the first seed (images for the report)
+  uint64_t first_seed = 0;               // its RenderSettings::seed (image metadata)
   std::vector<Image> radiance_per_seed;  // kept until scoreCell()
   std::vector<float> error_map;          // per-pixel squared error of the first seed
 };

@@ -37,25 +37,28 @@ const char* estimatorName(EstimatorKind kind) {
   return "?";
 }
 
-EstimatorKind parseEstimatorName(const std::string& name) {
-  std::string valid;
+namespace {
+std::string joinedNames(const char* separator) {
+  std::string names;
   for (EstimatorKind k : kAllKinds) {
-    if (name == estimatorName(k)) return k;
-    valid += (valid.empty() ? "" : ", ") + std::string(estimatorName(k));
+    if (!names.empty()) names += separator;
+    names += estimatorName(k);
   }
-  throw Error("", "unknown estimator '" + name + "'", "valid estimators: " + valid);
+  return names;
+}
+}  // namespace
+
+EstimatorKind parseEstimatorName(const std::string& name) {
+  for (EstimatorKind k : kAllKinds)
+    if (name == estimatorName(k)) return k;
+  throw Error("", "unknown estimator '" + name + "'", "valid estimators: " + joinedNames(", "));
 }
 
 std::vector<EstimatorKind> allEstimators() {
   return std::vector<EstimatorKind>(std::begin(kAllKinds), std::end(kAllKinds));
 }
 
-std::string allEstimatorNames() {
-  std::string names;
-  for (EstimatorKind k : kAllKinds)
-    names += (names.empty() ? "" : ",") + std::string(estimatorName(k));
-  return names;
-}
+std::string allEstimatorNames() { return joinedNames(","); }
 
 std::unique_ptr<VisibilityEstimator> makeEstimator(const EstimatorSetup& setup) {
   if (setup.num_regions == 0) throw Error("", "estimator needs at least one learning region");

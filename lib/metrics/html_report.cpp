@@ -167,10 +167,11 @@ std::string htmlTable(const std::vector<ReportRow>& rows, std::string_view table
     double px = r.pixels > 0 ? r.pixels : 1;
     out += fmt::format(
         "<tr><td>{}</td><td>{:.1f}</td><td>{:.3f}</td><td>{:.3e}</td><td>{:.1e}</td>"
-        "<td>{:.3e}</td><td>{:.1e}</td><td{}>{:.2f}×</td><td>{:.1f}</td><td>{:.1f}</td>"
+        "<td>{:.3e}</td><td>{:.1e}</td><td{}>{}</td><td>{:.1f}</td><td>{:.1f}</td>"
         "<td>{:.1f}</td><td>{}</td></tr>\n",
         escapeHtml(r.estimator), r.spp, r.seconds, r.mse, r.mse_stderr, r.relmse, r.relmse_stderr,
-        r.efficiency == best && best > 0 ? " class=\"best\"" : "", r.efficiency, r.rays.proxy / px,
+        r.efficiency == best && best > 0 ? " class=\"best\"" : "",
+        r.efficiency > 0 ? fmt::format("{:.2f}×", r.efficiency) : "n/a", r.rays.proxy / px,
         r.rays.original / px, r.rays.probe / px, r.seeds);
   }
   return out + "</table></div>\n";

@@ -78,7 +78,8 @@ nlohmann::json rowToJson(const ReportRow& r) {
       {"mse_stderr", r.mse_stderr},
       {"relmse", r.relmse},
       {"relmse_stderr", r.relmse_stderr},
-      {"efficiency", r.efficiency},
+      // 0 = undefined (no baseline row, or a zero MSE or time): null, never a number.
+      {"efficiency", r.efficiency > 0 ? nlohmann::json(r.efficiency) : nlohmann::json()},
       {"rays", {{"proxy", r.rays.proxy}, {"original", r.rays.original}, {"probe", r.rays.probe}}},
       {"rays_per_pixel",
        {{"proxy", r.rays.proxy / px},
@@ -90,7 +91,10 @@ nlohmann::json rowToJson(const ReportRow& r) {
       {"visibility_seconds", r.visibility_seconds},
       {"proxy_class", r.proxy_class},
       {"mse_per_seed", r.mse_per_seed}};
-  if (r.time_budget > 0) j["time_budget"] = r.time_budget;
+  if (r.time_budget > 0) {
+    j["time_budget"] = r.time_budget;
+    j["budget_overshoot_seconds"] = r.budget_overshoot_seconds;
+  }
   if (r.learned) j["learned"] = learnedToJson(*r.learned);
   return j;
 }
@@ -114,8 +118,8 @@ std::string reportToCsv(const std::vector<ReportRow>& rows) {
   for (const ReportRow& r : rows)
     out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csvField(r.table),
                        csvField(r.estimator), r.spp, r.seconds, r.mse, r.mse_stderr, r.relmse,
-                       r.relmse_stderr, r.efficiency, r.rays.proxy, r.rays.original, r.rays.probe,
-                       r.seeds);
+                       r.relmse_stderr, r.efficiency > 0 ? fmt::format("{}", r.efficiency) : "",
+                       r.rays.proxy, r.rays.original, r.rays.probe, r.seeds);
   return out;
 }
 
@@ -127,9 +131,10 @@ std::string markdownTable(const std::vector<ReportRow>& rows, std::string_view t
   for (const ReportRow& r : rows) {
     if (!table.empty() && r.table != table) continue;
     double px = r.pixels > 0 ? r.pixels : 1;
-    out += fmt::format("| {} | {:.1f} | {:.3f} | {} | {} | {:.2f}× | {:.1f} | {:.1f} | {:.1f} |\n",
+    out += fmt::format("| {} | {:.1f} | {:.3f} | {} | {} | {} | {:.1f} | {:.1f} | {:.1f} |\n",
                        r.estimator, r.spp, r.seconds, formatValueWithError(r.mse, r.mse_stderr),
-                       formatValueWithError(r.relmse, r.relmse_stderr), r.efficiency,
+                       formatValueWithError(r.relmse, r.relmse_stderr),
+                       r.efficiency > 0 ? fmt::format("{:.2f}×", r.efficiency) : "n/a",
                        r.rays.proxy / px, r.rays.original / px, r.rays.probe / px);
   }
   return out;

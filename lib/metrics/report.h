@@ -47,6 +47,7 @@ struct ReportRow {
   double shading_seconds = 0;     // mean over seeds
   double visibility_seconds = 0;  // mean over seeds
   double time_budget = 0;         // equal-time budget per render; 0 (not written) for equal-spp
+  double budget_overshoot_seconds = 0;  // seconds - time_budget (written with time_budget)
   std::string proxy_class;        // the class the estimators relied on ("outside", ...)
   std::vector<double> mse_per_seed;
   std::optional<ReportLearned> learned;  // roulette rows only
@@ -62,7 +63,7 @@ struct Report {
 
 // Fills ReportRow::efficiency for every row of `table`: relative to the row of `baseline` with
 // the same table and the closest spp (equal-spp) or the only baseline row (equal-time). Rows
-// without a baseline get 0.
+// without a baseline get 0, written as "n/a" (tables), an empty field (CSV) and null (JSON).
 void fillRelativeEfficiency(std::vector<ReportRow>& rows, std::string_view table,
                             std::string_view baseline = "exact");
 

@@ -44,6 +44,8 @@ void writeImage(const Image& image, const std::filesystem::path& path,
       PV_CHECK(int(options.channel_names.size()) == image.channels);
       spec.channelnames = options.channel_names;
     }
+    for (const ImageAttribute& a : options.attributes)
+      std::visit([&](const auto& v) { spec.attribute(a.name, v); }, a.value);
     bool ok = out->open(named.string(), spec);
     if (ok && ldr) {
       std::vector<uint8_t> bytes(image.pixels.size());
@@ -63,6 +65,38 @@ void writeImage(const Image& image, const std::filesystem::path& path,
     std::filesystem::rename(named, tmp, ec);
     if (ec) throw WriteError(path.string(), "cannot write image", ec.message());
   });
+}
+
+std::string ImageHeader::attribute(const std::string& name) const {
+  for (const auto& [key, value] : attributes)
+    if (key == name) return value;
+  return {};
+}
+
+ImageHeader readImageHeader(const std::filesystem::path& path) {
+  auto in = OIIO::ImageInput::open(path.string());
+  if (!in) throw Error(path.string(), "cannot read image", OIIO::geterror());
+  const OIIO::ImageSpec& spec = in->spec();
+  ImageHeader header;
+  header.width = spec.width;
+  header.height = spec.height;
+  header.channel_names = spec.channelnames;
+  for (const OIIO::ParamValue& p : spec.extra_attribs)
+    header.attributes.emplace_back(p.name().string(), p.type() == OIIO::TypeDesc::STRING
+                                                          ? std::string(p.get_ustring().string())
+                                                          : spec.metadata_val(p));
+  in->close();
+  return header;
+}
+
+float autoExposure(const Image& image) {
+  std::vector<float> brightest;
+  for (size_t p = 0; p + 2 < image.pixels.size(); p += 3)
+    brightest.push_back(std::max({image.pixels[p], image.pixels[p + 1], image.pixels[p + 2]}));
+  if (brightest.empty()) return 1;
+  size_t k = size_t(0.99 * double(brightest.size() - 1));
+  std::nth_element(brightest.begin(), brightest.begin() + k, brightest.end());
+  return brightest[k] > 0 ? 1.0f / brightest[k] : 1.0f;
 }
 
 Image readImage(const std::filesystem::path& path) {

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <climits>
+#include <cmath>
 
 #include "render/internal/integrator.h"
 #include "render/render_scene.h"
@@ -156,6 +157,23 @@ void estimatePixel(const RenderScene& scene, VisibilityEstimator& estimator, con
 
 }  // namespace
 
+namespace detail {
+
+int passSamplesWithinBudget(double seconds_left, int full_pass, int pass, double last_seconds,
+                            int last_count, int probes) {
+  if (pass == 0) return full_pass;  // nothing measured yet
+  const double fixed_units = 2.0 * probes;
+  const double unit_seconds = last_seconds / (fixed_units + last_count);
+  if (!(unit_seconds > 0)) return full_pass;
+  const double fit = seconds_left / unit_seconds - fixed_units;
+  if (fit >= full_pass) return full_pass;
+  if (fit >= 1) return int(fit);
+  const double one_sample_seconds = unit_seconds * (fixed_units + 1);
+  return seconds_left >= 0.5 * one_sample_seconds ? 1 : 0;
+}
+
+}  // namespace detail
+
 EstimatorSetup estimatorSetupFor(const RenderScene& scene, const RenderSettings& settings) {
   EstimatorSetup setup = settings.estimator;
   const detail::Tiling tiling(scene.camera().width(), scene.camera().height(),
@@ -194,15 +212,25 @@ RenderResult render(const RenderScene& scene, const RenderSettings& settings,
   tbb::enumerable_thread_specific<Scratch> scratch;
   const uint64_t total_passes =
       settings.time_budget > 0 ? 0 : uint64_t((spp_cap + batch - 1) / batch);
-  Progress progress("render", total_passes * uint64_t(tiling.count()),
-                    settings.quiet || total_passes == 0);
+  // Work is tiles rendered, or milliseconds of the time budget spent.
+  const uint64_t budget_ms = uint64_t(std::ceil(settings.time_budget * 1000));
+  Progress progress("render",
+                    settings.time_budget > 0 ? budget_ms : total_passes * uint64_t(tiling.count()),
+                    settings.quiet);
+  uint64_t reported_ms = 0;
   double sampling_seconds = 0;
   const double threads = double(tbb::this_task_arena::max_concurrency());
-  int taken = 0, pass = 0;
-  while (taken < spp_cap &&
-         (pass == 0 || !(settings.time_budget > 0) || whole.seconds() < settings.time_budget)) {
-    const int count = std::min(batch, spp_cap - taken);
-    const Stopwatch sampling;
+  const bool timed = settings.time_budget > 0;
+  int taken = 0, pass = 0, last_count = 0;
+  double last_pass_seconds = 0;
+  while (taken < spp_cap && (pass == 0 || !timed || whole.seconds() < settings.time_budget)) {
+    int count = std::min(batch, spp_cap - taken);
+    if (timed && batch > 1) {
+      count = passSamplesWithinBudget(settings.time_budget - whole.seconds(), count, pass,
+                                      last_pass_seconds, last_count, probes);
+      if (count == 0) break;
+    }
+    const Stopwatch pass_clock, sampling;
     tbb::parallel_for(0, tiling.count(), [&](int t) {
       tiling.forEachPixel(t, [&](int, int, uint32_t pixel) {
         prepareSamples(scene, points[pixel], settings.seed, pixel, pass, count,
@@ -219,12 +247,19 @@ RenderResult render(const RenderScene& scene, const RenderSettings& settings,
         estimatePixel(scene, estimator, points[pixel], &samples[size_t(pixel) * batch], count,
                       pixel, pass, settings.seed, uint32_t(t), probes, s, acc);
       });
-      progress.update();
+      if (!timed) progress.update();
     });
     estimator.endPass();
     result.visibility_seconds += visibility.seconds();
     taken += count;
+    last_count = count;
+    last_pass_seconds = pass_clock.seconds();
     ++pass;
+    if (timed) {
+      const uint64_t spent_ms = std::min(budget_ms, uint64_t(whole.seconds() * 1000));
+      if (spent_ms > reported_ms) progress.update(spent_ms - reported_ms);
+      reported_ms = std::max(reported_ms, spent_ms);
+    }
     if (!settings.estimator.fixed_costs) {
       // What every light sample costs outside visibility, in CPU ns per sample (the unit of the
       // learned ray costs): light sampling plus the primary ray's share so far.

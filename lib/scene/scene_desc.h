@@ -38,6 +38,8 @@ namespace proxyvis {
 
 // The largest image width and height, in pixels, a scene or a command-line override may ask for.
 inline constexpr int kMaxImageSide = 16384;
+// The scene's "name": a title, one line of printable text.
+inline constexpr size_t kMaxSceneNameLength = 200;
 
 // Value ranges loadSceneDesc enforces. Within them the renderer's float arithmetic (squared
 // distances, radiance * area / pdf, squared pixel errors summed over an image) stays finite;
@@ -88,6 +90,7 @@ struct SceneInstanceDesc {
 
 struct SceneDesc {
   std::filesystem::path path;  // the scene file (absolute)
+  std::string name;            // the "name" key (titles of reports); empty if the file has none
   std::string description;
   CameraDesc camera;
   std::vector<AreaLightDesc> lights;
@@ -97,6 +100,8 @@ struct SceneDesc {
 
   // Index of the mesh called `name`, or -1.
   int findMesh(const std::string& name) const;
+  // What to call the scene in titles: its name, else the scene file's stem.
+  std::string displayName() const;
 };
 
 // Parses and validates a scene file and its instance list; throws Error naming the file and the

@@ -2,6 +2,7 @@
 // and the JSON path of the value, e.g. "scenes/x.json: meshes[2].albedoo: unknown key".
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -239,6 +240,10 @@ SceneMeshDesc parseMesh(const Field& f, const fs::path& dir) {
 
 }  // namespace
 
+std::string SceneDesc::displayName() const {
+  return name.empty() ? path.stem().string() : name;
+}
+
 int SceneDesc::findMesh(const std::string& name) const {
   for (size_t i = 0; i < meshes.size(); ++i)
     if (meshes[i].name == name) return int(i);
@@ -266,7 +271,16 @@ SceneDesc parseSceneDesc(const std::string& text, const fs::path& path) {
   }
   const fs::path dir = scene.path.parent_path();
   const Field top(root, "", scene.path);
-  top.expectObject({"description", "camera", "lights", "meshes", "instances"});
+  top.expectObject({"name", "description", "camera", "lights", "meshes", "instances"});
+  if (top.has("name")) {
+    scene.name = top["name"].asString();
+    const bool printable = std::all_of(scene.name.begin(), scene.name.end(),
+                                       [](unsigned char c) { return c >= 0x20 && c != 0x7f; });
+    if (scene.name.empty() || scene.name.size() > kMaxSceneNameLength || !printable)
+      top["name"].fail(fmt::format("the name must be 1 to {} printable characters on one line",
+                                   kMaxSceneNameLength),
+                       "it titles reports and terminal lines");
+  }
   if (top.has("description")) scene.description = top["description"].asString();
   scene.camera = parseCamera(top["camera"]);
 

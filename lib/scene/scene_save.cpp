@@ -61,6 +61,7 @@ std::string instanceLines(const SceneDesc& scene) {
 
 json sceneToJson(const SceneDesc& scene, const fs::path& dir, const fs::path& instances_file) {
   json root;
+  if (!scene.name.empty()) root["name"] = scene.name;
   if (!scene.description.empty()) root["description"] = scene.description;
   const CameraDesc& c = scene.camera;
   root["camera"] = {{"eye", toJson(c.eye)},
@@ -106,8 +107,14 @@ void saveSceneDesc(const SceneDesc& scene, const fs::path& path) {
     instances_file = dir / (target.stem().string() + ".instances.txt");
     writeTextAtomically(instances_file, instanceLines(scene));
   }
-  writeTextAtomically(target,
-                      detail::sceneJsonText(sceneToJson(scene, dir, instances_file)) + "\n");
+  // A derived scene (proxy-gen's DIR/scene.json) keeps the title of the scene it came from.
+  json root = sceneToJson(scene, dir, instances_file);
+  if (scene.name.empty() && !scene.path.empty()) {
+    json named = {{"name", scene.displayName()}};
+    named.update(root);
+    root = std::move(named);
+  }
+  writeTextAtomically(target, detail::sceneJsonText(root) + "\n");
 }
 
 std::string sceneHash(const SceneDesc& scene) {
@@ -115,9 +122,10 @@ std::string sceneHash(const SceneDesc& scene) {
   // Paths relative to the scene's directory, so moving a whole scene folder keeps its hash.
   // Hashed with sorted keys and full doubles, as before the file kept its key order, so that
   // cached references stay valid.
-  fnv.add(nlohmann::json::parse(
-              sceneToJson(scene, scene.path.parent_path(), scene.instances_file).dump())
-              .dump());
+  // The name is only a title: renaming a scene keeps its cached references.
+  json canonical = sceneToJson(scene, scene.path.parent_path(), scene.instances_file);
+  canonical.erase("name");
+  fnv.add(nlohmann::json::parse(canonical.dump()).dump());
   std::vector<fs::path> files;
   for (const SceneMeshDesc& m : scene.meshes) {
     files.push_back(m.file);

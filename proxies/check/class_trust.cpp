@@ -3,6 +3,8 @@
 
 #include <fmt/core.h>
 
+#include <cstdio>
+
 #include "mesh/mesh_io.h"
 #include "render/render_scene.h"
 #include "scene/scene_desc.h"
@@ -82,6 +84,18 @@ std::string describeProxyTrust(const ProxyTrust& t) {
   return t.trust.reason.empty() || t.trust.status == ClassStatus::kUnverified
              ? head
              : head + " (" + t.trust.reason + ")";
+}
+
+TrustedRenderScene loadTrustedRenderScene(SceneDesc& scene, const RenderSceneOptions& options,
+                                          std::string_view program) {
+  TrustedRenderScene out;
+  out.trust = establishProxyClasses(scene, options);
+  for (const ProxyTrust& t : out.trust)
+    if (t.trust.status == ClassStatus::kDowngraded)
+      std::fprintf(stderr, "%.*s: warning: %s: %s\n", int(program.size()), program.data(),
+                   scene.path.filename().string().c_str(), describeProxyTrust(t).c_str());
+  out.scene = loadRenderScene(scene, options);
+  return out;
 }
 
 }  // namespace proxyvis

@@ -6,6 +6,7 @@
 // correction branch for HM' segments: a mislabelled proxy would bias it silently.
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -18,6 +19,7 @@ namespace proxyvis {
 
 struct SceneDesc;
 struct RenderSceneOptions;
+class RenderScene;
 
 enum class ClassStatus {
   kUnverified,      // the scene claims no class: general
@@ -59,5 +61,15 @@ std::vector<ProxyTrust> establishProxyClasses(SceneDesc& scene, const RenderScen
 // One line for a log or a report: "mesh 'box': proxy box.outside.off, claimed outside:
 // downgraded to general (no recorded sha256; exact check: intersecting, ...)".
 std::string describeProxyTrust(const ProxyTrust& t);
+
+// What the rendering programs (render, render-compare) load: the classes established as above,
+// every downgrade said on stderr as "<program>: warning: <scene>: ..." (always: the images would
+// hide the bias), then the render scene.
+struct TrustedRenderScene {
+  std::vector<ProxyTrust> trust;
+  std::unique_ptr<RenderScene> scene;
+};
+TrustedRenderScene loadTrustedRenderScene(SceneDesc& scene, const RenderSceneOptions& options,
+                                          std::string_view program);
 
 }  // namespace proxyvis

@@ -13,20 +13,27 @@ if(CMAKE_SCRIPT_MODE_FILE AND RC_SEQUENCE)
   set(dir ${RC_DIR}/sequence)
   file(REMOVE_RECURSE ${dir})
   file(MAKE_DIRECTORY ${dir})
-  set(common ${RC_SCENE} --out ${dir}/rep --width 8 --height 8 --spp 1 --seeds 1
-    --reference-spp 16 --quiet)
-  execute_process(COMMAND ${EXE} ${common} --equal-time 0 --estimators exact,roulette
+  set(common ${RC_SCENE} --out ${dir}/rep --width 8 --spp 1 --seeds 1 --reference-spp 16 --quiet)
+  execute_process(COMMAND ${EXE} ${common} --height 8 --equal-time 0 --estimators exact,roulette
     RESULT_VARIABLE code ERROR_VARIABLE err)
   if(NOT code EQUAL 0 OR NOT EXISTS ${dir}/rep/roulette_1.png OR NOT EXISTS ${dir}/rep/manifest.json)
     message(FATAL_ERROR "first run: exit ${code}, no report\n${err}")
   endif()
+  file(GLOB first_reference ${dir}/rep/reference-*.exr)
   file(MAKE_DIRECTORY ${dir}/.rep.tmp999999999_0)
   file(WRITE ${dir}/.rep.tmp999999999_0/exact_1.png "stale")
   file(WRITE ${dir}/.report.tmp999999999_1.json "stale")
-  execute_process(COMMAND ${EXE} ${common} --equal-time 0 --estimators exact
+  # The rerun renders another size: its reference has another cache key, so another file name;
+  # the first run's reference, like its roulette images, must not stay beside the new report.
+  execute_process(COMMAND ${EXE} ${common} --height 6 --equal-time 0 --estimators exact
     RESULT_VARIABLE code ERROR_VARIABLE err)
   if(NOT code EQUAL 0 OR EXISTS ${dir}/rep/roulette_1.png)
     message(FATAL_ERROR "rerun: exit ${code}; roulette_1.png of the first run must be gone\n${err}")
+  endif()
+  file(GLOB rerun_reference ${dir}/rep/reference-*.exr)
+  list(LENGTH rerun_reference n_references)
+  if(NOT n_references EQUAL 1 OR rerun_reference STREQUAL first_reference)
+    message(FATAL_ERROR "rerun: references ${rerun_reference}; the first run's was ${first_reference}")
   endif()
   file(GLOB left LIST_DIRECTORIES true ${dir}/.*)
   if(left)
@@ -34,7 +41,7 @@ if(CMAKE_SCRIPT_MODE_FILE AND RC_SEQUENCE)
   endif()
   file(SHA256 ${dir}/rep/report.json report_hash)
   # Killed while rendering (each equal-time cell takes 2 minutes).
-  execute_process(COMMAND timeout -s TERM 5 ${EXE} ${common} --equal-time 120
+  execute_process(COMMAND timeout -s TERM 5 ${EXE} ${common} --height 8 --equal-time 120
     RESULT_VARIABLE code ERROR_VARIABLE err)
   if(NOT code EQUAL 124)
     message(FATAL_ERROR "the run to be killed ended with ${code} before SIGTERM\n${err}")
@@ -62,6 +69,26 @@ if(CMAKE_SCRIPT_MODE_FILE)
   string(JSON n LENGTH "${rows}")
   if(NOT n EQUAL JSON_STDOUT)
     message(FATAL_ERROR "${n} rows, expected ${JSON_STDOUT}")
+  endif()
+  # The title names the scene (its "name", else the file's stem), never the file name.
+  string(JSON title GET "${out}" title)
+  if(NOT title MATCHES "^[^.]+: visibility estimators compared$")
+    message(FATAL_ERROR "title '${title}' does not name the scene")
+  endif()
+  string(JSON meta GET "${out}" meta)
+  expect_json_keys("meta" "${meta}" reference_spp reference_seconds reference_partials)
+  if(NO_EXACT)
+    # Without exact there is no baseline: efficiency is null, never a number such as 0.
+    foreach(i RANGE 1)
+      string(JSON type TYPE "${rows}" ${i} efficiency)
+      if(NOT type STREQUAL "NULL")
+        message(FATAL_ERROR "row ${i}: efficiency is ${type}, expected null")
+      endif()
+    endforeach()
+    if(NOT err MATCHES "\\| n/a \\|")
+      message(FATAL_ERROR "the table on stderr does not say n/a:\n${err}")
+    endif()
+    return()
   endif()
   math(EXPR last "${n} - 1")
   foreach(i RANGE ${last})
@@ -102,12 +129,14 @@ string(REPLACE "\"fov_deg\": 40" "\"fov_deg\": 40, \"lens\": 2" rc_bad_text "${r
 file(WRITE ${rc_dir}/bad_key.json "${rc_bad_text}")
 file(WRITE ${rc_dir}/a_file "not a directory")
 
-# rc_test(NAME CODE "ARGS" [JSON rows] [REGEX text] [FILES paths...] [RUNS n] [CLEAN dir])
+# rc_test(NAME CODE "ARGS" [JSON rows] [NO_EXACT] [REGEX text] [FILES paths...] [RUNS n]
+#         [CLEAN dir])
 function(rc_test name code args)
-  cmake_parse_arguments(T "" "JSON;REGEX;RUNS;CLEAN" "FILES" ${ARGN})
+  cmake_parse_arguments(T "NO_EXACT" "JSON;REGEX;RUNS;CLEAN" "FILES" ${ARGN})
   set(checks "")
   if(T_JSON)
-    set(checks CHECKS ${CMAKE_CURRENT_FUNCTION_LIST_FILE} DEFS -DJSON_STDOUT=${T_JSON})
+    set(checks CHECKS ${CMAKE_CURRENT_FUNCTION_LIST_FILE} DEFS -DJSON_STDOUT=${T_JSON}
+      -DNO_EXACT=${T_NO_EXACT})
   endif()
   proxyvis_app_test(app.render_compare.${name} render-compare ${code} "${args}" REGEX "${T_REGEX}"
     RUNS "${T_RUNS}" CLEAN "${T_CLEAN}" FILES ${T_FILES} TIMEOUT 120 ${checks})
@@ -142,6 +171,16 @@ rc_test(bad_roulette_costs 2 "${rc_dir}/tiny.json --out ${rc_dir}/bad --roulette
 rc_test(fixed_costs_flat 0
   "${rc_dir}/tiny.json --out ${rc_dir}/fixed ${tiny} --estimators exact,roulette --roulette-costs 10,10,40,40,20 --build flat --quiet --json -"
   JSON 6 CLEAN ${rc_dir}/fixed)
+# Without exact among the estimators: efficiency n/a in the table, null in the JSON.
+rc_test(no_exact_efficiency_na 0
+  "${rc_dir}/tiny.json --out ${rc_dir}/no_exact --width 8 --height 8 --spp 1 --equal-time 0 --seeds 1 --estimators roulette,culling --reference-spp 16 --json -"
+  JSON 2 NO_EXACT CLEAN ${rc_dir}/no_exact)
+# On the terminal: a scene whose meshes use no proxy (the box proxy is not cheaper than the box)
+# is said in one warning line, and the reference's samples, partial renders and time.
+rc_test(terminal_notes 0
+  "${rc_dir}/tiny.json --out ${rc_dir}/notes --width 8 --height 8 --spp 1 --equal-time 0 --seeds 1 --estimators exact --reference-spp 16"
+  CLEAN ${rc_dir}/notes
+  REGEX "render-compare: warning: tiny\\.json: no mesh of this scene has a proxy[^\n]*\n.*reference [^\n]*exact, 16 spp in 16 partial renders, [0-9.]+ s")
 rc_test(unwritable_out 3 "${rc_dir}/tiny.json --out ${rc_dir}/a_file/out ${tiny} --quiet")
 # --json - without --quiet: still only the JSON on stdout, the tables go to stderr.
 rc_test(json_stdout_only 0

@@ -11,7 +11,10 @@ Fails (exit 1, one line per finding) when any text file of the repository (build
   - cites a section of docs/design.md that the page does not have: "docs/design.md §N" (a §
     token in the same sentence), a quoted section name right after the citation
     (docs/design.md ("Error metrics")), "pitfall N" or "costs point N";
-  - (Markdown files) links to a local file that does not exist.
+  - (Markdown files) links to a local file that does not exist;
+  - names a repository file by its path from the root (lib/..., proxies/..., apps/..., tests/...,
+    bench/..., fuzz/..., scenes/..., data/..., docs/...) that does not exist: moved files leave
+    comments and pages behind.
 
 Usage: check_docs.py REPO_ROOT      check the repository
        check_docs.py --self-test    plant each kind of mistake in a temporary tree and require
@@ -34,6 +37,8 @@ QUOTED_NAME = re.compile(r'^\s*\(?\s*"([^"]+)"')
 PITFALL = re.compile(r"\bpitfalls?\s+([0-9]+)", re.IGNORECASE)
 COST_POINT = re.compile(r"\bcosts?,?\s+points?\s+([0-9]+)", re.IGNORECASE)
 MD_LINK = re.compile(r"\]\(([^)\s]+)\)")
+REPO_PATH = re.compile(
+    r"(?<![\w/.<-])((?:lib|proxies|apps|tests|bench|fuzz|scenes|data)/[\w./-]*\w\.(?:h|cpp|py|cmake|sh|json|txt|drc|ply|obj|off))\b")
 COMMENT_JOIN = re.compile(r"\n\s*(?://+|#+|\*+)?\s*")
 
 SKIP_DIRS = {".git", ".cache", "__pycache__", "node_modules"}
@@ -148,6 +153,9 @@ def check(root):
                     if n not in design.cost_points:
                         report(path, m.start(), text,
                                f"cites design.md costs point {n}, which it lacks")
+        for m in REPO_PATH.finditer(text):
+            if not os.path.exists(os.path.join(root, m.group(1))):
+                report(path, m.start(), text, f"names {m.group(1)}, which does not exist")
         if path.endswith(".md"):
             for m in MD_LINK.finditer(text):
                 target, _, anchor = m.group(1).partition("#")
@@ -201,10 +209,12 @@ def self_test():
         "i.cpp": "// docs/design.md,\n// costs point 5: baseline\n",
         "j.md": "see [x](nowhere.md)\n",
         "k.md": "see [x](docs/design.md#no-such-heading)\n",
+        "l.cpp": "// the loop of lib/mesh/moved_away.cpp\n",
     }
     fine = {
         "ok.cpp": "// docs/design.md §2b, pitfall 2, costs point 2; docs/design.md (\"Ray classes\")\n"
                   "// paper §4 is not ours. Two issues remain, e.g. the tissue 12.\n",
+        "ok.h": "// like ok.cpp and docs/design.md; not ../lib/x.h or my/lib/y.h\n",
         "ok.md": "# A §3 heading (x)\n[d](docs/design.md#2b-measured-costs-and-what-follows), "
                  "[s](#a-3-heading-x) and [u](https://example.org)\n",
     }

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
+#include "render/internal/integrator.h"
 #include "render/render_scene.h"
 #include "render/renderer.h"
 #include "render_test_util.h"
@@ -146,6 +147,19 @@ TEST(Integrator, BadSettingsAreErrors) {
   s.tile_size = 16;
   s.time_budget = -1;
   EXPECT_THROW(render(*scene, s, exact), Error);
+}
+
+// Under a time budget a pass of 16 samples (probe estimators) must not overshoot by a whole
+// pass: it shrinks to what the time left allows. One ray unit = last pass / (2 x 16 probes + 1
+// sample) = 0.01 s below.
+TEST(Integrator, LastPassFitsTheTimeBudget) {
+  using detail::passSamplesWithinBudget;
+  EXPECT_EQ(passSamplesWithinBudget(10.0, 16, 0, 0, 0, 16), 16);    // first pass: whole
+  EXPECT_EQ(passSamplesWithinBudget(1.0, 16, 1, 0.33, 1, 16), 16);  // room for a whole pass
+  EXPECT_EQ(passSamplesWithinBudget(0.4, 16, 2, 0.33, 1, 16), 8);   // 40 units - 32 of probes
+  EXPECT_EQ(passSamplesWithinBudget(0.2, 16, 2, 0.33, 1, 16), 1);   // over half of one sample
+  EXPECT_EQ(passSamplesWithinBudget(0.1, 16, 2, 0.33, 1, 16), 0);   // less: stop
+  EXPECT_EQ(passSamplesWithinBudget(0.4, 5, 2, 0.33, 1, 16), 5);    // never more than asked
 }
 
 }  // namespace

@@ -299,5 +299,35 @@ TEST_F(FullSceneFixture, HashChangesWithReferencedFileContents) {
   EXPECT_NE(sceneHash(moved), h0);
 }
 
+// The "name" titles reports: the file's stem without it, kept by a derived scene, not hashed.
+TEST_F(FullSceneFixture, NameTitlesTheSceneAndSurvivesSaving) {
+  SceneDesc s = loadSceneDesc(scene_path);
+  EXPECT_EQ(s.name, "");
+  EXPECT_EQ(s.displayName(), "scene");
+  const std::string hash = sceneHash(s);
+  const auto derived = dir.path() / "out" / "derived.json";
+  std::filesystem::create_directories(derived.parent_path());
+  saveSceneDesc(s, derived);  // like proxy-gen's DIR/scene.json: the source's title
+  EXPECT_EQ(loadSceneDesc(derived).name, "scene");
+  s.name = "a garden at dusk";
+  EXPECT_EQ(s.displayName(), "a garden at dusk");
+  EXPECT_EQ(sceneHash(s), hash);
+  const auto named = dir.path() / "out" / "named.json";  // a loaded file is an input: not rewritten
+  saveSceneDesc(s, named);
+  EXPECT_EQ(loadSceneDesc(named).displayName(), "a garden at dusk");
+  std::string text = kFullScene;
+  text.insert(text.find('{') + 1, "\"name\": \"bell\\u0007\",");
+  const auto bad = dir.write("bad_name.json", text);
+  try {
+    loadSceneDesc(bad);
+    ADD_FAILURE() << "a name with a control character loaded";
+  } catch (const Error& e) {
+    EXPECT_NE(
+        std::string(e.what()).find("bad_name.json: name: the name must be 1 to 200 printable"),
+        std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace proxyvis

@@ -52,4 +52,13 @@ void prepareSamples(const RenderScene& scene, const ShadingPoint& sp, uint64_t s
 bool makeSegment(const RenderScene& scene, const ShadingPoint& sp, const Vec3f& light_point,
                  Segment& out);
 
+// Under a time budget, the samples per pixel of the next pass when passes hold several (estimators
+// with probes): the first pass is whole (nothing is measured yet; a smaller one would pay the
+// probes for fewer samples); later ones take as many samples as the time left allows at the last
+// pass's rate, so that the render does not overshoot its budget by a whole pass. A pass costs
+// about (2 x probes + samples) ray units: probes are drawn per pixel and pass, traced against
+// proxy and original. 0 = stop (even one sample would overshoot by more than half its own time).
+int passSamplesWithinBudget(double seconds_left, int full_pass, int pass, double last_seconds,
+                            int last_count, int probes);
+
 }  // namespace proxyvis::detail

@@ -1,0 +1,70 @@
+#include "render_image.h"
+
+#include <algorithm>
+#include <cctype>
+
+#include "render/image_metadata.h"
+#include "util/build_info.h"
+#include "util/error.h"
+
+namespace proxyvis {
+
+RenderImageFormat renderImageFormat(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  if (ext == ".exr") return RenderImageFormat::kExr;
+  if (ext == ".png") return RenderImageFormat::kPng;
+  throw Error(path.string(), "unsupported image format '" + ext + "'",
+              "-o writes OpenEXR (linear, with AOV layers) or PNG (tone-mapped)",
+              "name the output *.exr or *.png");
+}
+
+std::vector<std::string> exrWithAovsChannelNames() {
+  std::vector<std::string> names = {"R", "G", "B"};
+  names.insert(names.end(), kAovChannelNames.begin(), kAovChannelNames.end());
+  return names;
+}
+
+Image exrWithAovs(const RenderResult& result) {
+  const Image aov = aovImage(result);
+  const size_t n = size_t(result.radiance.width) * result.radiance.height;
+  const int channels = 3 + aov.channels;
+  Image out{result.radiance.width, result.radiance.height, channels,
+            std::vector<float>(n * size_t(channels))};
+  for (size_t i = 0; i < n; ++i) {
+    float* px = &out.pixels[i * size_t(channels)];
+    std::copy_n(&result.radiance.pixels[i * 3], 3, px);
+    std::copy_n(&aov.pixels[i * size_t(aov.channels)], aov.channels, px + 3);
+  }
+  return out;
+}
+
+nlohmann::json renderSummary(const SceneDesc& scene, const RenderRun& run, const RenderResult& r,
+                             const std::filesystem::path& output) {
+  return {{"program", "render"},
+          {"scene", scene.path.string()},
+          {"scene_name", scene.displayName()},
+          {"output", output.string()},
+          {"estimator", run.estimator},
+          {"spp", r.spp},
+          {"passes", r.passes},
+          {"seconds", r.seconds},
+          {"time_budget", run.time_budget > 0 ? nlohmann::json(run.time_budget) : nullptr},
+          {"seed", run.seed},
+          {"threads", run.threads},
+          {"width", r.radiance.width},
+          {"height", r.radiance.height},
+          {"proxy_class", proxyClassName(r.proxy_class)},
+          {"rays",
+           {{"primary", r.primary_rays},
+            {"proxy", r.rays.proxy},
+            {"original", r.rays.original},
+            {"probe", r.rays.probe}}},
+          {"shading_seconds", r.shading_seconds},
+          {"visibility_seconds", r.visibility_seconds},
+          {"build", buildText()},
+          {"version", versionText()}};
+}
+
+}  // namespace proxyvis

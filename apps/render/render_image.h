@@ -1,0 +1,35 @@
+#pragma once
+// What `render` writes: the image (EXR: linear RGB plus the AOV layers; PNG: tone-mapped RGB),
+// each with the render's metadata, and the run's JSON summary.
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "render/image_io.h"
+#include "render/renderer.h"
+#include "scene/scene_desc.h"
+
+namespace proxyvis {
+
+// The image file formats `render` writes, by extension: ".exr" or ".png" (any case).
+enum class RenderImageFormat { kExr, kPng };
+// Throws Error naming `path` for any other extension.
+RenderImageFormat renderImageFormat(const std::filesystem::path& path);
+
+// The EXR's pixels: R, G, B then the AOV layers (render/image_metadata.h), 32-bit float.
+Image exrWithAovs(const RenderResult& result);
+// The channel names of exrWithAovs().
+std::vector<std::string> exrWithAovsChannelNames();
+
+struct RenderRun {
+  std::string estimator;
+  uint64_t seed = 0;       // --seed
+  double time_budget = 0;  // --time (0 = none)
+  int threads = 0;
+};
+
+// The --json summary: what was rendered, how long it took, how many rays it traced.
+nlohmann::json renderSummary(const SceneDesc& scene, const RenderRun& run,
+                             const RenderResult& result, const std::filesystem::path& output);
+
+}  // namespace proxyvis
