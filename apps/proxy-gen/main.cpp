@@ -5,7 +5,6 @@
 #include <tbb/parallel_for.h>
 #include <CLI/CLI.hpp>
 
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <mutex>
@@ -24,6 +23,7 @@
 #include "util/progress.h"
 #include "util/rng.h"
 #include "util/sha256.h"
+#include "util/stopwatch.h"
 
 namespace fs = std::filesystem;
 using namespace proxyvis;
@@ -96,10 +96,9 @@ int runMesh(const Args& a, const CommonOptions& common) {
                 "proxy-gen writes .obj, .ply, .off or .drc");
   StageProgress progress(common.quiet, a.progress);
   progress.stage("load");
-  const auto load_start = std::chrono::steady_clock::now();
+  const Stopwatch load_clock;
   const TriMesh input = loadMesh(a.input);
-  const double load_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
+  const double load_seconds = load_clock.seconds();
   ProxyGenOptions options = toOptions(a, common);
   options.on_stage = [&](const std::string& stage) { progress.stage(stage); };
   ProxyGenResult result = generateProxy(input, options);
@@ -157,10 +156,9 @@ int runScene(const Args& a, const CommonOptions& common) {
     try {
       ProxyGenOptions o = base;
       o.seed = hashKeys(common.seed, i);  // per-mesh stream: same result at any thread count
-      const auto load_start = std::chrono::steady_clock::now();
+      const Stopwatch load_clock;
       const TriMesh input = loadMesh(mesh.file);
-      const double load_seconds =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
+      const double load_seconds = load_clock.seconds();
       // A proxy only pays if it has fewer faces than its original; no closed mesh has fewer
       // than 4, so a smaller original (a ground quad) is skipped without trying.
       if (input.numTriangles() < 4) {

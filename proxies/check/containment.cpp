@@ -48,8 +48,8 @@ namespace PMP = CGAL::Polygon_mesh_processing;
 struct ExactMesh {
   std::vector<Point> points;
   std::vector<std::array<std::size_t, 3>> faces;
-  bool closed = false;        // every welded edge has an even number of faces
-  parity::ParitySolid solid;  // the same triangles, for point location by ray parity
+  bool closed = false;      // every welded edge has an even number of faces
+  cgal::ParitySolid solid;  // the same triangles, for point location by ray parity
 };
 
 ExactMesh prepare(const TriMesh& mesh, const char* role) {
@@ -73,7 +73,7 @@ ExactMesh prepare(const TriMesh& mesh, const char* role) {
   // count modulo 2 there, which repair_polygon_soup's merge would not respect.
   ExactMesh m;
   m.points = std::move(points);
-  m.solid = parity::makeParitySolid(mesh);
+  m.solid = cgal::makeParitySolid(mesh);
   m.closed = m.solid.watertight();
   m.faces.reserve(polygons.size());
   for (const auto& p : polygons) m.faces.push_back({p[0], p[1], p[2]});
@@ -145,7 +145,7 @@ struct InsideCount {
 };
 
 InsideCount countInside(const ExactMesh& m, const ExactMesh& solid) {
-  const parity::ParityLocator side(solid.solid.mesh);
+  const cgal::ParityLocator side(solid.solid.mesh);
   InsideCount c;
   c.total = m.points.size();
   for (const Point& p : m.points) {
@@ -187,8 +187,8 @@ ContainmentResult checkContainment(const TriMesh& original, const TriMesh& proxy
   ExactMesh p = prepare(proxy, "proxy");
   r.original_closed = o.closed;
   r.proxy_closed = p.closed;
-  if (o.closed) r.original_volume = parity::signedVolume(o.solid.mesh);
-  if (p.closed) r.proxy_volume = parity::signedVolume(p.solid.mesh);
+  if (o.closed) r.original_volume = cgal::signedVolume(o.solid.mesh);
+  if (p.closed) r.proxy_volume = cgal::signedVolume(p.solid.mesh);
   if (!p.closed) {
     r.verdict = ContainmentVerdict::kUndecidable;
     r.detail =

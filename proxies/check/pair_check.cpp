@@ -1,17 +1,15 @@
 #include "proxies/check/pair_check.h"
 
-#include <chrono>
 #include <cmath>
 
 #include "proxies/check/mesh_distance.h"
 #include "trace/trace_scene.h"
 #include "util/rng.h"
+#include "util/stopwatch.h"
 
 namespace proxyvis {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 std::unique_ptr<TraceScene> buildScene(TraceDevice& device, const TriMesh& mesh) {
   TraceSceneBuilder builder(device);
@@ -42,13 +40,13 @@ void finishVerdicts(PairCheckReport& r) {
 
 PairCheckReport checkPair(const TriMesh& original, const TriMesh& proxy,
                           const PairCheckOptions& options) {
-  const auto start = Clock::now();
+  const Stopwatch whole;
   PairCheckReport r;
   r.seed = options.seed;
   r.rays_requested = options.rays;
   r.expected = options.expect;
   r.exact = checkContainment(original, proxy);
-  r.exact_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  r.exact_seconds = whole.seconds();
   r.original = summarizeMesh(original, r.exact.original_closed);
   r.proxy = summarizeMesh(proxy, r.exact.proxy_closed);
   // The volume a closed mesh bounds by ray parity, whatever its faces' orientation or manifoldness.
@@ -82,7 +80,7 @@ PairCheckReport checkPair(const TriMesh& original, const TriMesh& proxy,
   co.quiet = options.quiet;
   r.sampled = classifySegments(*original_scene, *proxy_scene, generator, co);
   finishVerdicts(r);
-  r.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  r.seconds = whole.seconds();
   return r;
 }
 

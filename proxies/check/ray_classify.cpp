@@ -3,21 +3,15 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <chrono>
 #include <numbers>
 
 #include "util/progress.h"
 #include "util/rng.h"
+#include "util/stopwatch.h"
 
 namespace proxyvis {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 Vec3f uniformOnSphere(Rng& rng) {
   const float z = 1.0f - 2.0f * rng.uniformFloat();
@@ -50,7 +44,7 @@ SegmentGenerator sphereSegments(const Sphere& sphere, uint64_t seed) {
 
 Classification classifySegments(const TraceScene& original, const TraceScene& proxy,
                                 const SegmentGenerator& generator, const ClassifyOptions& options) {
-  const auto start = Clock::now();
+  const Stopwatch whole;
   Classification result;
   Progress progress("Classifying segments", options.segments, options.quiet);
   const size_t batch = std::max<size_t>(1, options.batch);
@@ -63,12 +57,12 @@ Classification classifySegments(const TraceScene& original, const TraceScene& pr
       if (!valid[i]) segs[i] = Segment{{}, 0, {1, 0, 0}, -1};  // empty range: never occluded
     });
     const std::span<const Segment> in(segs.data(), n);
-    auto t0 = Clock::now();
+    Stopwatch trace;
     proxy.occluded(in, std::span<uint8_t>(hit_p.data(), n));
-    result.seconds_proxy += secondsSince(t0);
-    t0 = Clock::now();
+    result.seconds_proxy += trace.seconds();
+    trace.restart();
     original.occluded(in, std::span<uint8_t>(hit_o.data(), n));
-    result.seconds_original += secondsSince(t0);
+    result.seconds_original += trace.seconds();
     ClassCounts c;
     for (size_t i = 0; i < n; ++i) {
       if (!valid[i]) {
@@ -92,7 +86,7 @@ Classification classifySegments(const TraceScene& original, const TraceScene& pr
     progress.update(n);
   }
   progress.done();
-  result.seconds = secondsSince(start);
+  result.seconds = whole.seconds();
   return result;
 }
 

@@ -45,7 +45,7 @@ size_t countBorderHalfedges(const SurfaceMesh& sm) {
 // The input as a ray-parity solid (its own triangles, non-manifold edges split, so a watertight
 // non-manifold scan has an inside too), or an Error that says why it has no inside.
 SurfaceMesh solidInput(const TriMesh& input, const char* method) {
-  parity::ParitySolid solid = parity::makeParitySolid(input);
+  cgal::ParitySolid solid = cgal::makeParitySolid(input);
   if (!solid.watertight())
     throw noInteriorError(input.source, solid.boundary_edges, solid.odd_edges,
                           fmt::format("the inside proxy ({})", method));

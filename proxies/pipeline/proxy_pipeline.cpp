@@ -3,7 +3,6 @@
 #include <fmt/core.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include "mesh/validation.h"
@@ -21,6 +20,7 @@
 #include "proxies/shared/parity_solid.h"
 #include "proxies/shared/time_budget.h"
 #include "util/error.h"
+#include "util/stopwatch.h"
 
 namespace proxyvis {
 namespace {
@@ -152,7 +152,7 @@ const std::vector<std::string>& proxyMethods(ProxyClass kind) {
 }
 
 ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch whole;
   const std::string method = resolveMethod(options);
   json report;
   json& seconds = report["seconds"] = json::object();
@@ -290,8 +290,7 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
     report["hausdorff_original_to_proxy"] = h.original_to_proxy / diag;
     report["hausdorff"] = hausdorffJson(h);
   });
-  seconds["total"] =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  seconds["total"] = whole.seconds();
 
   if (options.kind != ProxyClass::kGeneral && !verified) {
     std::string what;

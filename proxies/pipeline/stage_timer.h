@@ -1,12 +1,13 @@
 #pragma once
 // Seconds per named stage of a proxy-gen run, added up in a JSON object (report key "seconds"),
 // and a call as each stage starts (proxy-gen's progress bar).
-#include <chrono>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <type_traits>
 #include <utility>
+
+#include "util/stopwatch.h"
 
 namespace proxyvis {
 
@@ -19,12 +20,8 @@ class StageTimer {
   template <typename F>
   auto run(const char* stage, F&& f) {
     if (on_start_) on_start_(stage);
-    const auto start = std::chrono::steady_clock::now();
-    auto finish = [&] {
-      const double s =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      seconds_[stage] = seconds_.value(stage, 0.0) + s;
-    };
+    const Stopwatch clock;
+    auto finish = [&] { seconds_[stage] = seconds_.value(stage, 0.0) + clock.seconds(); };
     if constexpr (std::is_void_v<decltype(f())>) {
       f();
       finish();

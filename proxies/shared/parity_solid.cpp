@@ -22,7 +22,7 @@
 #include "proxies/shared/parity_solid.h"
 
 namespace proxyvis {
-namespace parity {
+namespace cgal {
 namespace {
 
 namespace PMP = CGAL::Polygon_mesh_processing;
@@ -176,12 +176,12 @@ double signedVolume(const SurfaceMesh& mesh) {
   return six_volume / 6;
 }
 
-}  // namespace parity
+}  // namespace cgal
 
 std::optional<double> parityVolume(const TriMesh& mesh) {
-  const parity::ParitySolid s = parity::makeParitySolid(mesh);
+  const cgal::ParitySolid s = cgal::makeParitySolid(mesh);
   if (!s.watertight()) return std::nullopt;
-  return parity::signedVolume(s.mesh);
+  return cgal::signedVolume(s.mesh);
 }
 
 Error noInteriorError(const std::string& source, uint64_t boundary_edges, uint64_t odd_edges,

@@ -20,9 +20,8 @@ if(CMAKE_SCRIPT_MODE_FILE)
 endif()
 
 
-set(gt_dir ${CMAKE_CURRENT_BINARY_DIR}/guarantee)
+proxyvis_app_test_dir(gt_dir guarantee)
 set(gt_hard ${CMAKE_SOURCE_DIR}/data/hard)
-file(MAKE_DIRECTORY ${gt_dir})
 
 # gt_test(NAME TARGET CODE ARGS [REGEX r] [FILE f] [NO_FILE f] [SETUP fixture] [REQUIRES fixture]
 #         [CLASS_FILE f CLASS_REGEX r])

@@ -4,21 +4,14 @@
 if(CMAKE_SCRIPT_MODE_FILE)
   return()
 endif()
-find_package(Python3 COMPONENTS Interpreter)
-if(NOT Python3_Interpreter_FOUND)
-  return()
-endif()
+find_package(Python3 REQUIRED COMPONENTS Interpreter)
 
-set(js_dir ${CMAKE_CURRENT_BINARY_DIR}/json_stdout)
+proxyvis_app_test_dir(js_dir json_stdout)
 set(js_data ${CMAKE_SOURCE_DIR}/data)
-file(MAKE_DIRECTORY ${js_dir})
 
 # js_test(NAME TARGET STDERR_REGEX KEYS ARGS...): TARGET ARGS... --json - must exit 0 with only
 # JSON on stdout holding KEYS (comma-separated), and stderr matching STDERR_REGEX.
 function(js_test name target stderr_regex keys)
-  if(NOT TARGET ${target})
-    return()
-  endif()
   add_test(NAME app.json_stdout.${name}
     COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_FUNCTION_LIST_DIR}/json_stdout.py
             --stderr "${stderr_regex}" --keys "${keys}" --workdir ${js_dir}/${name}
@@ -43,5 +36,6 @@ js_test(proxy_check proxy-check "Verdicts" "counts,exact,hausdorff"
 js_test(render_compare render-compare "exact" "rows"
   ${CMAKE_SOURCE_DIR}/scenes/cornell-bunny.json --out ${js_dir}/render_compare/out --width 8
   --height 8 --spp 1 --equal-time 0 --seeds 1 --reference-spp 16 --estimators exact)
-# The plain `render` program gets its line here when it exists, e.g.
-#   js_test(render render "<stderr regex>" "<keys>" SCENE <its output flags>)
+js_test(render render "render" "spp,seconds,estimator,seed"
+  ${CMAKE_SOURCE_DIR}/scenes/cornell-bunny.json -o ${js_dir}/render/image.exr --width 8 --height 8
+  --spp 2)

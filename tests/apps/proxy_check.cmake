@@ -27,8 +27,7 @@ if(CMAKE_SCRIPT_MODE_FILE)
 endif()
 
 
-set(pc_dir ${CMAKE_CURRENT_BINARY_DIR}/proxy_check)
-file(MAKE_DIRECTORY ${pc_dir})
+proxyvis_app_test_dir(pc_dir proxy_check)
 proxyvis_write_box_off(${pc_dir}/cube.off 0 1)
 proxyvis_write_box_off(${pc_dir}/around.off -0.5 1.5)
 proxyvis_write_box_off(${pc_dir}/inner.off 0.25 0.75)

@@ -17,8 +17,7 @@ if(CMAKE_SCRIPT_MODE_FILE)
 endif()
 
 
-set(pg_dir ${CMAKE_CURRENT_BINARY_DIR}/proxy_gen)
-file(MAKE_DIRECTORY ${pg_dir})
+proxyvis_app_test_dir(pg_dir proxy_gen)
 set(pg_data ${CMAKE_SOURCE_DIR}/data)  # bundled meshes: the tests need nothing outside the repository
 set(pg_keys input kind method parameters faces volume_ratio hausdorff_proxy_to_original
   hausdorff_original_to_proxy verified seconds)

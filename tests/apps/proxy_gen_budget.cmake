@@ -37,8 +37,7 @@ if(CMAKE_SCRIPT_MODE_FILE)
 endif()
 
 
-set(pb_dir ${CMAKE_CURRENT_BINARY_DIR}/proxy_gen_budget)
-file(MAKE_DIRECTORY ${pb_dir})
+proxyvis_app_test_dir(pb_dir proxy_gen_budget)
 set(pb_bunny ${CMAKE_SOURCE_DIR}/data/bunny.off)
 
 # pb_test(NAME CODE ARGS [REGEX r] [FILE f] [NO_FILE f] [DEFS -Dk=v...] [TIMEOUT s])

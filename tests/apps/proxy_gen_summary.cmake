@@ -18,9 +18,6 @@ if(CMAKE_SCRIPT_MODE_FILE)
   return()
 endif()
 
-if(NOT TARGET proxy-gen)
-  return()
-endif()
 set(ps_dir ${CMAKE_CURRENT_BINARY_DIR}/proxy_gen_summary)
 proxyvis_app_test(proxy_gen_summary.mesh proxy-gen 0
   "${CMAKE_SOURCE_DIR}/data/bunny.off --kind outside --method hull --max-faces 100 -o ${ps_dir}/new/bunny.hull.ply"

@@ -4,10 +4,7 @@
 if(CMAKE_SCRIPT_MODE_FILE)
   return()
 endif()
-find_package(Python3 COMPONENTS Interpreter)
-if(NOT Python3_Interpreter_FOUND OR NOT TARGET proxy-gen OR NOT TARGET proxy-check)
-  return()
-endif()
+find_package(Python3 REQUIRED COMPONENTS Interpreter)
 add_test(NAME app.readme_examples
   COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_LIST_DIR}/readme_examples.py
           ${CMAKE_SOURCE_DIR}/README.md $<TARGET_FILE_DIR:proxy-gen> ${CMAKE_SOURCE_DIR}

@@ -52,12 +52,7 @@ if(CMAKE_SCRIPT_MODE_FILE)
   return()
 endif()
 
-if(NOT TARGET render)
-  return()
-endif()
-
-set(render_dir ${CMAKE_CURRENT_BINARY_DIR}/render)
-file(MAKE_DIRECTORY ${render_dir})
+proxyvis_app_test_dir(render_dir render)
 # A box around the bunny (its bounding box grown by a margin): an outside proxy of 12 triangles.
 proxyvis_write_box_off(${render_dir}/bunny_box.off -0.1 0.19)
 set(render_scene_text [=[

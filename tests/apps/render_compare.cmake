@@ -104,8 +104,7 @@ if(CMAKE_SCRIPT_MODE_FILE)
 endif()
 
 
-set(rc_dir ${CMAKE_CURRENT_BINARY_DIR}/render_compare)
-file(MAKE_DIRECTORY ${rc_dir})
+proxyvis_app_test_dir(rc_dir render_compare)
 proxyvis_write_box_off(${rc_dir}/box.off 0 1)
 proxyvis_write_box_off(${rc_dir}/box_outside.off -0.1 1.1)
 # The light (y = 4) is outside the proxy, so the verified outside class holds (pitfall 2).

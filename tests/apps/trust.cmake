@@ -45,8 +45,7 @@ if(CMAKE_SCRIPT_MODE_FILE)
 endif()
 
 
-set(tr_dir ${CMAKE_CURRENT_BINARY_DIR}/trust)
-file(MAKE_DIRECTORY ${tr_dir})
+proxyvis_app_test_dir(tr_dir trust)
 # The original: the box [-1, 1]^3 with a fan of 4 triangles per face (24 triangles), so a
 # 12-triangle box proxy is cheaper and the renderer uses it.
 file(WRITE ${tr_dir}/fanbox.off [=[OFF

@@ -12,9 +12,9 @@ Fails (exit 1, one line per finding) when any text file of the repository (build
     token in the same sentence), a quoted section name right after the citation
     (docs/design.md ("Error metrics")), "pitfall N" or "costs point N";
   - (Markdown files) links to a local file that does not exist;
-  - names a repository file by its path from the root (lib/..., proxies/..., apps/..., tests/...,
-    bench/..., fuzz/..., scenes/..., data/..., docs/...) that does not exist: moved files leave
-    comments and pages behind.
+  - names a source file by its path from the root (lib/..., proxies/..., apps/..., tests/...,
+    bench/..., fuzz/..., docs/...) that does not exist: moved files leave comments and pages
+    behind (scenes/ and data/ paths are left out: they are often examples).
 
 Usage: check_docs.py REPO_ROOT      check the repository
        check_docs.py --self-test    plant each kind of mistake in a temporary tree and require
@@ -38,7 +38,7 @@ PITFALL = re.compile(r"\bpitfalls?\s+([0-9]+)", re.IGNORECASE)
 COST_POINT = re.compile(r"\bcosts?,?\s+points?\s+([0-9]+)", re.IGNORECASE)
 MD_LINK = re.compile(r"\]\(([^)\s]+)\)")
 REPO_PATH = re.compile(
-    r"(?<![\w/.<-])((?:lib|proxies|apps|tests|bench|fuzz|scenes|data)/[\w./-]*\w\.(?:h|cpp|py|cmake|sh|json|txt|drc|ply|obj|off))\b")
+    r"(?<![\w/.<-])((?:lib|proxies|apps|tests|bench|fuzz|docs)/[\w./-]*\w\.(?:h|cpp|py|cmake|sh|json|txt|drc|ply|obj|off))\b")
 COMMENT_JOIN = re.compile(r"\n\s*(?://+|#+|\*+)?\s*")
 
 SKIP_DIRS = {".git", ".cache", "__pycache__", "node_modules"}

@@ -12,7 +12,7 @@
 #include "mesh/cgal_bridge.h"
 #include "mesh/tri_mesh.h"
 
-namespace proxyvis::parity {
+namespace proxyvis::cgal {
 
 using cgal::Kernel;
 using cgal::Point3;
@@ -57,4 +57,4 @@ class ParityLocator {
 // for a watertight ParitySolid.
 double signedVolume(const SurfaceMesh& mesh);
 
-}  // namespace proxyvis::parity
+}  // namespace proxyvis::cgal

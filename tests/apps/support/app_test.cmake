@@ -27,6 +27,12 @@ function(proxyvis_app_test name target code args)
   endif()
 endfunction()
 
+# Sets VAR to the test folder NAME in this build folder and creates it.
+function(proxyvis_app_test_dir var name)
+  set(${var} ${CMAKE_CURRENT_BINARY_DIR}/${name} PARENT_SCOPE)
+  file(MAKE_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}/${name})
+endfunction()
+
 # Writes the axis-aligned box [lo, hi]^3 to PATH as an OFF mesh of 12 outward triangles; FACES
 # (default 12) keeps only the first ones (11 = a box with a hole).
 function(proxyvis_write_box_off path lo hi)
