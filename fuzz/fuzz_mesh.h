@@ -3,7 +3,7 @@
 // parsed in memory as the contents of a file with the given extension, exactly as loadMesh
 // parses a file once it has read it.
 #include "fuzz_support.h"
-#include "mesh/mesh_io.h"
+#include "mesh/io/mesh_io.h"
 
 namespace proxyvis::fuzz {
 

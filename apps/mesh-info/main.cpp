@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
-#include "mesh/mesh_io.h"
+#include "mesh/io/mesh_io.h"
 #include "mesh/validation.h"
 #include "util/app_main.h"
 #include "util/error.h"

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "mesh/mesh_io.h"
+#include "mesh/io/mesh_io.h"
 #include "proxies/check/check_report.h"
 #include "proxies/check/pair_check.h"
 #include "proxies/check/scene_segments.h"

@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <mutex>
 
-#include "mesh/mesh_io.h"
+#include "mesh/io/mesh_io.h"
 #include "output_paths.h"
 #include "proxies/pipeline/proxy_pipeline.h"
 #include "proxies/pipeline/written_class.h"

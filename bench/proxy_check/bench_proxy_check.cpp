@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "mesh/mesh_io.h"
+#include "mesh/io/mesh_io.h"
 #include "mesh/primitives.h"
 #include "proxies/check/ray_classify.h"
 #include "proxies/pipeline/proxy_pipeline.h"

@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "child_process.h"
-#include "mesh/mesh_io.h"
+#include "mesh/io/mesh_io.h"
 #include "mesh/validation.h"
 #include "proxies/pipeline/proxy_pipeline.h"
 #include "util/app_main.h"

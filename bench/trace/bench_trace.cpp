@@ -24,7 +24,7 @@
 #include <string>
 #include <vector>
 
-#include "mesh/mesh_io.h"
+#include "mesh/io/mesh_io.h"
 #include "trace/internal/embree_ray.h"
 #include "trace/trace_scene.h"
 #include "util/app_main.h"

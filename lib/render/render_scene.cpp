@@ -5,7 +5,7 @@
 
 #include <cstdio>
 
-#include "mesh/mesh_io.h"
+#include "mesh/io/mesh_io.h"
 #include "scene/transform.h"
 #include "util/error.h"
 

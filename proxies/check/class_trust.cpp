@@ -5,7 +5,7 @@
 
 #include <cstdio>
 
-#include "mesh/mesh_io.h"
+#include "mesh/io/mesh_io.h"
 #include "render/render_scene.h"
 #include "scene/scene_desc.h"
 #include "util/sha256.h"

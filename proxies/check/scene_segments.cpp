@@ -5,7 +5,7 @@
 #include <optional>
 #include <vector>
 
-#include "mesh/mesh_io.h"
+#include "mesh/io/mesh_io.h"
 #include "render/camera.h"
 #include "render/light_sampler.h"
 #include "scene/transform.h"

@@ -7,7 +7,7 @@
 #include <limits>
 #include <set>
 
-#include "mesh/mesh_io.h"
+#include "mesh/io/mesh_io.h"
 #include "mesh_test_util.h"
 #include "util/error.h"
 

@@ -6,8 +6,8 @@
 #include <map>
 #include <set>
 
-#include "mesh/internal/draco_io.h"
-#include "mesh/mesh_io.h"
+#include "mesh/io/internal/draco_io.h"
+#include "mesh/io/mesh_io.h"
 #include "mesh/validation.h"
 #include "mesh_test_util.h"
 #include "util/error.h"

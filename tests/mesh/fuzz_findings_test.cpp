@@ -5,7 +5,7 @@
 #include <chrono>
 #include <string>
 
-#include "mesh/mesh_io.h"
+#include "mesh/io/mesh_io.h"
 #include "util/error.h"
 
 namespace proxyvis {

@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-#include "mesh/mesh_io.h"
+#include "mesh/io/mesh_io.h"
 #include "mesh_test_util.h"
 #include "util/error.h"
 #include "util/rng.h"

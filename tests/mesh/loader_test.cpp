@@ -6,7 +6,7 @@
 #include <fstream>
 #include <regex>
 
-#include "mesh/mesh_io.h"
+#include "mesh/io/mesh_io.h"
 #include "mesh_test_util.h"
 #include "util/sha256.h"
 

@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "mesh/mesh_io.h"
+#include "mesh/io/mesh_io.h"
 #include "util/error.h"
 
 namespace proxyvis {

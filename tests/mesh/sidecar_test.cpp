@@ -6,7 +6,7 @@
 
 #include <cstdlib>
 
-#include "mesh/mesh_io.h"
+#include "mesh/io/mesh_io.h"
 #include "mesh/validation.h"
 #include "mesh_test_util.h"
 #include "util/error.h"

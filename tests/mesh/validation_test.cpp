@@ -9,7 +9,7 @@
 #include <regex>
 
 #include "mesh/edge_counts.h"
-#include "mesh/mesh_io.h"
+#include "mesh/io/mesh_io.h"
 #include "mesh/validation.h"
 #include "mesh_test_util.h"
 

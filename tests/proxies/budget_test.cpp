@@ -7,7 +7,7 @@
 
 #include <filesystem>
 
-#include "mesh/mesh_io.h"
+#include "mesh/io/mesh_io.h"
 #include "proxies/check/containment.h"
 #include "proxies/general/openmesh_faces.h"
 #include "proxies/pipeline/budget_shapes.h"

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <string>
 
-#include "mesh/mesh_io.h"
+#include "mesh/io/mesh_io.h"
 #include "proxies/check/pair_check.h"
 #include "proxies/outside/outside_proxy.h"
 #include "tests/proxies/check_shapes.h"

@@ -9,7 +9,7 @@
 #include <fstream>
 
 #include "check_shapes.h"
-#include "mesh/mesh_io.h"
+#include "mesh/io/mesh_io.h"
 #include "render/render_scene.h"
 #include "scene/scene_desc.h"
 #include "util/sha256.h"

@@ -10,7 +10,7 @@
 #include <optional>
 #include <string>
 
-#include "mesh/mesh_io.h"
+#include "mesh/io/mesh_io.h"
 #include "proxies/check/containment.h"
 #include "proxies/pipeline/proxy_pipeline.h"
 

@@ -7,7 +7,7 @@
 #include <filesystem>
 
 #include "brute_force.h"
-#include "mesh/mesh_io.h"
+#include "mesh/io/mesh_io.h"
 #include "test_meshes.h"
 #include "trace/trace_scene.h"
 #include "trace_compare.h"

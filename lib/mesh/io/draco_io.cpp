@@ -1,4 +1,4 @@
-#include "mesh/internal/draco_io.h"
+#include "mesh/io/internal/draco_io.h"
 
 #include <draco/attributes/attribute_quantization_transform.h>
 #include <draco/compression/decode.h>
@@ -10,7 +10,7 @@
 #include <cmath>
 #include <limits>
 
-#include "mesh/internal/printable.h"
+#include "mesh/io/internal/printable.h"
 #include "util/error.h"
 
 namespace proxyvis::detail {

@@ -1,4 +1,4 @@
-#include "mesh/internal/header_check.h"
+#include "mesh/io/internal/header_check.h"
 
 #include <algorithm>
 #include <cctype>
@@ -10,7 +10,7 @@
 #include <sstream>
 #include <vector>
 
-#include "mesh/internal/printable.h"
+#include "mesh/io/internal/printable.h"
 #include "util/error.h"
 
 namespace proxyvis::detail {

@@ -1,14 +1,14 @@
-#include "mesh/mesh_io.h"
+#include "mesh/io/mesh_io.h"
 
 #include <algorithm>
 #include <cctype>
 #include <sstream>
 #include <system_error>
 
-#include "mesh/internal/draco_io.h"
-#include "mesh/internal/header_check.h"
-#include "mesh/internal/openmesh_soup.h"
-#include "mesh/internal/sha256_sidecar.h"
+#include "mesh/io/internal/draco_io.h"
+#include "mesh/io/internal/header_check.h"
+#include "mesh/io/internal/openmesh_formats.h"
+#include "mesh/io/internal/sha256_sidecar.h"
 #include "util/atomic_write.h"
 #include "util/error.h"
 #include "util/input_file.h"

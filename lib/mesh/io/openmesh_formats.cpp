@@ -1,4 +1,4 @@
-#include "mesh/internal/openmesh_soup.h"
+#include "mesh/io/internal/openmesh_formats.h"
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/IO/exporter/BaseExporter.hh>
@@ -7,7 +7,7 @@
 #include <mutex>
 #include <sstream>
 
-#include "mesh/internal/printable.h"
+#include "mesh/io/internal/printable.h"
 #include "util/error.h"
 
 namespace proxyvis::detail {

@@ -1,9 +1,9 @@
-#include "mesh/internal/sha256_sidecar.h"
+#include "mesh/io/internal/sha256_sidecar.h"
 
 #include <cctype>
 #include <system_error>
 
-#include "mesh/internal/printable.h"
+#include "mesh/io/internal/printable.h"
 #include "util/atomic_write.h"
 #include "util/error.h"
 #include "util/input_file.h"

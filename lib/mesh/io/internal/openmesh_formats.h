@@ -1,9 +1,10 @@
 #pragma once
-// OpenMesh's file readers and writers driven through its BaseImporter/BaseExporter interfaces,
-// without building a half-edge mesh. Why: OpenMesh's own mesh kernels refuse faces that would
-// make an edge or vertex non-manifold (the ecosys foliage has non-manifold edges, the teapot a
-// pinched vertex), and ImporterT then drops such faces or duplicates their vertices. Reading into
-// a polygon soup keeps every face and the file's vertex order; the parsing stays OpenMesh's.
+// OBJ, PLY and OFF files: OpenMesh's file readers and writers driven through its
+// BaseImporter/BaseExporter interfaces, without building a half-edge mesh. Why: OpenMesh's own mesh
+// kernels refuse faces that would make an edge or vertex non-manifold (the ecosys foliage has
+// non-manifold edges, the teapot a pinched vertex), and ImporterT then drops such faces or
+// duplicates their vertices. Reading into a polygon soup keeps every face and the file's vertex
+// order; the parsing stays OpenMesh's.
 #include <ostream>
 #include <string>
 
