@@ -11,6 +11,7 @@
 #include "mesh/validation.h"
 #include "util/app_main.h"
 #include "util/error.h"
+#include "util/lower_case.h"
 #include "util/output_path.h"
 #include "util/output_set.h"
 #include "util/sha256.h"
@@ -30,7 +31,7 @@ const CLI::Validator sha256Digits(
 // An explicit hash check, before anything is parsed: a mesh format cannot tell a corrupted file
 // from a different mesh (Draco decodes most flipped bytes without complaint).
 void checkExpectedSha256(const std::string& file, std::string expected) {
-  for (char& c : expected) c = char(std::tolower(static_cast<unsigned char>(c)));
+  expected = proxyvis::lowerCase(expected);
   const std::string actual = proxyvis::sha256OfFile(file);
   if (actual != expected)
     throw proxyvis::Error(file, "content does not match --expect-sha256",

@@ -18,6 +18,7 @@
 #include "summary_text.h"
 #include "util/app_main.h"
 #include "util/error.h"
+#include "util/lower_case.h"
 #include "util/output_path.h"
 #include "util/output_set.h"
 #include "util/progress.h"
@@ -309,10 +310,6 @@ int main(int argc, char** argv) {
       ->excludes("--quiet");
   return runApp(app, argc, argv, common, [&] {
     checkOutputs({a.input}, {{"-o", a.output}, {"--json", common.json_path}});
-    fs::path in(a.input);
-    std::string ext = in.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return std::tolower(c); });
-    return ext == ".json" ? runScene(a, common) : runMesh(a, common);
+    return lowerExtension(a.input) == ".json" ? runScene(a, common) : runMesh(a, common);
   });
 }

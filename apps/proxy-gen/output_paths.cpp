@@ -5,15 +5,9 @@
 #include <algorithm>
 #include <cctype>
 #include <set>
+#include "util/lower_case.h"
 
 namespace proxyvis {
-
-namespace {
-std::string lowercase(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  return s;
-}
-}  // namespace
 
 std::vector<std::string> proxyFileStems(const std::vector<std::string>& names) {
   std::vector<std::string> stems;
@@ -26,8 +20,8 @@ std::vector<std::string> proxyFileStems(const std::vector<std::string>& names) {
     stem = first == std::string::npos ? std::string() : stem.substr(first);
     if (stem.empty()) stem = "mesh";
     std::string unique = stem;
-    for (int n = 2; taken.count(lowercase(unique)); ++n) unique = fmt::format("{}-{}", stem, n);
-    taken.insert(lowercase(unique));
+    for (int n = 2; taken.count(lowerCase(unique)); ++n) unique = fmt::format("{}-{}", stem, n);
+    taken.insert(lowerCase(unique));
     stems.push_back(unique);
   }
   return stems;

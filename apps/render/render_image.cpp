@@ -6,13 +6,12 @@
 #include "render/image_metadata.h"
 #include "util/build_info.h"
 #include "util/error.h"
+#include "util/lower_case.h"
 
 namespace proxyvis {
 
 RenderImageFormat renderImageFormat(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return char(std::tolower(c)); });
+  const std::string ext = lowerExtension(path);
   if (ext == ".exr") return RenderImageFormat::kExr;
   if (ext == ".png") return RenderImageFormat::kPng;
   throw Error(path.string(), "unsupported image format '" + ext + "'",

@@ -7,16 +7,17 @@
 
 #include "util/atomic_write.h"
 #include "util/error.h"
+#include "util/lower_case.h"
 
 namespace proxyvis {
 
 namespace {
 
-std::string lowerExtension(const std::filesystem::path& p) {
-  std::string e = p.extension().string();
-  std::transform(e.begin(), e.end(), e.begin(),
-                 [](unsigned char c) { return char(std::tolower(c)); });
-  return e;
+// The image's reader, or an Error naming the file.
+std::unique_ptr<OIIO::ImageInput> openImage(const std::filesystem::path& path) {
+  auto in = OIIO::ImageInput::open(path.string());
+  if (!in) throw Error(path.string(), "cannot read image", OIIO::geterror());
+  return in;
 }
 
 }  // namespace
@@ -74,8 +75,7 @@ std::string ImageHeader::attribute(const std::string& name) const {
 }
 
 ImageHeader readImageHeader(const std::filesystem::path& path) {
-  auto in = OIIO::ImageInput::open(path.string());
-  if (!in) throw Error(path.string(), "cannot read image", OIIO::geterror());
+  const auto in = openImage(path);
   const OIIO::ImageSpec& spec = in->spec();
   ImageHeader header;
   header.width = spec.width;
@@ -100,14 +100,10 @@ float autoExposure(const Image& image) {
 }
 
 Image readImage(const std::filesystem::path& path) {
-  auto in = OIIO::ImageInput::open(path.string());
-  if (!in) throw Error(path.string(), "cannot read image", OIIO::geterror());
+  const auto in = openImage(path);
   const OIIO::ImageSpec& spec = in->spec();
-  Image image;
-  image.width = spec.width;
-  image.height = spec.height;
-  image.channels = spec.nchannels;
-  image.pixels.resize(size_t(spec.width) * spec.height * spec.nchannels);
+  Image image{spec.width, spec.height, spec.nchannels,
+              std::vector<float>(size_t(spec.width) * spec.height * spec.nchannels)};
   if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data()))
     throw Error(path.string(), "cannot read image", in->geterror());
   in->close();

@@ -172,9 +172,9 @@ Affine3f parseTransform(const Field& f) {
       const Field sf = f["scale"];
       if (sf.value().is_number()) {
         const float k = sf.asFloat();
-        s = scaling({k, k, k});
+        s = Affine3f::scaling({k, k, k});
       } else {
-        s = scaling(sf.asVec3());
+        s = Affine3f::scaling(sf.asVec3());
       }
     }
     if (f.has("rotate")) {

@@ -77,14 +77,6 @@ inline Affine3f rotation(Vec3f axis, float degrees) {
   return r;
 }
 
-inline Affine3f scaling(const Vec3f& s) {
-  Affine3f r;
-  r.m[0][0] = s.x;
-  r.m[1][1] = s.y;
-  r.m[2][2] = s.z;
-  return r;
-}
-
 // The box around `b`'s eight corners under `a` (encloses everything `b` held).
 inline Bounds3f transformedBounds(const Bounds3f& b, const Affine3f& a) {
   Bounds3f out;

@@ -13,11 +13,15 @@ struct Affine3f {
             m[1][0] * p.x + m[1][1] * p.y + m[1][2] * p.z + m[1][3],
             m[2][0] * p.x + m[2][1] * p.y + m[2][2] * p.z + m[2][3]};
   }
-  static Affine3f translation(const Vec3f& t) {
+  // The translation (column 3) or the scaling (diagonal) by `v`.
+  static Affine3f translation(const Vec3f& v) {
     Affine3f a;
-    a.m[0][3] = t.x;
-    a.m[1][3] = t.y;
-    a.m[2][3] = t.z;
+    for (int i = 0; i < 3; ++i) a.m[i][3] = v[i];
+    return a;
+  }
+  static Affine3f scaling(const Vec3f& v) {
+    Affine3f a;
+    for (int i = 0; i < 3; ++i) a.m[i][i] = v[i];
     return a;
   }
 };

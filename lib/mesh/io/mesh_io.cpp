@@ -12,6 +12,7 @@
 #include "util/atomic_write.h"
 #include "util/error.h"
 #include "util/input_file.h"
+#include "util/lower_case.h"
 #include "util/output_path.h"
 #include "util/output_set.h"
 
@@ -22,10 +23,8 @@ namespace {
 
 // "obj", "ply", "off", "drc" or "" for anything else.
 std::string formatOf(const fs::path& path) {
-  std::string ext = path.extension().string();
+  std::string ext = lowerExtension(path);
   if (!ext.empty()) ext.erase(0, 1);
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return char(std::tolower(c)); });
   return (ext == "obj" || ext == "ply" || ext == "off" || ext == "drc") ? ext : std::string();
 }
 
