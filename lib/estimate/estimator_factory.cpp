@@ -58,7 +58,9 @@ std::vector<EstimatorKind> allEstimators() {
   return std::vector<EstimatorKind>(std::begin(kAllKinds), std::end(kAllKinds));
 }
 
-std::string allEstimatorNames() { return joinedNames(","); }
+std::string allEstimatorNames() {
+  return joinedNames(",");
+}
 
 std::unique_ptr<VisibilityEstimator> makeEstimator(const EstimatorSetup& setup) {
   if (setup.num_regions == 0) throw Error("", "estimator needs at least one learning region");

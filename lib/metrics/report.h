@@ -48,7 +48,7 @@ struct ReportRow {
   double visibility_seconds = 0;  // mean over seeds
   double time_budget = 0;         // equal-time budget per render; 0 (not written) for equal-spp
   double budget_overshoot_seconds = 0;  // seconds - time_budget (written with time_budget)
-  std::string proxy_class;        // the class the estimators relied on ("outside", ...)
+  std::string proxy_class;              // the class the estimators relied on ("outside", ...)
   std::vector<double> mse_per_seed;
   std::optional<ReportLearned> learned;  // roulette rows only
 };
