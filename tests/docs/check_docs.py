@@ -6,7 +6,8 @@ Fails (exit 1, one line per finding) when any text file of the repository (build
   - points outside the repository to the old notes folder or names the old notes file (the
     docs/ folder is the documentation; the patterns are built below so that this file does not
     match itself);
-  - refers to a tracker entry by number ("issue" followed by a number or by '#');
+  - refers to a tracker entry by number (the tracker's word for an entry followed by a number
+    or by '#');
   - cites docs/<page>.md for a page that does not exist;
   - cites a section of docs/design.md that the page does not have: "docs/design.md §N" (a §
     token in the same sentence), a quoted section name right after the citation
@@ -25,10 +26,12 @@ import re
 import sys
 import tempfile
 
-# Built from parts so that the checker's own source is not a finding.
+# Built from parts so that the checker's own source (and its self-test) holds none of what it
+# looks for.
 OLD_FOLDER = "../" + "shared"
-OLD_NOTES = "DESIGN" + ".md"
-ISSUE_REF = re.compile(r"\bissue\s*(#\s*\d*|[1-9][0-9]?\b)", re.IGNORECASE)
+OLD_NOTES = "DES" + "IGN" + ".md"
+TRACKER_WORD = "iss" + "ue"
+ISSUE_REF = re.compile(r"\b" + TRACKER_WORD + r"\s*(#\s*\d*|[1-9][0-9]?\b)", re.IGNORECASE)
 
 DOC_CITE = re.compile(r"\bdocs/([A-Za-z0-9_\-]+\.md)")
 DESIGN_CITE = re.compile(r"(?:\bdocs/|(?<![\w/.-]))design\.md")
@@ -200,8 +203,8 @@ def self_test():
     planted = {
         "a.cpp": "// see " + OLD_FOLDER + "/data\n",
         "b.h": "// from " + OLD_NOTES + "\n",
-        "c.txt": "fixed in issue 12\n",
-        "d.py": "# issue #7 says so\n",
+        "c.txt": f"fixed in {TRACKER_WORD} 12\n",
+        "d.py": f"# {TRACKER_WORD} #7 says so\n",
         "e.cpp": "// docs/missing_page.md explains\n",
         "f.cpp": "// (docs/design.md, §9)\n",
         "g.cpp": "// docs/design.md (\"No such heading\")\n",
@@ -213,7 +216,7 @@ def self_test():
     }
     fine = {
         "ok.cpp": "// docs/design.md §2b, pitfall 2, costs point 2; docs/design.md (\"Ray classes\")\n"
-                  "// paper §4 is not ours. Two issues remain, e.g. the tissue 12.\n",
+                  f"// paper §4 is not ours. Two {TRACKER_WORD}s remain, e.g. the t{TRACKER_WORD} 12.\n",
         "ok.h": "// like ok.cpp and docs/design.md; not ../lib/x.h or my/lib/y.h\n",
         "ok.md": "# A §3 heading (x)\n[d](docs/design.md#2b-measured-costs-and-what-follows), "
                  "[s](#a-3-heading-x) and [u](https://example.org)\n",
@@ -224,7 +227,7 @@ def self_test():
             f.write(design)
         os.mkdir(os.path.join(tmp, "build"))
         with open(os.path.join(tmp, "build", "ignored.cpp"), "w") as f:
-            f.write("issue 3\n")
+            f.write(f"{TRACKER_WORD} 3\n")
         for name, body in {**planted, **fine}.items():
             with open(os.path.join(tmp, name), "w") as f:
                 f.write(body)
