@@ -43,10 +43,7 @@ void addOptions(CLI::App& app, RenderOptions& o) {
                  "Image to write: .exr (linear RGB + AOV layers visibility.Y, rays.*) or .png "
                  "(tone-mapped sRGB); missing folders are created")
       ->required();
-  std::string names;
-  for (EstimatorKind k : allEstimators())
-    names += (names.empty() ? "" : ", ") + std::string(estimatorName(k));
-  app.add_option("--estimator", o.estimator, "Visibility estimator: " + names)
+  app.add_option("--estimator", o.estimator, "Visibility estimator: " + allEstimatorNames(", "))
       ->capture_default_str();
   auto* spp = app.add_option("--spp", o.spp, "Light samples per pixel")
                   ->check(integerIn(1, kMaxSpp))

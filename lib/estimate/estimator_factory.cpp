@@ -37,29 +37,24 @@ const char* estimatorName(EstimatorKind kind) {
   return "?";
 }
 
-namespace {
-std::string joinedNames(const char* separator) {
-  std::string names;
-  for (EstimatorKind k : kAllKinds) {
-    if (!names.empty()) names += separator;
-    names += estimatorName(k);
-  }
-  return names;
-}
-}  // namespace
-
 EstimatorKind parseEstimatorName(const std::string& name) {
   for (EstimatorKind k : kAllKinds)
     if (name == estimatorName(k)) return k;
-  throw Error("", "unknown estimator '" + name + "'", "valid estimators: " + joinedNames(", "));
+  throw Error("", "unknown estimator '" + name + "'",
+              "valid estimators: " + allEstimatorNames(", "));
 }
 
 std::vector<EstimatorKind> allEstimators() {
   return std::vector<EstimatorKind>(std::begin(kAllKinds), std::end(kAllKinds));
 }
 
-std::string allEstimatorNames() {
-  return joinedNames(",");
+std::string allEstimatorNames(const char* separator) {
+  std::string names;
+  for (EstimatorKind k : kAllKinds) {
+    if (!names.empty()) names += separator;
+    names += estimatorName(k);
+  }
+  return names;
 }
 
 std::unique_ptr<VisibilityEstimator> makeEstimator(const EstimatorSetup& setup) {

@@ -44,8 +44,9 @@ const char* estimatorName(EstimatorKind kind);
 // Throws proxyvis::Error for an unknown name (message lists the valid ones).
 EstimatorKind parseEstimatorName(const std::string& name);
 std::vector<EstimatorKind> allEstimators();
-// The names of allEstimators(), comma-separated, in that order (a default for option lists).
-std::string allEstimatorNames();
+// The names of allEstimators() in that order, joined by `separator` ("," makes the default of an
+// option list; ", " a sentence).
+std::string allEstimatorNames(const char* separator = ",");
 
 // Rays traced, by kind. Summed per pixel into the cost AOVs and per run into the tables.
 struct RayCounts {
