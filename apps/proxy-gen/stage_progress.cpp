@@ -1,7 +1,5 @@
 #include "stage_progress.h"
 
-#include <unistd.h>
-
 #include <chrono>
 
 #include "summary_text.h"
@@ -11,7 +9,7 @@ namespace proxyvis {
 StageProgress::StageProgress(bool quiet, bool force)
     : progress_("proxy-gen", kProxyGenSteps, quiet, force) {
   // A log (stderr not a terminal, --progress) gets one line per stage and no redraws.
-  if (!progress_.enabled() || !::isatty(STDERR_FILENO)) return;
+  if (!progress_.redraws()) return;
   ticker_ = std::thread([this] {
     std::unique_lock lock(mutex_);
     while (!wake_.wait_for(lock, std::chrono::milliseconds(250), [this] { return stop_; }))

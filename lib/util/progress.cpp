@@ -34,7 +34,7 @@ double Progress::elapsedSeconds() const {
 
 void Progress::update(uint64_t work) {
   uint64_t now_done = done_.fetch_add(work) + work;
-  if (!enabled_ || !terminal_ || finished_) return;  // a log gets no redraws
+  if (!redraws() || finished_) return;  // a log gets no redraws
   auto now = std::chrono::steady_clock::now();
   if (now - last_draw_ < std::chrono::milliseconds(200)) return;
   std::unique_lock lock(mutex_, std::try_to_lock);
@@ -63,7 +63,7 @@ void Progress::done() {
 
 void Progress::abandon() {
   if (finished_.exchange(true)) return;
-  if (enabled_ && terminal_) {
+  if (redraws()) {
     std::lock_guard lock(mutex_);
     std::fputs("\r\033[K", stderr);  // erase the bar's line: the error line takes it
     std::fflush(stderr);

@@ -30,6 +30,8 @@ class Progress {
   void abandon();
   double elapsedSeconds() const;
   bool enabled() const { return enabled_; }
+  // Drawn as one line redrawn in place (stderr is a terminal), not as a log of lines.
+  bool redraws() const { return enabled_ && terminal_; }
 
   // Global switch set by the apps' --quiet flag.
   static void setGloballyQuiet(bool quiet);
