@@ -17,6 +17,7 @@ import json
 import os
 import re
 import shlex
+import shutil
 import subprocess
 import sys
 import time
@@ -332,6 +333,10 @@ def resource_options(args):
 def submit(plan, args):
     missing = units_to_run(plan, args.resume)
     if not args.dry_run:
+        if not shutil.which("sbatch"):
+            raise Failure("sbatch", "cannot submit; the Slurm command is not installed (run on "
+                          "a Slurm login node, start scripts/slurm/local_cluster.sh, or use "
+                          "--local)", 1)
         check_not_running(plan)
     logs = os.path.join(plan.slurm_dir, "logs")
     unit_sh = os.path.join(plan.slurm_dir, "run_unit.sh")
@@ -346,12 +351,12 @@ def submit(plan, args):
                               f"--output={logs}/unit-%a.out", unit_sh]
     merge_cmd = common + [f"--job-name={plan.name}-merge", f"--output={logs}/merge-%j.out"]
 
+    after_units = ["--dependency=afterok:{}", "--kill-on-invalid-dep=yes"] if array_cmd else []
+
     if args.dry_run:
         if array_cmd:
             print(shlex.join(array_cmd))
-        print(shlex.join(merge_cmd[:3] + ["--dependency=afterok:<units job>",
-                                          "--kill-on-invalid-dep=yes"] + merge_cmd[3:] +
-                         [merge_sh]))
+        print(shlex.join(merge_cmd + [a.format("<units job>") for a in after_units] + [merge_sh]))
         return 0
 
     write_scripts(plan)
@@ -365,7 +370,7 @@ def submit(plan, args):
         jobs.append(array_job)
         print(f"{PROG}: units {array_ranges(missing)} ({len(missing)} of {plan.units}): "
               f"job {array_job}", flush=True)
-        merge_cmd += [f"--dependency=afterok:{array_job}", "--kill-on-invalid-dep=yes"]
+        merge_cmd += [a.format(array_job) for a in after_units]
     else:
         print(f"{PROG}: all {plan.units} units are done; submitting the merge only", flush=True)
     merge_job = sbatch(merge_cmd + [merge_sh], "submit the merge")
