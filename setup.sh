@@ -24,6 +24,7 @@ PKGS=(
   libcli11-dev libfmt-dev nlohmann-json3-dev libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   chromium  # headless: the report test opens render-compare's HTML page in it
+  slurm-wlm munge  # scripts/slurm: plans as job arrays; a single-node cluster for its tests
 )
 
 # Only for ./setup.sh fuzz: the compiler with libFuzzer and the sanitizer runtimes.
