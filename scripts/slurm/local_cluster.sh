@@ -46,7 +46,9 @@ while [ $# -gt 0 ]; do
   esac
 done
 [ -n "$cmd" ] || fail 2 "no command given; one is required (start, stop, status or env)"
-case $DIR in /*) ;; *) DIR=$PWD/$DIR ;; esac
+[[ $START_TIMEOUT =~ ^[1-9][0-9]{0,3}$ ]] ||
+  fail 2 "PROXYVIS_SLURM_START_TIMEOUT is '$START_TIMEOUT'; it must be whole seconds in [1, 9999] (unset it for 30)"
+DIR=$(realpath -m -- "$DIR")
 
 CONF=$DIR/slurm.conf
 RUN=$DIR/run
@@ -59,7 +61,7 @@ live_pid() {
   [ -s "$file" ] || return 1
   pid=$(tr -dc '0-9' <"$file")
   [ -n "$pid" ] && [ -r "/proc/$pid/cmdline" ] || return 1
-  tr '\0' ' ' <"/proc/$pid/cmdline" | grep -qF -- "$DIR" || return 1
+  tr '\0' ' ' <"/proc/$pid/cmdline" | grep -qF -- "$DIR/" || return 1
   [ "$(awk '{print $3}' "/proc/$pid/stat" 2>/dev/null)" != Z ] || return 1
   echo "$pid"
 }
@@ -71,10 +73,10 @@ node_state() {
 
 # Stop one daemon: TERM, wait up to 10 s, then KILL.
 stop_daemon() {
-  local name=$1 file=$2 pid i
+  local name=$1 file=$2 pid
   pid=$(live_pid "$file") || return 0
   kill -TERM "$pid" 2>/dev/null || true
-  for i in $(seq 100); do
+  for _ in $(seq 100); do
     live_pid "$file" >/dev/null || break
     sleep 0.1
   done
@@ -89,12 +91,12 @@ do_stop() {
   [ -f "$CONF" ] || { echo "$PROG: no cluster in $DIR"; return 0; }
   # Jobs first, so no job step outlives its slurmd.
   if live_pid "$RUN/slurmctld.pid" >/dev/null; then
-    local jobs i
+    local jobs
     jobs=$(timeout 5 squeue -h -o %A 2>/dev/null | sort -u | tr '\n' ' ' || true)
     if [ -n "${jobs// /}" ]; then
       # shellcheck disable=SC2086 # job ids, one word each
       timeout 5 scancel $jobs 2>/dev/null || true
-      for i in $(seq 50); do
+      for _ in $(seq 50); do
         [ -z "$(timeout 5 squeue -h -o %A 2>/dev/null || true)" ] && break
         sleep 0.1
       done
@@ -129,7 +131,7 @@ print(" ".join(str(s.getsockname()[1]) for s in socks))'
 }
 
 write_conf() {
-  local hw cpus mem ports ctld_port slurmd_port
+  local hw cpus mem ctld_port slurmd_port
   hw=$(node_hardware)
   cpus=$(echo "$hw" | tr ' ' '\n' | sed -n 's/^CPUs=//p')
   mem=$(echo "$hw" | tr ' ' '\n' | sed -n 's/^RealMemory=//p')
@@ -181,7 +183,10 @@ EOF
 
 # Last lines of a log, indented, for a failure message.
 log_tail() {
-  [ -f "$1" ] && grep -v 'pmix\|MPI:\|mpi/pmix' "$1" | tail -n 5 | sed 's/^/    /' >&2 || true
+  # The MPI plugins' complaints (no PMIx library) are noise here: jobs use no MPI.
+  if [ -f "$1" ]; then
+    grep -v 'pmix\|MPI:' "$1" | tail -n 5 | sed 's/^/    /' >&2 || true
+  fi
 }
 
 # Prints why Slurm cannot run here, or nothing.
@@ -199,10 +204,10 @@ unavailable_reason() {
 
 # Starts a daemon and waits up to 5 s for its pid file to name a live process.
 start_daemon() {
-  local name=$1 pidfile=$2 log=$3 i
+  local name=$1 pidfile=$2 log=$3
   shift 3
   "$@" >>"$DIR/log/$name.out" 2>&1 || true
-  for i in $(seq 50); do
+  for _ in $(seq 50); do
     live_pid "$pidfile" >/dev/null && return 0
     sleep 0.1
   done
@@ -214,12 +219,7 @@ start_daemon() {
 }
 
 do_start() {
-  local why t0 i state
-  why=$(unavailable_reason)
-  [ -z "$why" ] || fail 4 "Slurm cannot run here; $why"
-  if live_pid "$RUN/slurmctld.pid" >/dev/null || live_pid "$RUN/munged.pid" >/dev/null; then
-    fail 1 "a cluster is already running there; one per folder (run '$PROG --dir $DIR stop' first)"
-  fi
+  local why t0 state=""
   # munged serves its socket only from a folder whose every parent anyone can search.
   local up
   up=$(dirname "$DIR")
@@ -229,6 +229,12 @@ do_start() {
     fi
     up=$(dirname "$up")
   done
+  why=$(unavailable_reason)
+  [ -z "$why" ] || fail 4 "Slurm cannot run here; $why"
+  if live_pid "$RUN/slurmctld.pid" >/dev/null || live_pid "$RUN/slurmd.pid" >/dev/null ||
+    live_pid "$RUN/munged.pid" >/dev/null; then
+    fail 1 "a cluster is already running there; one per folder (run '$PROG --dir $DIR stop' first)"
+  fi
   t0=$(date +%s.%N)
   # The folder is readable by all (munged wants its socket folder searchable); the key is not.
   mkdir -p "$DIR" "$RUN" "$DIR/state" "$DIR/spool" "$DIR/log" "$DIR/munge"
@@ -248,14 +254,16 @@ do_start() {
   start_daemon slurmctld "$RUN/slurmctld.pid" "$DIR/log/slurmctld.log" slurmctld -f "$CONF"
   start_daemon slurmd "$RUN/slurmd.pid" "$DIR/log/slurmd.log" slurmd -f "$CONF" -N "$NODE"
 
-  for i in $(seq $((START_TIMEOUT * 5))); do
+  for _ in $(seq $((START_TIMEOUT * 5))); do
     state=$(node_state)
     if [ "$state" = idle ]; then
       printf '%s: cluster up in %.1f s: node %s idle (%s); export SLURM_CONF=%s\n' "$PROG" \
         "$(awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN { print b - a }')" "$NODE" "$(node_hardware)" "$CONF"
       return 0
     fi
-    live_pid "$RUN/slurmctld.pid" >/dev/null && live_pid "$RUN/slurmd.pid" >/dev/null || break
+    if ! live_pid "$RUN/slurmctld.pid" >/dev/null || ! live_pid "$RUN/slurmd.pid" >/dev/null; then
+      break
+    fi
     sleep 0.2
   done
   echo "$PROG: error: $DIR: node $NODE not idle (state '${state:-unknown}') after start; a daemon died or refused the node (see $DIR/log)" >&2
@@ -286,5 +294,5 @@ case $cmd in
   start) do_start ;;
   stop) do_stop ;;
   status) do_status ;;
-  env) echo "export SLURM_CONF=$CONF" ;;
+  env) printf 'export SLURM_CONF=%q\n' "$CONF" ;;
 esac
