@@ -136,6 +136,7 @@ if [ -e {marker} ]; then
   echo "unit $unit: already done"
   exit 0
 fi
+echo "unit $unit: started on $(hostname) at $(date -u +%FT%TZ) (job ${{SLURM_JOB_ID:-none}})"
 {command_line(plan.run_unit, plan)}
 status=$?
 if [ $status -ne 0 ]; then
@@ -348,7 +349,7 @@ def submit(plan, args):
         if args.max_parallel:
             spec += f"%{args.max_parallel}"
         array_cmd = common + [f"--job-name={plan.name}-units", f"--array={spec}",
-                              f"--output={logs}/unit-%a.out", unit_sh]
+                              f"--output={logs}/unit-%a.out", "--open-mode=append", unit_sh]
     merge_cmd = common + [f"--job-name={plan.name}-merge", f"--output={logs}/merge-%j.out"]
 
     after_units = ["--dependency=afterok:{}", "--kill-on-invalid-dep=yes"] if array_cmd else []
@@ -409,7 +410,7 @@ def run_locally(plan, args):
     logs = os.path.join(plan.slurm_dir, "logs")
 
     def run(k):
-        with open(os.path.join(logs, f"unit-{k}.out"), "w") as log:
+        with open(os.path.join(logs, f"unit-{k}.out"), "a") as log:
             return subprocess.run([unit_sh, str(k)], stdout=log, stderr=subprocess.STDOUT,
                                   cwd=plan.dir).returncode
 

@@ -133,6 +133,9 @@ def scenario(repo, mode, run, work):
     want = {**{k: 1 for k in range(UNITS)}, 3: 2, 6: 3, "merge": 2}
     check(run_counts(plan) == want, f"second resume: run counts {run_counts(plan)}, "
           f"expected {want}")
+    log = read(os.path.join(plan, "slurm", "logs", "unit-6.out"))
+    check(log.count("unit 6: started on") == 3 and "failing as planted" in log,
+          f"unit 6's log does not keep its three attempts: {log!r}")
 
     # Everything done: --resume runs the merge alone.
     os.unlink(merged)
