@@ -244,40 +244,45 @@ def sbatch(argv, what):
     return m.group(1)
 
 
-def job_info(job):
-    """(state, exit code, reason) from scontrol, or None once the job record is gone."""
-    r = run_slurm(["scontrol", "show", "job", "-o", job], "ask for the job's state")
-    if r.returncode != 0:
-        return None
-    line = r.stdout.strip().splitlines()[0] if r.stdout.strip() else ""
-    fields = dict(f.split("=", 1) for f in line.split() if "=" in f)
-    code = fields.get("ExitCode", "0:0").split(":")
-    return (fields.get("JobState", "UNKNOWN"), int(code[0]) if code[0].isdigit() else 1,
-            fields.get("Reason", ""))
+def job_records(job):
+    """scontrol's records of a job (one per array task), or None once slurmctld forgot it.
+    Other scontrol errors (a busy controller) are retried for up to a minute."""
+    for attempt in range(60):
+        r = run_slurm(["scontrol", "show", "job", "-o", job], "ask for the job's state")
+        if r.returncode == 0:
+            return [dict(f.split("=", 1) for f in line.split() if "=" in f)
+                    for line in r.stdout.splitlines() if line.strip()]
+        if "Invalid job id" in r.stderr:
+            return None
+        time.sleep(1)
+    raise Failure("scontrol", f"cannot ask for job {job}'s state; "
+                  f"{(r.stderr.strip().splitlines() or ['no answer'])[-1]} (check that slurmctld "
+                  "runs: sinfo; the jobs keep running)", 1)
+
+
+def exit_status(record):
+    code = record.get("ExitCode", "0:0").split(":")[0]
+    return int(code) if code.isdigit() else 1
 
 
 def active_jobs(jobs):
-    """Those of jobs still pending or running."""
-    active = []
-    for job in jobs:
-        info = job_info(job)
-        if info is not None and info[0] not in TERMINAL_STATES:
-            active.append(job)
-    return active
+    """Those of jobs with a record (an array task) still pending or running."""
+    return [job for job in jobs
+            if any(r.get("JobState") not in TERMINAL_STATES for r in job_records(job) or [])]
 
 
 def wait_for_merge(plan, job):
     """The merge job's exit status once it ended (1 if it never ran)."""
     while True:
-        info = job_info(job)
-        if info is None:
+        records = job_records(job)
+        if not records:
             return read_merge_exit(plan)
-        state, code, reason = info
+        record = records[0]
+        state = record.get("JobState", "UNKNOWN")
         if state in TERMINAL_STATES:
-            if state == "COMPLETED":
-                return code
-            return code if code != 0 else 1
-        if state == "PENDING" and reason == "DependencyNeverSatisfied":
+            status = exit_status(record)
+            return status if state == "COMPLETED" or status != 0 else 1
+        if state == "PENDING" and record.get("Reason") == "DependencyNeverSatisfied":
             run_slurm(["scancel", job], "cancel the merge job")
             return 1
         time.sleep(POLL_SECONDS)
@@ -374,7 +379,15 @@ def submit(plan, args):
         merge_cmd += [a.format(array_job) for a in after_units]
     else:
         print(f"{PROG}: all {plan.units} units are done; submitting the merge only", flush=True)
-    merge_job = sbatch(merge_cmd + [merge_sh], "submit the merge")
+    try:
+        merge_job = sbatch(merge_cmd + [merge_sh], "submit the merge")
+    except Failure:
+        # Units without their merge would finish unnoticed: take them back.
+        if array_cmd:
+            run_slurm(["scancel", jobs[0]], "cancel the units job")
+            print(f"{PROG}: cancelled job {jobs[0]}: its merge could not be submitted",
+                  flush=True)
+        raise
     jobs.append(merge_job)
     after = f" (after job {jobs[0]} succeeds)" if array_cmd else ""
     print(f"{PROG}: merge: job {merge_job}{after}", flush=True)

@@ -96,6 +96,13 @@ def scenario(repo, mode, run, work):
     write_plan(plan, tests_dir)
     merged = os.path.join(plan, "merged.txt")
 
+    if mode == "--slurm":
+        # sbatch refuses: one error line with its reason, no unit runs.
+        err, _ = run(plan, "--partition", "nosuch", expect=1)
+        check("sbatch: cannot submit 8 units; " in err and "partition" in err,
+              f"sbatch's refusal: {err!r}")
+        check(run_counts(plan)[0] == 0, "a refused submission ran units")
+
     _, seconds = run(plan)
     print(f"timing: {UNITS} toy units + merge ({mode}): {seconds:.1f} s")
     check(read(merged) == expected_merge(), f"merged.txt wrong: {read(merged)!r}")
