@@ -152,6 +152,24 @@ def scenario(repo, mode, run, work):
     check(run_counts(plan) == want, f"merge-only resume: run counts {run_counts(plan)}")
 
 
+def refuse_second_submission(repo, env, work):
+    """While a plan's jobs are queued or running, even --resume is refused."""
+    plan = os.path.join(work, "slow plan")
+    os.makedirs(os.path.join(plan, "units"))
+    with open(os.path.join(plan, "plan.json"), "w") as f:
+        json.dump({"units": 2, "run_unit": ["sleep", "30", "{unit}"], "merge": ["true"]}, f)
+    submit = os.path.join(repo, "scripts", "slurm", "submit.sh")
+    r = subprocess.run([submit, plan], capture_output=True, text=True, env=env, timeout=60)
+    check(r.returncode == 0, f"slow plan: exit {r.returncode}: {r.stderr}")
+    r = subprocess.run([submit, plan, "--resume"], capture_output=True, text=True, env=env,
+                       timeout=60)
+    sys.stdout.write(r.stderr)
+    lines = r.stderr.strip().splitlines()
+    check(r.returncode == 2 and len(lines) == 1 and "still queued or running" in lines[0],
+          f"second submission while running: exit {r.returncode}: {r.stderr!r}")
+    # stop cancels the sleeping units
+
+
 def cluster(repo, cluster_dir, command):
     return subprocess.run([os.path.join(repo, "scripts", "slurm", "local_cluster.sh"), "--dir",
                            cluster_dir, command], capture_output=True, text=True, timeout=90)
@@ -199,6 +217,7 @@ def main():
                   f"status after start: {status.stdout}{status.stderr}")
         scenario(repo, mode, Runner(repo, mode, env), work)
         if started:
+            refuse_second_submission(repo, env, work)
             pids = daemon_pids(cluster_dir)
             check(len(pids) == 3, f"pid files of the three daemons: {pids}")
             r = cluster(repo, cluster_dir, "stop")
