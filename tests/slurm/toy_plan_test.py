@@ -12,6 +12,7 @@ and after the failure is cleared re-run only the failed unit and merge.
 """
 import json
 import os
+import shlex
 import shutil
 import subprocess
 import sys
@@ -175,6 +176,16 @@ def cluster(repo, cluster_dir, command):
                            cluster_dir, command], capture_output=True, text=True, timeout=90)
 
 
+def stop_when_gone(repo, cluster_dir):
+    """A detached watcher that stops the cluster once this test process is gone, even when
+    ctest kills it on a timeout (no finally: clause runs then)."""
+    script = (f"while kill -0 {os.getpid()} 2>/dev/null; do sleep 1; done; exec "
+              f"{shlex.quote(os.path.join(repo, 'scripts', 'slurm', 'local_cluster.sh'))} "
+              f"--dir {shlex.quote(cluster_dir)} stop")
+    subprocess.Popen(["bash", "-c", script], start_new_session=True, stdin=subprocess.DEVNULL,
+                     stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+
+
 def daemon_pids(cluster_dir):
     pids = []
     for name in ("munged", "slurmctld", "slurmd"):
@@ -202,6 +213,7 @@ def main():
     started = False
     try:
         if mode == "--slurm":
+            stop_when_gone(repo, cluster_dir)
             t0 = time.monotonic()
             r = cluster(repo, cluster_dir, "start")
             sys.stdout.write(r.stdout)
