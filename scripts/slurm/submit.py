@@ -80,6 +80,9 @@ def read_plan(plan_dir):
         raise bad_input(plan_dir, "not a plan folder; it does not exist or is not a folder "
                         "(pass the folder that holds plan.json)")
     folder = os.path.abspath(plan_dir)
+    if "%" in folder or "\\" in folder:
+        raise bad_input(folder, "unusable plan folder; sbatch reads % and \\ in its log paths "
+                        "as patterns (rename or move the folder)")
     path = os.path.join(folder, "plan.json")
     if not os.path.isfile(path):
         raise bad_input(path, "cannot read the plan; the file is missing or not a regular file "

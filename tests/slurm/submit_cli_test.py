@@ -145,6 +145,18 @@ class SubmitTest(unittest.TestCase):
         missing = os.path.join(self.work, "nowhere")
         self.assert_refused(submit_here(missing), 2, missing)
 
+    def test_plan_folder_with_a_percent_sign_is_refused(self):
+        # sbatch would expand %a, %j... in the log paths under it.
+        folder = os.path.join(self.work, "100%a")
+        os.makedirs(folder)
+        with open(os.path.join(folder, "plan.json"), "w") as f:
+            json.dump({"units": 1, "run_unit": ["p", "{unit}"], "merge": ["m"]}, f)
+        r = submit_here(folder, "--dry-run")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertEqual(r.stdout, "")
+        self.assertTrue(r.stderr.startswith(f"submit.sh: error: {folder}: unusable plan folder"),
+                        r.stderr)
+
     def test_bad_arguments_are_refused(self):
         self.write_plan()
         for argv in (["--cpus-per-task", "0"], ["--cpus-per-task", "2x"], ["--mem", "4X"],
