@@ -4,7 +4,8 @@
 A plan is a folder with plan.json (format in docs/slurm.md): "units" (K), "run_unit" (the argv
 of one unit, "{unit}" replaced by its index 0..K-1) and "merge" (the argv that combines them).
 Unit K is done when PLAN_DIR/units/K.done exists; the unit command writes it last, after its
-outputs are renamed into place, so a done unit is never run again and a half-written one is.
+outputs are renamed into place, so a done unit is never run again and a half-written one
+always is.
 
 Usage: submit.sh PLAN_DIR [--resume] [--wait] [--cpus-per-task N] [--mem M] [--partition P]
                           [--time T] [--max-parallel N] [--sbatch-arg ARG]... [--dry-run]
@@ -31,7 +32,11 @@ PLAN_DIR_TOKEN = "{plan_dir}"
 # Job states after which a job never runs again (squeue/scontrol names).
 TERMINAL_STATES = {"COMPLETED", "FAILED", "CANCELLED", "TIMEOUT", "NODE_FAIL", "OUT_OF_MEMORY",
                    "PREEMPTED", "BOOT_FAIL", "DEADLINE", "SPECIAL_EXIT", "REVOKED"}
-POLL_SECONDS = 0.5
+# --wait asks slurmctld every 0.5 s at first, then less and less often, at most every 30 s:
+# quick for short tests, gentle on a shared controller during long studies.
+POLL_FIRST_SECONDS = 0.5
+POLL_GROWTH = 1.2
+POLL_MAX_SECONDS = 30.0
 
 
 class Failure(Exception):
@@ -275,8 +280,15 @@ def active_jobs(jobs):
 
 
 def wait_for_merge(plan, job):
-    """The merge job's exit status once it ended (1 if it never ran)."""
+    """The merge job's exit status once it ended (1 if it never ran). Says how many units are
+    done whenever that changes."""
+    delay = POLL_FIRST_SECONDS
+    done_before = None
     while True:
+        done = plan.units - len(plan.missing_units())
+        if done != done_before:
+            print(f"{PROG}: {done} of {plan.units} units done", flush=True)
+            done_before = done
         records = job_records(job)
         if not records:
             return read_merge_exit(plan)
@@ -288,7 +300,8 @@ def wait_for_merge(plan, job):
         if state == "PENDING" and record.get("Reason") == "DependencyNeverSatisfied":
             run_slurm(["scancel", job], "cancel the merge job")
             return 1
-        time.sleep(POLL_SECONDS)
+        time.sleep(delay)
+        delay = min(delay * POLL_GROWTH, POLL_MAX_SECONDS)
 
 
 def read_merge_exit(plan):
@@ -377,7 +390,8 @@ def submit(plan, args):
     if array_cmd:
         array_job = sbatch(array_cmd, f"submit {len(missing)} units")
         jobs.append(array_job)
-        print(f"{PROG}: units {array_ranges(missing)} ({len(missing)} of {plan.units}): "
+        noun = "unit" if len(missing) == 1 else "units"
+        print(f"{PROG}: {noun} {array_ranges(missing)} ({len(missing)} of {plan.units}): "
               f"job {array_job}", flush=True)
         merge_cmd += [a.format(array_job) for a in after_units]
     else:
