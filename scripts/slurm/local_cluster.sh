@@ -23,7 +23,7 @@ NODE=proxyvis-node
 PARTITION=local
 
 usage() {
-  sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'
+  awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"
 }
 
 # One line on stderr in the project's error format, then the exit code given.
