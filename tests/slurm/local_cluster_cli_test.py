@@ -64,6 +64,13 @@ class LocalClusterCliTest(unittest.TestCase):
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertEqual(r.stderr, "")
 
+    def test_help_is_the_header_comment(self):
+        r = cluster("--help")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertTrue(r.stdout.startswith("A real single-node Slurm cluster"), r.stdout)
+        self.assertIn("tests skip on 4.", r.stdout)
+        self.assertNotIn("set -e", r.stdout)
+
     def test_env_names_the_config_of_the_folder(self):
         r = cluster("--dir", self.dir + "/", "env")
         self.assertEqual(r.returncode, 0, r.stderr)
