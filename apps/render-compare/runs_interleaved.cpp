@@ -28,10 +28,10 @@ double warmupSeconds(double budget) {
   return sliceSeconds(budget);
 }
 
-// The estimator of turn `turn` in round `round` of run `run`: the order rotates with the round
-// (and starts elsewhere in each run), so that no estimator always goes first.
-size_t turnEstimator(size_t turn, int round, int run, size_t n) {
-  return (turn + size_t(round) + size_t(run)) % n;
+// The estimator of turn `turn` in the warm-up and creation of run `run`: the order starts
+// elsewhere in each run, as runInterleaved() starts its rounds.
+size_t turnEstimator(size_t turn, int run, size_t n) {
+  return (turn + size_t(run)) % n;
 }
 
 }  // namespace
@@ -49,26 +49,19 @@ std::vector<CellResult> runEqualTimeCells(const RenderScene& scene, const Compar
       settings.back().quiet = true;  // sessions take turns: one bar each would flicker
     }
     for (size_t turn = 0; turn < n; ++turn) {
-      const size_t e = turnEstimator(turn, 0, run, n);
+      const size_t e = turnEstimator(turn, run, n);
       RenderSession warmup(scene, settings[e]);
       warmup.runFor(warmupSeconds(time_budget));
     }
     // Created in turn order too: the primary rays are on each session's own clock.
     std::vector<std::unique_ptr<RenderSession>> sessions(n);
     for (size_t turn = 0; turn < n; ++turn) {
-      const size_t e = turnEstimator(turn, 0, run, n);
+      const size_t e = turnEstimator(turn, run, n);
       sessions[e] = std::make_unique<RenderSession>(scene, settings[e]);
     }
-    for (int round = 0;; ++round) {
-      bool any = false;
-      for (size_t turn = 0; turn < n; ++turn) {
-        RenderSession& s = *sessions[turnEstimator(turn, round, run, n)];
-        if (s.finished()) continue;
-        s.runFor(sliceSeconds(time_budget));
-        any = true;
-      }
-      if (!any) break;
-    }
+    std::vector<RenderSession*> order;
+    for (const auto& session : sessions) order.push_back(session.get());
+    runInterleaved(order, sliceSeconds(time_budget), size_t(run) % n);
     for (size_t e = 0; e < n; ++e)
       addRun(cells[e], sessions[e]->result(), scene, options, kinds[e], kEqualTimeTable, run, runs);
   }

@@ -369,4 +369,21 @@ RenderResult RenderSession::result() const {
   return result;
 }
 
+std::vector<size_t> runInterleaved(std::span<RenderSession* const> sessions, double slice_seconds,
+                                   size_t first) {
+  std::vector<size_t> turns;
+  const size_t n = sessions.size();
+  for (size_t round = 0;; ++round) {
+    bool any = false;
+    for (size_t turn = 0; turn < n; ++turn) {
+      const size_t i = (first + round + turn) % n;
+      if (sessions[i]->finished()) continue;
+      sessions[i]->runFor(slice_seconds);
+      turns.push_back(i);
+      any = true;
+    }
+    if (!any) return turns;
+  }
+}
+
 }  // namespace proxyvis

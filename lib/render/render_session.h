@@ -9,7 +9,10 @@
 // is bit-identical to render() in one go. Each session has its own clock, which runs only
 // inside its own construction and slices: a time budget (RenderSettings::time_budget) is spent
 // on that clock, and the last pass is fitted to the time it has left, as render() does.
+#include <cstddef>
 #include <memory>
+#include <span>
+#include <vector>
 
 #include "render/renderer.h"
 
@@ -55,5 +58,13 @@ class RenderSession {
   std::unique_ptr<VisibilityEstimator> owned_;
   std::unique_ptr<State> state_;
 };
+
+// Hands the machine to the sessions in turns until every one is finished: each turn is
+// runFor(slice_seconds) of one session, and round r visits the unfinished sessions starting at
+// index (first + r) mod n, so that no session always goes first. With time budgets, each
+// session stops when it has spent its own budget on its own clock. Returns the session index of
+// every turn taken, in order (for tests and logs).
+std::vector<size_t> runInterleaved(std::span<RenderSession* const> sessions, double slice_seconds,
+                                   size_t first = 0);
 
 }  // namespace proxyvis

@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <chrono>
+#include <memory>
 #include <thread>
 
 #include "estimate/roulette.h"
@@ -171,6 +173,43 @@ TEST(RenderSession, ClockCountsOnlyItsOwnSlices) {
   const int passes = session.passes();
   EXPECT_EQ(session.runFor(1.0), 0.0);
   EXPECT_EQ(session.passes(), passes);
+}
+
+TEST(RenderSession, InterleavedTurnsRotateUntilEachSpentItsOwnBudget) {
+  ScratchDir dir;
+  BoxScene b;
+  const auto scene = loadRenderScene(b.write(dir), test::quiet());
+  RenderSettings settings;
+  settings.spp = 0;
+  settings.time_budget = 0.12;
+  settings.quiet = true;
+  std::vector<std::unique_ptr<RenderSession>> owned;
+  std::vector<RenderSession*> sessions;
+  for (int i = 0; i < 3; ++i) {
+    settings.seed = uint64_t(i);
+    owned.push_back(std::make_unique<RenderSession>(*scene, settings));
+    sessions.push_back(owned.back().get());
+  }
+  const Stopwatch wall;
+  const std::vector<size_t> turns = runInterleaved(sessions, 0.01, 1);
+  const double elapsed = wall.seconds();
+  // The first three rounds (about 0.03 s of each 0.12 s budget: nobody is done yet) start at
+  // session 1, 2, 0 and give every session one turn each.
+  ASSERT_GE(turns.size(), 9u);
+  const std::vector<size_t> first_rounds(turns.begin(), turns.begin() + 9);
+  EXPECT_EQ(first_rounds, (std::vector<size_t>{1, 2, 0, 2, 0, 1, 0, 1, 2}));
+  double on_clocks = 0;
+  for (size_t i = 0; i < 3; ++i) {
+    SCOPED_TRACE(i);
+    EXPECT_TRUE(sessions[i]->finished());
+    EXPECT_GE(sessions[i]->seconds(), settings.time_budget);
+    EXPECT_LT(sessions[i]->seconds(), settings.time_budget + 0.2);  // past it by part of a pass
+    EXPECT_GE(std::count(turns.begin(), turns.end(), i), 3);
+    on_clocks += sessions[i]->seconds();
+  }
+  // Each clock ran only in its own turns: together about the wall time of the whole schedule.
+  EXPECT_LT(on_clocks, elapsed + 3 * 0.05);  // + the construction each clock also holds
+  EXPECT_GT(on_clocks, 0.9 * elapsed);
 }
 
 }  // namespace
