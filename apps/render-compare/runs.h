@@ -31,7 +31,7 @@ struct CellResult {
 RenderSettings runSettings(const CompareOptions& options, EstimatorKind kind, int spp,
                            double time_budget, int run);
 
-// Adds run `run` (of `runs`) to the cell; `table` and `label` only name it on stderr.
+// Adds run `run` (of `runs`) to the cell; `table` only names it on stderr.
 void addRun(CellResult& cell, RenderResult r, const RenderScene& scene,
             const CompareOptions& options, EstimatorKind kind, std::string_view table, int run,
             int runs);
