@@ -114,6 +114,8 @@ Report makeReport(const CompareOptions& o, const RenderScene& scene, const Refer
   report.meta["spp"] = listText(o.spp_list);
   report.meta["equal_time_seconds"] = o.equal_time;
   report.meta["seeds"] = o.seeds;
+  report.meta["repeats"] = o.repeats;
+  report.meta["timing"] = interleavedTimingMeta(o);
   report.meta["seed"] = o.common.seed;
   report.meta["threads"] =
       tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
@@ -130,6 +132,7 @@ Report makeReport(const CompareOptions& o, const RenderScene& scene, const Refer
   report.meta["relmse_epsilon"] = kRelMseEpsilon;
   addProxyTrust(report, trust);
   for (const std::string& w : scene.warnings()) report.notes.push_back("Scene: " + w);
+  if (o.equal_time > 0) report.notes.push_back(interleavedTimingNote(o));
   if (!scene.usesProxies()) report.notes.push_back(std::string("Warning: ") + kNoProxiesNote + ".");
   // docs/design.md, costs point 2: the exact baseline should be the fastest exact configuration.
   const bool flat = scene.instancesFlattened() || desc.instances.empty();
@@ -178,16 +181,16 @@ int runCompare(CompareOptions& o) {
   // Cells in table order; the stems name their images.
   std::vector<CellResult> cells;
   std::vector<std::string> stems;
-  for (int spp : o.spp_list)
-    for (EstimatorKind kind : o.estimator_list) {
-      cells.push_back(runCell(*scene, o, kind, spp, 0, kEqualSppTable));
+  for (int spp : o.spp_list) {
+    for (CellResult& c : runEqualSppCells(*scene, o, spp)) cells.push_back(std::move(c));
+    for (EstimatorKind kind : o.estimator_list)
       stems.push_back(fmt::format("{}_{}", estimatorName(kind), spp));
-    }
-  if (o.equal_time > 0)
-    for (EstimatorKind kind : o.estimator_list) {
-      cells.push_back(runCell(*scene, o, kind, 0, o.equal_time, kEqualTimeTable));
+  }
+  if (o.equal_time > 0) {
+    for (CellResult& c : runEqualTimeCells(*scene, o, o.equal_time)) cells.push_back(std::move(c));
+    for (EstimatorKind kind : o.estimator_list)
       stems.push_back(fmt::format("{}_equal-time", estimatorName(kind)));
-    }
+  }
   int largest_spp = 0;
   for (const CellResult& c : cells) largest_spp = std::max(largest_spp, c.row.spp_max);
 

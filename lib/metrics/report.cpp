@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "metrics/efficiency.h"
+#include "metrics/efficiency_spread.h"
 #include "metrics/image_error.h"
 
 namespace proxyvis {
@@ -64,6 +65,7 @@ void fillRelativeEfficiency(std::vector<ReportRow>& rows, std::string_view table
     if (r.table != table) continue;
     const ReportRow* b = findBaseline(copy, table, baseline, r.spp);
     r.efficiency = b ? relativeEfficiency(r.mse, r.seconds, b->mse, b->seconds) : 0;
+    if (b) fillEfficiencySpread(r, *b);
   }
 }
 
@@ -95,6 +97,7 @@ nlohmann::json rowToJson(const ReportRow& r) {
     j["time_budget"] = r.time_budget;
     j["budget_overshoot_seconds"] = r.budget_overshoot_seconds;
   }
+  addEfficiencySpreadKeys(j, r);
   if (r.learned) j["learned"] = learnedToJson(*r.learned);
   return j;
 }
@@ -133,8 +136,7 @@ std::string markdownTable(const std::vector<ReportRow>& rows, std::string_view t
     double px = r.pixels > 0 ? r.pixels : 1;
     out += fmt::format("| {} | {:.1f} | {:.3f} | {} | {} | {} | {:.1f} | {:.1f} | {:.1f} |\n",
                        r.estimator, r.spp, r.seconds, formatValueWithError(r.mse, r.mse_stderr),
-                       formatValueWithError(r.relmse, r.relmse_stderr),
-                       r.efficiency > 0 ? fmt::format("{:.2f}×", r.efficiency) : "n/a",
+                       formatValueWithError(r.relmse, r.relmse_stderr), efficiencyText(r),
                        r.rays.proxy / px, r.rays.original / px, r.rays.probe / px);
   }
   return out;
@@ -147,8 +149,9 @@ std::string reportToMarkdown(const Report& report) {
   if (!report.notes.empty()) out += "\n";
   out += fmt::format(
       "MSE over pixels and RGB in linear radiance; relMSE = mean((I−I_ref)²/(I_ref²+ε)), "
-      "ε = {:g}; efficiency = 1/(MSE·time) relative to `exact` of the same table; ± is the "
-      "standard error over seeds.\n",
+      "ε = {:g}; efficiency = 1/(MSE·time) relative to `exact` of the same table, "
+      "[lowest–highest, s.e.] of the same ratio run by run against exact's run with the same seed; "
+      "± is the standard error over seeds.\n",
       kRelMseEpsilon);
   for (std::string_view table : {kEqualSppTable, kEqualTimeTable}) {
     bool any = false;

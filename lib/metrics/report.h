@@ -49,7 +49,12 @@ struct ReportRow {
   double time_budget = 0;         // equal-time budget per render; 0 (not written) for equal-spp
   double budget_overshoot_seconds = 0;  // seconds - time_budget (written with time_budget)
   std::string proxy_class;              // the class the estimators relied on ("outside", ...)
-  std::vector<double> mse_per_seed;
+  std::vector<double> mse_per_seed;     // one per run: seed k of repeat r at r * seeds + k
+  // Run-to-run spread (metrics/efficiency_spread.h): the seconds of each run (same order), the
+  // efficiency of each run against the baseline's run of the same seed and repeat.
+  std::vector<double> seconds_per_seed, efficiency_per_seed;
+  double cpu_seconds = 0;  // process CPU time per render (mean over runs)
+  int repeats = 1;         // equal-time schedule repeats (--repeats): seeds x repeats runs
   std::optional<ReportLearned> learned;  // roulette rows only
 };
 
