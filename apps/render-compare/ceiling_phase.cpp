@@ -1,7 +1,5 @@
 #include "ceiling_phase.h"
 
-#include <tbb/task_arena.h>
-
 #include <cstdio>
 
 #include "estimate/ceiling.h"
@@ -23,8 +21,10 @@ constexpr const char* kModel =
     "of f·V (f = the sample's unoccluded contribution, radiance × cosines / pdf) and picks exact "
     "or roulette with its optimal q, which adds f²·(1/q − 1) per error; ceiling = Var × time of "
     "exact over that of the oracle, summed over regions. Simplifications: rays are timed one by "
-    "one in this phase, not inside the renders; c_s (shading, light sampling, accumulation, from "
-    "the exact renders) is one number for all regions; learning, probes and bookkeeping of real "
+    "one in this phase, not inside the renders; c_s (primary rays and light sampling) is the exact "
+    "renders' shading time priced at what their visibility time bought (their accumulation left "
+    "out, so c_s is a little low and the ceiling a little high) and one number for all regions; "
+    "learning, probes and bookkeeping of real "
     "estimators are not counted; variances and error rates come from the passes above.";
 
 ReportCeilingLight toReport(const std::string& name, const CeilingSummary& s) {
@@ -69,8 +69,7 @@ ReportCeiling runCeilingPhase(const RenderScene& scene, const CompareOptions& o,
     own = render(scene, settings);
     exact.push_back(&own);
   }
-  const double threads = double(tbb::this_task_arena::max_concurrency());
-  const double c_s = shadingNsPerSegment(exact, threads, m);
+  const double c_s = shadingNsPerSegment(exact, m);
   const CeilingResult result = computeCeiling(ceilingInput(scene, m, c_s, o.render.q_min));
 
   ReportCeiling c;

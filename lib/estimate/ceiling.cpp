@@ -44,8 +44,8 @@ Totals oracleTotals(const std::vector<RegionOptions>& options, double fixed_var)
   const Totals exact = totalsOf(options, choice, fixed_var);
   for (size_t i = 0; i < options.size(); ++i) {
     const RegionOptions& o = options[i];
-    choice[i] = o.roulette_possible &&
-                o.var_roulette * o.cost_roulette < o.var_exact * o.cost_exact;
+    choice[i] =
+        o.roulette_possible && o.var_roulette * o.cost_roulette < o.var_exact * o.cost_exact;
   }
   Totals current = totalsOf(options, choice, fixed_var);
   Totals best = current.product() < exact.product() ? current : exact;
@@ -54,10 +54,9 @@ Totals oracleTotals(const std::vector<RegionOptions>& options, double fixed_var)
     for (size_t i = 0; i < options.size(); ++i) {
       const RegionOptions& o = options[i];
       // d(V C) ~ C dV + V dC: the region's share of the product at the current totals.
-      const bool use = o.roulette_possible && o.var_roulette * current.cost +
-                                                      o.cost_roulette * current.var <
-                                                  o.var_exact * current.cost +
-                                                      o.cost_exact * current.var;
+      const bool use =
+          o.roulette_possible && o.var_roulette * current.cost + o.cost_roulette * current.var <
+                                     o.var_exact * current.cost + o.cost_exact * current.var;
       changed = changed || use != bool(choice[i]);
       choice[i] = use;
     }
@@ -120,7 +119,9 @@ CeilingSummary summarise(const std::vector<const CeilingRegionStats*>& regions,
   return s;
 }
 
-std::string ns(double v) { return fmt::format("{:.0f} ns", v); }
+std::string ns(double v) {
+  return fmt::format("{:.0f} ns", v);
+}
 
 }  // namespace
 
@@ -176,7 +177,8 @@ CeilingResult computeCeiling(const CeilingInput& in) {
 
   CeilingResult result;
   std::vector<const CeilingRegionStats*> every;
-  std::vector<std::vector<const CeilingRegionStats*>> by_light(std::max<uint32_t>(1, in.num_lights));
+  std::vector<std::vector<const CeilingRegionStats*>> by_light(
+      std::max<uint32_t>(1, in.num_lights));
   for (const CeilingRegionStats& r : in.regions) {
     every.push_back(&r);
     if (r.light < by_light.size()) by_light[r.light].push_back(&r);
@@ -218,9 +220,9 @@ std::string explainCeiling(const CeilingSummary& s, bool uses_proxies) {
     limits.push_back(fmt::format(
         "Shading costs {:.0f} % of each sample, which caps any visibility gain at {:.1f}x.",
         100 * shading_share, 1 / shading_share));
-  const std::string summary =
-      fmt::format("An oracle choosing per region uses roulette in {} of {} regions: ceiling {:.3f}x.",
-                  s.regions_roulette, s.regions, s.ceiling);
+  const std::string summary = fmt::format(
+      "An oracle choosing per region uses roulette in {} of {} regions: ceiling {:.3f}x.",
+      s.regions_roulette, s.regions, s.ceiling);
   if (limits.empty())
     limits.push_back(fmt::format(
         "The proxy is cheaper where it says visible (c_p|1 = {} vs c_o|1 = {}) and its errors "

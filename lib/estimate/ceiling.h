@@ -24,9 +24,9 @@ struct CeilingRegionStats {
   double visibility_var = 0;  // sum over segments of the pixel's V_p(1-V_p) (unweighted)
   // MSE-weighted: f is the sample's unoccluded contribution (radiance x cosines / pdf), f^2 the
   // mean of its squared RGB channels.
-  double var_fv = 0;       // sum over samples of each one's share of its pixel's Var[f V]
-  double f2_mh = 0;        // sum of f^2 over MH' segments: roulette's added variance per 1/q0 - 1
-  double f2_hm = 0;        // sum of f^2 over HM' segments: per 1/q1 - 1
+  double var_fv = 0;  // sum over samples of each one's share of its pixel's Var[f V]
+  double f2_mh = 0;   // sum of f^2 over MH' segments: roulette's added variance per 1/q0 - 1
+  double f2_hm = 0;   // sum of f^2 over HM' segments: per 1/q1 - 1
   double cost_proxy[2] = {0, 0};     // total ns of proxy rays on segments with V' = 0, 1
   double cost_original[2] = {0, 0};  // total ns of original rays on segments with V' = 0, 1
 };

@@ -8,10 +8,9 @@ namespace proxyvis {
 
 namespace {
 
-constexpr const char* kColumns[] = {"light",     "segments", "P(V'=0)", "P(MH')",
-                                    "P(HM')",    "V(1-V)",   "c_p|0",   "c_p|1",
-                                    "c_o|0",     "c_o|1",    "c_s",     "roulette regions",
-                                    "ceiling"};
+constexpr const char* kColumns[] = {
+    "light", "segments", "P(V'=0)", "P(MH')", "P(HM')",           "V(1-V)", "c_p|0",
+    "c_p|1", "c_o|0",    "c_o|1",   "c_s",    "roulette regions", "ceiling"};
 
 // The cells of one table line, formatted (costs in ns).
 std::vector<std::string> cells(const ReportCeilingLight& l) {
@@ -54,10 +53,10 @@ nlohmann::json ceilingToJson(const ReportCeiling& c) {
                       {"regions", l.regions},
                       {"regions_roulette", l.regions_roulette},
                       {"ceiling", l.ceiling}});
-  return {{"value", c.value},         {"explanation", c.explanation},
-          {"model", c.model},         {"passes", c.passes},
-          {"seconds", c.seconds},     {"run_share", c.run_share},
-          {"cost_unit", "ns"},        {"lights", lights}};
+  return {{"value", c.value},     {"explanation", c.explanation},
+          {"model", c.model},     {"passes", c.passes},
+          {"seconds", c.seconds}, {"run_share", c.run_share},
+          {"cost_unit", "ns"},    {"lights", lights}};
 }
 
 std::string ceilingMarkdown(const ReportCeiling& c) {

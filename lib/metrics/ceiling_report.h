@@ -14,8 +14,8 @@ namespace proxyvis {
 struct ReportCeilingLight {
   std::string light;  // "0", "1", ... or "all"
   double segments = 0;
-  double p_blocked = 0, p_mh = 0, p_hm = 0;  // P(V'=0), P(MH'), P(HM')
-  double visibility_var = 0;                 // mean V_p(1-V_p)
+  double p_blocked = 0, p_mh = 0, p_hm = 0;                  // P(V'=0), P(MH'), P(HM')
+  double visibility_var = 0;                                 // mean V_p(1-V_p)
   double cost_proxy[2] = {0, 0}, cost_original[2] = {0, 0};  // ns per ray given V' = 0, 1
   double cost_shading = 0;                                   // c_s, ns per sample
   int regions = 0, regions_roulette = 0;

@@ -14,10 +14,13 @@ namespace proxyvis {
 struct CeilingMeasurement {
   std::vector<CeilingRegionStats> regions;  // index = the renderer's learning region
   uint32_t num_lights = 1;
-  int passes = 0;             // passes traced (each one light sample per pixel)
-  double seconds = 0;         // wall time of the measurement
-  double ticks_per_ns = 1;    // the tick counter's rate, calibrated over the measurement
-  uint64_t segments = 0;      // shadow segments traced (each against proxy and original)
+  int passes = 0;           // passes traced (each one light sample per pixel)
+  double seconds = 0;       // wall time of the measurement
+  double ticks_per_ns = 1;  // the tick counter's rate, calibrated over the measurement
+  // Process CPU seconds per wall second while tracing: the cores this process actually got
+  // (below the thread count on a shared machine, where wall time x threads overstates CPU time).
+  double cpu_per_wall = 1;
+  uint64_t segments = 0;  // shadow segments traced (each against proxy and original)
 };
 
 // Traces passes 0, 1, ... of settings.seed (settings.tile_size sets the regions) until
@@ -27,11 +30,14 @@ struct CeilingMeasurement {
 CeilingMeasurement measureCeilingStats(const RenderScene& scene, const RenderSettings& settings,
                                        int max_passes, double max_seconds);
 
-// c_s in CPU ns per shadow segment, from exact renders of the same scene (at least one): their
-// shading time (primary rays, light sampling) plus the part of their visibility time that the
-// measured original-ray cost does not explain (estimator calls, accumulation), times the threads
-// that ran them, over their shadow segments. The unit of the renderer's own per-sample cost.
-double shadingNsPerSegment(const std::vector<const RenderResult*>& exact_renders, double threads,
+// c_s in ns per shadow segment (the unit of the measured ray costs), from exact renders of the
+// same scene (at least one): their shading time (primary rays, light sampling) priced at what
+// their visibility time bought, c_s = c_o x shading_seconds / visibility_seconds, with c_o the
+// measured mean original-ray cost. A ratio of two phases of the same renders, it holds on a
+// loaded machine where wall time x threads would not be CPU time. The visibility phase is taken
+// as its rays alone, so its accumulation is not in c_s (c_s a little low, the ceiling a little
+// high).
+double shadingNsPerSegment(const std::vector<const RenderResult*>& exact_renders,
                            const CeilingMeasurement& m);
 
 // The ceiling's input from a measurement, the scene's verified proxy class and c_s.

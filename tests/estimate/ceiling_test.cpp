@@ -124,8 +124,8 @@ TEST(Ceiling, NeverBelowOne) {
 
 int sentences(const std::string& text) {
   static const std::regex kEnd(R"(\.( |$))");
-  return int(std::distance(std::sregex_iterator(text.begin(), text.end(), kEnd),
-                           std::sregex_iterator()));
+  return int(
+      std::distance(std::sregex_iterator(text.begin(), text.end(), kEnd), std::sregex_iterator()));
 }
 
 // A scene summary where no rule fires: cheap proxy, rare errors, small shading share.
