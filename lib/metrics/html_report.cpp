@@ -160,8 +160,8 @@ std::string htmlTable(const std::vector<ReportRow>& rows, std::string_view table
   std::string out =
       "<div class=\"scroll\"><table class=\"rows\"><tr><th>estimator</th><th>samples per "
       "pixel</th><th>time (s)</th><th>MSE</th><th>± s.e.</th><th>relMSE</th><th>± s.e.</th>"
-      "<th>efficiency vs exact</th><th>of ceiling</th><th>rays/px proxy</th><th>rays/px original</th>"
-      "<th>rays/px probe</th><th>seeds</th></tr>\n";
+      "<th>efficiency vs exact</th><th>of ceiling</th><th>rays/px proxy</th>"
+      "<th>rays/px original</th><th>rays/px probe</th><th>seeds</th></tr>\n";
   for (const ReportRow& r : rows) {
     if (r.table != table) continue;
     double px = r.pixels > 0 ? r.pixels : 1;
@@ -172,8 +172,7 @@ std::string htmlTable(const std::vector<ReportRow>& rows, std::string_view table
         escapeHtml(r.estimator), r.spp, r.seconds, r.mse, r.mse_stderr, r.relmse, r.relmse_stderr,
         r.efficiency == best && best > 0 ? " class=\"best\"" : "",
         r.efficiency > 0 ? fmt::format("{:.2f}×", r.efficiency) : "n/a", ofCeilingText(r),
-        r.rays.proxy / px,
-        r.rays.original / px, r.rays.probe / px, r.seeds);
+        r.rays.proxy / px, r.rays.original / px, r.rays.probe / px, r.seeds);
   }
   return out + "</table></div>\n";
 }

@@ -103,7 +103,7 @@ nlohmann::json rowToJson(const ReportRow& r) {
   if (r.learned) j["learned"] = learnedToJson(*r.learned);
   j["ceiling"] = r.ceiling > 0 ? nlohmann::json(r.ceiling) : nlohmann::json();
   j["of_ceiling"] = r.ceiling > 0 && r.efficiency > 0 ? nlohmann::json(r.efficiency / r.ceiling)
-                                                       : nlohmann::json();
+                                                      : nlohmann::json();
   return j;
 }
 
@@ -141,12 +141,12 @@ std::string markdownTable(const std::vector<ReportRow>& rows, std::string_view t
   for (const ReportRow& r : rows) {
     if (!table.empty() && r.table != table) continue;
     double px = r.pixels > 0 ? r.pixels : 1;
-    out += fmt::format("| {} | {:.1f} | {:.3f} | {} | {} | {} | {} | {:.1f} | {:.1f} | {:.1f} |\n",
-                       r.estimator, r.spp, r.seconds, formatValueWithError(r.mse, r.mse_stderr),
-                       formatValueWithError(r.relmse, r.relmse_stderr),
-                       r.efficiency > 0 ? fmt::format("{:.2f}×", r.efficiency) : "n/a",
-                       ofCeilingText(r), r.rays.proxy / px, r.rays.original / px,
-                       r.rays.probe / px);
+    out +=
+        fmt::format("| {} | {:.1f} | {:.3f} | {} | {} | {} | {} | {:.1f} | {:.1f} | {:.1f} |\n",
+                    r.estimator, r.spp, r.seconds, formatValueWithError(r.mse, r.mse_stderr),
+                    formatValueWithError(r.relmse, r.relmse_stderr),
+                    r.efficiency > 0 ? fmt::format("{:.2f}×", r.efficiency) : "n/a",
+                    ofCeilingText(r), r.rays.proxy / px, r.rays.original / px, r.rays.probe / px);
   }
   return out;
 }
