@@ -36,6 +36,16 @@ std::string measuredText(const ReportCeiling& c) {
       c.passes, c.seconds, 100 * c.run_share);
 }
 
+// A Markdown table cell: '|' would end it.
+std::string markdownCell(const std::string& text) {
+  std::string out;
+  for (char ch : text) {
+    if (ch == '|') out += '\\';
+    out += ch;
+  }
+  return out;
+}
+
 }  // namespace
 
 nlohmann::json ceilingToJson(const ReportCeiling& c) {
@@ -62,11 +72,14 @@ nlohmann::json ceilingToJson(const ReportCeiling& c) {
 std::string ceilingMarkdown(const ReportCeiling& c) {
   std::string out = fmt::format("\n## Ceiling: {:.3f}× exact\n\n{}\n\n", c.value, c.explanation);
   std::string header = "|", rule = "|";
-  for (const char* col : kColumns) header += fmt::format(" {} |", col), rule += "---|";
+  for (const char* col : kColumns) {
+    header += fmt::format(" {} |", markdownCell(col));
+    rule += rule == "|" ? "---|" : "---:|";  // the light's name left, numbers right
+  }
   out += header + "\n" + rule + "\n";
   for (const ReportCeilingLight& l : c.lights) {
     out += "|";
-    for (const std::string& cell : cells(l)) out += " " + cell + " |";
+    for (const std::string& cell : cells(l)) out += fmt::format(" {} |", markdownCell(cell));
     out += "\n";
   }
   return out + "\n" + measuredText(c) + " " + c.model + "\n";
