@@ -10,6 +10,7 @@
 #include <fstream>
 #include <limits>
 
+#include "ceiling_phase.h"
 #include "compare_options.h"
 #include "metrics/html_report.h"
 #include "metrics/image_error.h"
@@ -191,6 +192,8 @@ int runCompare(CompareOptions& o) {
     for (EstimatorKind kind : o.estimator_list)
       stems.push_back(fmt::format("{}_equal-time", estimatorName(kind)));
   }
+  // The attainable gain, from this run's own measurements (docs/performance.md, the ceiling).
+  const ReportCeiling ceiling = runCeilingPhase(*scene, o, cells);
   int largest_spp = 0;
   for (const CellResult& c : cells) largest_spp = std::max(largest_spp, c.row.spp_max);
 
@@ -207,6 +210,7 @@ int runCompare(CompareOptions& o) {
   for (const CellResult& c : cells) report.rows.push_back(c.row);
   fillRelativeEfficiency(report.rows, kEqualSppTable);
   fillRelativeEfficiency(report.rows, kEqualTimeTable);
+  applyCeiling(report, ceiling);
   if (std::find(o.estimator_list.begin(), o.estimator_list.end(), EstimatorKind::kExact) ==
       o.estimator_list.end())
     report.notes.push_back(
