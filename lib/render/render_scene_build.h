@@ -1,0 +1,46 @@
+#pragma once
+// How a scene's instances are traced: as Embree instances of one BVH per mesh, or flattened
+// (every instance's triangles copied into one BVH, originals and proxies alike). Flattened
+// tracing is faster wherever there are instances (docs/design.md, measured costs: ecosys 78 ns
+// flattened vs 140 ns instanced per shadow ray) but costs the memory of every instance's
+// triangles; `auto` flattens when the estimated bytes of the flattened Embree scenes fit a memory
+// budget (docs/rendering.md, "BVH build").
+#include <cstdint>
+#include <string>
+
+namespace proxyvis {
+
+enum class InstanceBuild { kInstanced, kFlat, kAuto };
+
+// Bytes Embree allocates per flattened triangle (vertex and index buffers plus the BVH with
+// spatial splits, RTC_BUILD_QUALITY_HIGH), at its peak during the build, as measured with the
+// device's memory monitor on the ecosys plants (bench_scene_build; docs/rendering.md).
+inline constexpr double kFlatBytesPerTriangle = 140;
+// The default budget: the smaller of this and half the memory the process may use.
+inline constexpr double kMaxDefaultBudgetBytes = 4.0 * (1ull << 30);
+
+// Physical memory, or the cgroup's memory limit when one is set and smaller (cgroup v2
+// memory.max, v1 memory.limit_in_bytes); 0 if unknown.
+uint64_t availableMemoryBytes();
+// min(kMaxDefaultBudgetBytes, availableMemoryBytes() / 2).
+double defaultMemoryBudgetBytes();
+
+struct BuildChoice {
+  bool flat = false;  // instances flattened (or there are none)
+  bool has_instances = false;
+  uint64_t flat_triangles = 0;  // triangles of the flattened scenes (originals + proxies)
+  double estimated_bytes = 0;   // kFlatBytesPerTriangle x flat_triangles
+  double budget_bytes = 0;      // the budget `auto` compared against (0 unless auto)
+  std::string reason;           // one sentence: why this build
+
+  const char* name() const { return flat ? "flat" : "instanced"; }
+  // "flattened BVH (12.2 M triangles, ~1.7 GB est.)" or "instanced BVHs (...)".
+  std::string description() const;
+};
+
+// The decision for a scene whose flattened Embree scenes would hold `flat_triangles` triangles.
+// A budget < 0 means defaultMemoryBudgetBytes().
+BuildChoice chooseBuild(InstanceBuild mode, bool has_instances, uint64_t flat_triangles,
+                        double budget_bytes);
+
+}  // namespace proxyvis
