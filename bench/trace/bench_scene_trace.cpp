@@ -2,8 +2,8 @@
 // bytes Embree allocated (its memory monitor: peak and after the build) per flattened triangle,
 // and the shadow-ray cost on the renderer's own segments (primary hits to light samples, as
 // render() draws them), in ns of CPU time per ray and ns of wall time per ray at the run's
-// threads. The bytes per triangle is the constant of --build auto's memory estimate
-// (lib/render/render_scene_build.h).
+// threads, with the builds' repetitions interleaved. The bytes per triangle is the constant of
+// --build auto's memory estimate (lib/render/render_scene_build.h).
 //
 //   build/bin/bench_scene_trace scenes/ecosys.json [--passes 8] [--threads 2] [--builds
 //   flat,instanced]
@@ -12,6 +12,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <ctime>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -32,38 +33,51 @@ double cpuSeconds() {
   return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
 }
 
-void measure(const std::string& scene_file, pv::InstanceBuild build, const char* name, int passes,
-             int reps) {
+struct Loaded {
+  const char* name;
+  std::unique_ptr<pv::RenderScene> scene;
+  double load_seconds = 0;
+  std::vector<pv::Segment> segs;
+  double best_cpu = 1e30, best_wall = 1e30;
+  uint64_t blocked = 0;
+};
+
+Loaded load(const std::string& scene_file, pv::InstanceBuild build, const char* name, int passes) {
   pv::RenderSceneOptions options;
   options.instance_build = build;
   options.quiet = true;
-  const pv::Stopwatch load;
-  const auto scene = pv::loadRenderScene(scene_file, options);
-  const double load_s = load.seconds();
-  const pv::TraceDevice& device = scene->device();
-  const uint64_t flat = scene->buildChoice().flat_triangles;
-  std::vector<pv::Segment> segs;
+  Loaded l;
+  l.name = name;
+  const pv::Stopwatch watch;
+  l.scene = pv::loadRenderScene(scene_file, options);
+  l.load_seconds = watch.seconds();
   pv::RenderSettings settings;
   for (int p = 0; p < passes; ++p) {
-    pv::PassSegments ps = pv::passSegments(*scene, settings, p);
-    segs.insert(segs.end(), ps.segments.begin(), ps.segments.end());
+    pv::PassSegments ps = pv::passSegments(*l.scene, settings, p);
+    l.segs.insert(l.segs.end(), ps.segments.begin(), ps.segments.end());
   }
-  std::vector<uint8_t> out(segs.size());
-  double best_cpu = 1e30, best_wall = 1e30;
-  for (int r = 0; r < reps; ++r) {
-    const double c0 = cpuSeconds();
-    const pv::Stopwatch wall;
-    scene->originals().occluded(segs, out);
-    best_wall = std::min(best_wall, wall.seconds());
-    best_cpu = std::min(best_cpu, cpuSeconds() - c0);
-  }
-  uint64_t blocked = 0;
-  for (uint8_t o : out) blocked += o;
-  std::printf("| %s | %.1f | %.1f | %.0f | %.0f | %.0f | %zu | %.2f | %.1f | %.1f |\n", name,
-              double(flat) / 1e6, load_s, double(device.peakBytes()) / 1e6,
+  return l;
+}
+
+void traceOnce(Loaded& l) {
+  std::vector<uint8_t> out(l.segs.size());
+  const double c0 = cpuSeconds();
+  const pv::Stopwatch wall;
+  l.scene->originals().occluded(l.segs, out);
+  l.best_wall = std::min(l.best_wall, wall.seconds());
+  l.best_cpu = std::min(l.best_cpu, cpuSeconds() - c0);
+  l.blocked = 0;
+  for (uint8_t o : out) l.blocked += o;
+}
+
+void print(const Loaded& l) {
+  const pv::TraceDevice& device = l.scene->device();
+  const uint64_t flat = l.scene->buildChoice().flat_triangles;
+  const double n = double(l.segs.size());
+  std::printf("| %s | %.2f | %.1f | %.0f | %.0f | %.0f | %zu | %.2f | %.1f | %.1f |\n", l.name,
+              double(flat) / 1e6, l.load_seconds, double(device.peakBytes()) / 1e6,
               double(device.bytesInUse()) / 1e6, double(device.peakBytes()) / double(flat),
-              segs.size(), double(blocked) / double(segs.size()),
-              1e9 * best_cpu / double(segs.size()), 1e9 * best_wall / double(segs.size()));
+              l.segs.size(), double(l.blocked) / n, 1e9 * l.best_cpu / n, 1e9 * l.best_wall / n);
 }
 
 }  // namespace
@@ -88,14 +102,20 @@ int main(int argc, char** argv) {
       "| peak bytes / flattened triangle | segments | blocked | ns CPU / ray | ns wall / ray |\n"
       "|---|---|---|---|---|---|---|---|---|---|\n");
   try {
+    std::vector<Loaded> loaded;
     for (const std::string& b : pv::splitCommaList(builds)) {
       if (b == "instanced")
-        measure(scene, pv::InstanceBuild::kInstanced, "instanced", passes, reps);
+        loaded.push_back(load(scene, pv::InstanceBuild::kInstanced, "instanced", passes));
       else if (b == "flat")
-        measure(scene, pv::InstanceBuild::kFlat, "flat", passes, reps);
+        loaded.push_back(load(scene, pv::InstanceBuild::kFlat, "flat", passes));
       else
         throw pv::Error({}, "--builds: unknown build '" + b + "'", "", "instanced or flat");
     }
+    // Interleaved repetitions (A B A B ...), the best of each: a machine whose load changes
+    // during the run then affects every build alike.
+    for (int r = 0; r < reps; ++r)
+      for (Loaded& l : loaded) traceOnce(l);
+    for (const Loaded& l : loaded) print(l);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_scene_trace: error: %s\n", e.what());
     return 2;
