@@ -56,9 +56,10 @@ double defaultMemoryBudgetBytes() {
 }
 
 std::string BuildChoice::description() const {
-  return fmt::format("{} ({} triangles flattened, ~{} est.)",
-                     flat ? "flattened BVH" : "instanced BVHs", millions(flat_triangles),
-                     gigabytes(estimated_bytes));
+  const std::string size =
+      fmt::format("{} triangles, ~{} est.", millions(flat_triangles), gigabytes(estimated_bytes));
+  if (!has_instances) return "one BVH of the placed meshes (" + size + ")";
+  return flat ? "flattened BVH (" + size + ")" : "instanced BVHs (flattened: " + size + ")";
 }
 
 BuildChoice chooseBuild(InstanceBuild mode, bool has_instances, uint64_t flat_triangles,
@@ -84,8 +85,8 @@ BuildChoice chooseBuild(InstanceBuild mode, bool has_instances, uint64_t flat_tr
   c.budget_bytes = budget_bytes < 0 ? defaultMemoryBudgetBytes() : budget_bytes;
   c.flat = c.estimated_bytes <= c.budget_bytes;
   c.reason = c.flat ? fmt::format(
-                          "--build auto: flattened tracing is faster and its ~{} fit the memory "
-                          "budget of {} (--memory-budget)",
+                          "--build auto: flattened tracing is expected faster and its ~{} fit the "
+                          "memory budget of {} (--memory-budget)",
                           gigabytes(c.estimated_bytes), gibibytes(c.budget_bytes))
                     : fmt::format(
                           "--build auto: flattening would need ~{}, over the memory budget of {} "
