@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -198,6 +199,28 @@ TEST(EcosysScene, SelfShadowingIgnoresOnlyTheOwnProxyInBothBuilds) {
     EXPECT_GT(checked_up - clear, 0u);
     EXPECT_GT(through_other, 50u);
   }
+}
+
+// The framing its description promises: no primary ray misses (a miss is a black, wasted pixel)
+// and most pixels see plants.
+TEST(EcosysScene, CameraSeesNoSkyAndMostlyPlants) {
+  const auto scene = loadRenderScene(kEcosys, test::quiet());
+  const Camera& camera = scene->camera();
+  uint64_t misses = 0, plants = 0, total = 0;
+  for (int y = 0; y < camera.height(); ++y)
+    for (int x = 0; x < camera.width(); ++x) {
+      Segment ray;
+      ray.org = camera.eye();
+      ray.dir = normalize(camera.direction(float(x) + 0.5f, float(y) + 0.5f));
+      ray.tnear = 0;
+      ray.tfar = std::numeric_limits<float>::infinity();
+      const Hit hit = scene->originals().intersect(ray);
+      ++total;
+      misses += !hit.hit;
+      plants += hit.hit && scene->objects()[hit.user_id].instance >= 0;
+    }
+  EXPECT_EQ(misses, 0u);
+  EXPECT_GT(double(plants) / double(total), 0.5) << plants << " of " << total;
 }
 
 TEST(EcosysScene, SmallRenderIsTheSameAtOneAndTwoThreads) {
