@@ -202,7 +202,7 @@ TEST(EcosysScene, SelfShadowingIgnoresOnlyTheOwnProxyInBothBuilds) {
 }
 
 // The framing its description promises: no primary ray misses (a miss is a black, wasted pixel)
-// and most pixels see plants.
+// and most pixels see plants (58 % at the scene's 160 x 90).
 TEST(EcosysScene, CameraSeesNoSkyAndMostlyPlants) {
   const auto scene = loadRenderScene(kEcosys, test::quiet());
   const Camera& camera = scene->camera();
