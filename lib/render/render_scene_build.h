@@ -1,10 +1,10 @@
 #pragma once
 // How a scene's instances are traced: as Embree instances of one BVH per mesh, or flattened
 // (every instance's triangles copied into one BVH, originals and proxies alike). Flattened
-// tracing is faster wherever there are instances (docs/design.md, measured costs: ecosys 78 ns
-// flattened vs 140 ns instanced per shadow ray) but costs the memory of every instance's
-// triangles; `auto` flattens when the estimated bytes of the flattened Embree scenes fit a memory
-// budget (docs/rendering.md, "BVH build").
+// tracing is expected to be faster wherever there are instances (earlier measurements: ecosys 78
+// ns flattened vs 140 ns instanced per shadow ray; on a loaded shared machine it was not:
+// docs/rendering.md, "BVH build") but costs the memory of every instance's triangles; `auto`
+// flattens when the estimated bytes of the flattened Embree scenes fit a memory budget.
 #include <cstdint>
 #include <string>
 
