@@ -135,19 +135,11 @@ Report makeReport(const CompareOptions& o, const RenderScene& scene, const Refer
   for (const std::string& w : scene.warnings()) report.notes.push_back("Scene: " + w);
   if (o.equal_time > 0) report.notes.push_back(interleavedTimingNote(o));
   if (!scene.usesProxies()) report.notes.push_back(std::string("Warning: ") + kNoProxiesNote + ".");
-  // docs/design.md, costs point 2: the exact baseline should be the fastest exact configuration.
-  const bool flat = scene.instancesFlattened() || desc.instances.empty();
-  report.meta["scene_build"] = flat ? "flat" : "instanced";
-  report.notes.push_back(
-      desc.instances.empty()
-          ? "Exact baseline: every mesh is flattened into one BVH (no instances), the fastest "
-            "exact configuration."
-      : flat
-          ? "Exact baseline: every instance is flattened into one BVH (--build), the fastest "
-            "exact configuration where it fits in memory (docs/design.md, costs point 2); proxies "
-            "likewise. --build instanced gives the instanced tables."
-          : "Exact baseline: instanced meshes are traced as Embree instances (--build); "
-            "--build flat gives the flattened tables (faster where they fit in memory).");
+  // The exact baseline should be the fastest exact configuration that fits in memory: say which.
+  const BuildChoice& build = scene.buildChoice();
+  report.meta["build"] = build.name();
+  report.meta["build_reason"] = build.reason;
+  report.notes.push_back("Exact baseline: " + build.description() + ": " + build.reason + ".");
   report.notes.push_back(
       o.render.fixed_costs
           ? "roulette uses the fixed costs of --roulette-costs: bit-reproducible."

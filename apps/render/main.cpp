@@ -97,8 +97,12 @@ int runRender(RenderOptions& o) {
     write.attributes.push_back({"proxyvis:exposure", write.exposure});
   }
   RenderRun run{
-      estimatorName(kind), o.common.seed, o.seconds,
-      int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism))};
+      estimatorName(kind),
+      o.common.seed,
+      o.seconds,
+      int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)),
+      loaded.scene->buildChoice().name(),
+      loaded.scene->buildChoice().reason};
   const nlohmann::json summary = renderSummary(desc, run, result, o.output);
 
   OutputSet outputs(MissingFolders::kCreate);

@@ -62,6 +62,8 @@ nlohmann::json renderSummary(const SceneDesc& scene, const RenderRun& run, const
             {"probe", r.rays.probe}}},
           {"shading_seconds", r.shading_seconds},
           {"visibility_seconds", r.visibility_seconds},
+          {"scene_build", run.scene_build},
+          {"scene_build_reason", run.scene_build_reason},
           {"build", buildText()},
           {"version", versionText()}};
 }

@@ -26,6 +26,8 @@ struct RenderRun {
   uint64_t seed = 0;       // --seed
   double time_budget = 0;  // --time (0 = none)
   int threads = 0;
+  std::string scene_build;         // "flat" or "instanced" (RenderScene::buildChoice())
+  std::string scene_build_reason;  // why
 };
 
 // The --json summary: what was rendered, how long it took, how many rays it traced.

@@ -7,8 +7,13 @@
 
 namespace proxyvis {
 
+double luminance(const Vec3f& rgb) {
+  return 0.2126 * double(rgb.x) + 0.7152 * double(rgb.y) + 0.0722 * double(rgb.z);
+}
+
 LightSampler::LightSampler(const std::vector<AreaLightDesc>& lights) {
   double sum = 0;
+  std::vector<double> power;
   for (uint32_t l = 0; l < lights.size(); ++l) {
     light_first_.push_back(tris_.size());
     double light_sum = 0;
@@ -29,9 +34,30 @@ LightSampler::LightSampler(const std::vector<AreaLightDesc>& lights) {
       cdf_.push_back(sum);
     }
     light_area_.push_back(light_sum);
+    power.push_back(std::max(0.0, luminance(lights[l].radiance)) * light_sum);
   }
   total_area_ = sum;
   PV_CHECK(!tris_.empty());
+
+  // A scene whose lights are all black renders black whatever is sampled: choose by area then,
+  // so that every pdf stays finite.
+  double total_power = 0;
+  for (double p : power) total_power += p;
+  if (!(total_power > 0)) {
+    power = light_area_;
+    total_power = total_area_;
+  }
+  double cumulative = 0;
+  for (double p : power) {
+    light_prob_.push_back(p / total_power);
+    cumulative += p;
+    light_cdf_.push_back(cumulative / total_power);
+  }
+  light_cdf_.back() = 1.0;
+}
+
+size_t LightSampler::lastTriangle(uint32_t light) const {
+  return light + 1 < light_first_.size() ? light_first_[light + 1] : tris_.size();
 }
 
 size_t LightSampler::pick(size_t first, size_t last, double u) const {
@@ -56,13 +82,21 @@ LightSample LightSampler::sampleTriangle(size_t i, float u1, float u2, double pd
 }
 
 LightSample LightSampler::sample(float u0, float u1, float u2) const {
-  return sampleTriangle(pick(0, tris_.size(), u0), u1, u2, 1.0 / total_area_);
+  // The light: smallest l with light_cdf_[l] > u0. A light of probability 0 has the same CDF
+  // value as the one before it and is never the smallest such l.
+  const auto it = std::upper_bound(light_cdf_.begin(), light_cdf_.end(), double(u0));
+  const uint32_t light = uint32_t(std::min(size_t(it - light_cdf_.begin()), numLights() - 1));
+  // u0 rescaled to [0, 1) within the light's interval picks the triangle: with one light
+  // (base 0, probability 1) it is u0 itself.
+  const double base = light == 0 ? 0.0 : light_cdf_[light - 1];
+  const double u = std::clamp((double(u0) - base) / light_prob_[light], 0.0, 1.0);
+  return sampleTriangle(pick(light_first_[light], lastTriangle(light), u), u1, u2,
+                        light_prob_[light] / light_area_[light]);
 }
 
 LightSample LightSampler::sampleLight(uint32_t light, float u0, float u1, float u2) const {
-  const size_t first = light_first_[light];
-  const size_t last = light + 1 < light_first_.size() ? light_first_[light + 1] : tris_.size();
-  return sampleTriangle(pick(first, last, u0), u1, u2, 1.0 / light_area_[light]);
+  return sampleTriangle(pick(light_first_[light], lastTriangle(light), u0), u1, u2,
+                        1.0 / light_area_[light]);
 }
 
 }  // namespace proxyvis

@@ -34,9 +34,13 @@ void addRenderFlags(CLI::App& app, RenderFlags& f) {
       ->capture_default_str();
   app.add_option("--build", f.build,
                  "Instances as Embree instances, flattened into one BVH, or auto (flat when the "
-                 "flattened scene has at most 8 M triangles)")
+                 "flattened scene's estimated memory fits --memory-budget)")
       ->check(CLI::IsMember({"auto", "flat", "instanced"}))
       ->capture_default_str();
+  app.add_option("--memory-budget", f.memory_budget_gib,
+                 "GiB the flattened BVHs may take under --build auto (default: the smaller of 4 "
+                 "and half the physical or cgroup memory)")
+      ->check(numberIn(0, 1 << 20));
   app.add_option("--roulette-costs", f.roulette_costs,
                  "Roulette's ray costs: 'measured' (per region, timing-dependent choices) or "
                  "'c_p0,c_p1,c_o0,c_o1,c_s' in ns (fixed: bit-reproducible)")
@@ -77,8 +81,11 @@ RenderSceneOptions RenderFlags::sceneOptions(bool quiet) const {
   RenderSceneOptions o;
   o.proxy_kind = proxy_kind;
   o.quiet = quiet;
-  o.flatten_instances = build == "flat";
-  if (build == "auto") o.auto_flatten_triangles = kAutoFlatTriangles;
+  o.instance_build = build == "flat"        ? InstanceBuild::kFlat
+                     : build == "instanced" ? InstanceBuild::kInstanced
+                                            : InstanceBuild::kAuto;
+  o.memory_budget_bytes =
+      memory_budget_gib < 0 ? -1.0 : memory_budget_gib * double(uint64_t(1) << 30);
   return o;
 }
 

@@ -31,10 +31,10 @@ struct RenderFlags {
   // count).
   std::string roulette_costs = "measured";
   // How instances are traced: "instanced" (one BVH per mesh), "flat" (every instance copied into
-  // one BVH), "auto" (flat when the flattened originals and proxies stay under kAutoFlatTriangles:
-  // docs/design.md, costs point 2, the fastest exact configuration that fits in memory).
+  // one BVH), "auto" (flat when the flattened Embree scenes' estimated bytes fit the memory
+  // budget: render_scene_build.h).
   std::string build = "auto";
-  static constexpr uint64_t kAutoFlatTriangles = 8'000'000;
+  double memory_budget_gib = -1;  // --memory-budget in GiB; < 0: defaultMemoryBudgetBytes()
 
   std::optional<ClassCosts> fixed_costs;  // parsed from roulette_costs by resolve()
 
@@ -50,7 +50,8 @@ struct RenderFlags {
 // "a,b,,c" -> {"a", "b", "c"} (the flags' comma-separated lists).
 std::vector<std::string> splitCommaList(const std::string& list);
 
-// Adds --width, --height, --proxy-kind, --q-min, --probes, --build, --roulette-costs.
+// Adds --width, --height, --proxy-kind, --q-min, --probes, --build, --memory-budget,
+// --roulette-costs.
 void addRenderFlags(CLI::App& app, RenderFlags& flags);
 
 }  // namespace proxyvis

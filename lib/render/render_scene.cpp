@@ -19,19 +19,14 @@ namespace {
 constexpr float kRayEpsilonOfDiagonal = 2e-5f;
 constexpr float kMinRayEpsilon = 1e-6f;
 
-TriMesh transformed(const TriMesh& mesh, const Affine3f& a) {
-  TriMesh out = mesh;
-  for (Vec3f& v : out.vertices) v = a.apply(v);
-  return out;
-}
-
 bool overlaps(const Bounds3f& a, const Bounds3f& b) {
   return a.lo.x <= b.hi.x && b.lo.x <= a.hi.x && a.lo.y <= b.hi.y && b.lo.y <= a.hi.y &&
          a.lo.z <= b.hi.z && b.lo.z <= a.hi.z;
 }
 
 // Adds every object to `builder`, taking each object's geometry from meshes[mesh] (originals) or
-// from the chosen proxy. Prototypes are built lazily, once per mesh.
+// from the chosen proxy. Prototypes are built lazily, once per mesh; a flattened instance's
+// vertices are placed straight into Embree's buffer (no copy of the scene's triangles).
 void addObjects(TraceSceneBuilder& builder, const std::vector<RenderObject>& objects,
                 const std::vector<const TriMesh*>& geometry, bool flatten) {
   std::vector<int64_t> prototype(geometry.size(), -1);
@@ -39,7 +34,7 @@ void addObjects(TraceSceneBuilder& builder, const std::vector<RenderObject>& obj
     const RenderObject& o = objects[id];
     const TriMesh& mesh = *geometry[o.mesh];
     if (o.instance < 0 || flatten) {
-      builder.addMesh(transformed(mesh, o.to_world), id);
+      builder.addMesh(mesh, o.to_world, id);
     } else {
       if (prototype[o.mesh] < 0) prototype[o.mesh] = builder.addPrototype(mesh);
       builder.addInstance(uint32_t(prototype[o.mesh]), o.to_world, id);
@@ -134,17 +129,24 @@ std::unique_ptr<RenderScene> loadRenderScene(const SceneDesc& desc,
 
   scene->device_ = std::make_unique<TraceDevice>();
   TraceSceneBuilder builder(*scene->device_, options.trace);
+  bool any_proxy = false;
+  for (const RenderObject& o : objects) any_proxy |= o.proxy >= 0;
   uint64_t flat_triangles = 0;
   for (const RenderObject& o : objects)
-    flat_triangles += original_ptrs[o.mesh]->numTriangles() + proxy_ptrs[o.mesh]->numTriangles();
-  const bool flatten =
-      options.flatten_instances ||
-      (options.auto_flatten_triangles > 0 && flat_triangles <= options.auto_flatten_triangles);
-  scene->instances_flattened_ = flatten && !desc.instances.empty();
+    flat_triangles += original_ptrs[o.mesh]->numTriangles() +
+                      (any_proxy ? proxy_ptrs[o.mesh]->numTriangles() : 0);
+  scene->build_ = chooseBuild(options.instance_build, !desc.instances.empty(), flat_triangles,
+                              options.memory_budget_bytes);
+  const bool flatten = scene->build_.flat;
   addObjects(builder, objects, original_ptrs, flatten);
   scene->originals_ = builder.build();
-  addObjects(builder, objects, proxy_ptrs, flatten);
-  scene->proxies_ = builder.build();
+  if (any_proxy) {
+    addObjects(builder, objects, proxy_ptrs, flatten);
+    scene->own_proxies_ = builder.build();
+    scene->proxies_ = scene->own_proxies_.get();
+  } else {
+    scene->proxies_ = scene->originals_.get();
+  }
   scene->self_.resize(num_meshes);
   for (size_t m = 0; m < num_meshes; ++m) {
     if (!used[m] || chosen[m] < 0) continue;

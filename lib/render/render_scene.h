@@ -16,6 +16,7 @@
 
 #include "render/camera.h"
 #include "render/light_sampler.h"
+#include "render/render_scene_build.h"
 #include "scene/scene_desc.h"
 #include "trace/trace_scene.h"
 #include "util/proxy_class.h"
@@ -31,13 +32,12 @@ struct RenderSceneOptions {
   // the self-shadowing rule makes every ray from that object pay for two traversals: such a
   // proxy is skipped (the original is its own exact proxy), with a warning. True keeps it.
   bool keep_larger_proxies = false;
-  // Instances copied into one flattened BVH (originals and proxies alike) instead of Embree
-  // instances of one BVH per mesh: faster to trace (docs/design.md, measured costs: ecosys 78 ns
-  // flattened vs 140 ns instanced) at the memory of every instance's triangles.
-  bool flatten_instances = false;
-  // Otherwise, flatten when the flattened originals and proxies together have at most this many
-  // triangles (0 = never): the fastest exact configuration that fits in memory.
-  uint64_t auto_flatten_triangles = 0;
+  // How instances are traced (render_scene_build.h): Embree instances of one BVH per mesh,
+  // copied into one flattened BVH (originals and proxies alike; faster to trace at the memory of
+  // every instance's triangles), or auto: flattened when the estimated bytes of the flattened
+  // Embree scenes fit memory_budget_bytes (< 0: defaultMemoryBudgetBytes()).
+  InstanceBuild instance_build = InstanceBuild::kInstanced;
+  double memory_budget_bytes = -1;
   TraceSceneOptions trace;  // Embree build options for all scenes
   bool quiet = false;       // no warnings on stderr (they are still in warnings())
 };
@@ -76,11 +76,14 @@ class RenderScene {
   // kGeneral too when no object uses a proxy (then proxies() equals originals()).
   ProxyClass proxyClass() const { return proxy_class_; }
   bool usesProxies() const { return uses_proxies_; }
-  // Instances were copied into the flattened BVHs (RenderSceneOptions::flatten_instances or
-  // auto_flatten_triangles) and the scene has some: float rounding differs from instanced tracing
-  // (thin geometry such as leaf cards self-intersects differently), so results of the two builds
-  // are not interchangeable.
-  bool instancesFlattened() const { return instances_flattened_; }
+  // Instances were copied into the flattened BVHs (RenderSceneOptions::instance_build) and the
+  // scene has some: float rounding differs from instanced tracing (thin geometry such as leaf
+  // cards self-intersects differently), so results of the two builds are not interchangeable.
+  bool instancesFlattened() const { return build_.flat && build_.has_instances; }
+  // Which build was used and why (reports say it: it is the exact baseline's configuration).
+  const BuildChoice& buildChoice() const { return build_; }
+  // The Embree device of every scene here (its memory monitor: bytes of the built scenes).
+  const TraceDevice& device() const { return *device_; }
   // Human-readable warnings from loading (class downgrades, missing proxies).
   const std::vector<std::string>& warnings() const { return warnings_; }
 
@@ -99,11 +102,13 @@ class RenderScene {
   LightSampler lights_;
   std::vector<RenderObject> objects_;
   std::unique_ptr<TraceDevice> device_;
-  std::unique_ptr<TraceScene> originals_, proxies_;
+  std::unique_ptr<TraceScene> originals_, own_proxies_;
+  // own_proxies_, or originals_ when no object uses a proxy (one copy of the geometry, not two).
+  const TraceScene* proxies_ = nullptr;
   std::vector<std::unique_ptr<TraceScene>> self_;
   ProxyClass proxy_class_ = ProxyClass::kGeneral;
   bool uses_proxies_ = false;
-  bool instances_flattened_ = false;
+  BuildChoice build_;
   std::vector<std::string> warnings_;
   float epsilon_ = 1e-4f;
 };

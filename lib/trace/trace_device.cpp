@@ -3,6 +3,8 @@
 // mutex and turned into proxyvis::Error by the caller that knows what was being done.
 #include <embree3/rtcore.h>
 
+#include <algorithm>
+#include <atomic>
 #include <mutex>
 
 #include "trace/trace_scene.h"
@@ -13,6 +15,10 @@ namespace proxyvis {
 struct TraceDevice::ErrorLog {
   std::mutex mutex;
   std::string messages;
+  // Bytes Embree holds now and at most so far (its memory monitor callback): what BVHs and
+  // geometry buffers really cost, for the memory estimate of a flattened build.
+  std::atomic<int64_t> bytes{0};
+  std::atomic<int64_t> peak_bytes{0};
 };
 
 namespace {
@@ -46,6 +52,17 @@ void onEmbreeError(void* user_ptr, RTCError code, const char* str) {
   log->messages += str ? str : "(no message)";
 }
 
+// Called by Embree before it allocates (bytes > 0) and after it frees (bytes < 0); returning true
+// lets the allocation proceed.
+bool onEmbreeMemory(void* user_ptr, ssize_t bytes, bool /*post*/) {
+  auto* log = static_cast<TraceDevice::ErrorLog*>(user_ptr);
+  const int64_t now = log->bytes.fetch_add(int64_t(bytes), std::memory_order_relaxed) + bytes;
+  int64_t peak = log->peak_bytes.load(std::memory_order_relaxed);
+  while (now > peak && !log->peak_bytes.compare_exchange_weak(peak, now, std::memory_order_relaxed))
+    ;
+  return true;
+}
+
 }  // namespace
 
 TraceDevice::TraceDevice() : log_(std::make_unique<ErrorLog>()) {
@@ -54,6 +71,15 @@ TraceDevice::TraceDevice() : log_(std::make_unique<ErrorLog>()) {
     throw Error("", "cannot create an Embree device", errorName(rtcGetDeviceError(nullptr)),
                 "check that the CPU supports SSE2 and that libembree3 is installed");
   rtcSetDeviceErrorFunction(device_, onEmbreeError, log_.get());
+  rtcSetDeviceMemoryMonitorFunction(device_, onEmbreeMemory, log_.get());
+}
+
+uint64_t TraceDevice::bytesInUse() const {
+  return uint64_t(std::max<int64_t>(0, log_->bytes.load(std::memory_order_relaxed)));
+}
+
+uint64_t TraceDevice::peakBytes() const {
+  return uint64_t(std::max<int64_t>(0, log_->peak_bytes.load(std::memory_order_relaxed)));
 }
 
 TraceDevice::~TraceDevice() {

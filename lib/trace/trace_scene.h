@@ -73,6 +73,10 @@ class TraceDevice {
   std::string takeErrors();
   // Throws proxyvis::Error naming `what` if Embree reported anything since the last call.
   void throwIfError(const std::string& what);
+  // Bytes Embree has allocated on this device (BVHs, geometry buffers, build scratch), now and
+  // at most since construction, from its memory monitor callback.
+  uint64_t bytesInUse() const;
+  uint64_t peakBytes() const;
 
   struct ErrorLog;
 
@@ -117,6 +121,9 @@ class TraceSceneBuilder {
   // A mesh placed directly in the top-level BVH (flattened). Returns its geometry id.
   // Throws Error (naming mesh.source) for an index out of range or a non-finite vertex.
   uint32_t addMesh(const TriMesh& mesh, uint32_t user_id = 0);
+  // The mesh with its vertices mapped by `to_world`, written straight into Embree's buffer (a
+  // flattened instance costs no temporary copy of the mesh).
+  uint32_t addMesh(const TriMesh& mesh, const Affine3f& to_world, uint32_t user_id);
   // A mesh to be instanced; builds its BVH now. Returns a prototype id for addInstance.
   uint32_t addPrototype(const TriMesh& mesh);
   // An instance of a prototype with an affine transform. Returns the instance id (a top-level

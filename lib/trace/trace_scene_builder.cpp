@@ -54,8 +54,12 @@ void validateMesh(const TriMesh& mesh) {
                     "index out of range", "repair or re-export the mesh");
 }
 
-// A committed triangle geometry with the mesh copied into Embree-owned buffers.
-RTCGeometry newTriangleGeometry(TraceDevice& device, const TriMesh& mesh) {
+// A committed triangle geometry with the mesh copied into Embree-owned buffers, its vertices
+// mapped by `to_world` when given (written straight into Embree's buffer, no copy of the mesh).
+// `placed_bounds` (with to_world) is extended by every placed vertex.
+RTCGeometry newTriangleGeometry(TraceDevice& device, const TriMesh& mesh,
+                                const Affine3f* to_world = nullptr,
+                                Bounds3f* placed_bounds = nullptr) {
   validateMesh(mesh);
   RTCGeometry geom = rtcNewGeometry(device.handle(), RTC_GEOMETRY_TYPE_TRIANGLE);
   // Embree over-allocates buffers made by rtcSetNewGeometryBuffer, so 16-byte loads past the last
@@ -70,7 +74,21 @@ RTCGeometry newTriangleGeometry(TraceDevice& device, const TriMesh& mesh) {
     throw Error(mesh.source, "Embree cannot allocate the mesh buffers", errors);
   }
   static_assert(sizeof(Vec3f) == 12 && sizeof(Triangle) == 12);
-  if (nv) std::memcpy(vb, mesh.vertices.data(), nv * sizeof(Vec3f));
+  if (to_world) {
+    auto* out = static_cast<Vec3f*>(vb);
+    for (size_t i = 0; i < nv; ++i) {
+      out[i] = to_world->apply(mesh.vertices[i]);
+      if (!isFinite(out[i])) {
+        rtcReleaseGeometry(geom);
+        throw Error(mesh.source,
+                    "vertex " + std::to_string(i) + " is not finite once placed in the scene",
+                    "its transform overflows", "scale the instance down");
+      }
+      if (placed_bounds) placed_bounds->extend(out[i]);
+    }
+  } else if (nv) {
+    std::memcpy(vb, mesh.vertices.data(), nv * sizeof(Vec3f));
+  }
   if (nt) std::memcpy(ib, mesh.triangles.data(), nt * sizeof(Triangle));
   rtcCommitGeometry(geom);
   if (std::string errors = device.takeErrors(); !errors.empty()) {
@@ -145,6 +163,19 @@ uint32_t TraceSceneBuilder::addMesh(const TriMesh& mesh, uint32_t user_id) {
   top.user_id = user_id;
   uint32_t id = impl_->attach(geom, top);
   impl_->scene->bounds.extend(mesh.bounds());
+  impl_->scene->triangles += mesh.numTriangles();
+  return id;
+}
+
+uint32_t TraceSceneBuilder::addMesh(const TriMesh& mesh, const Affine3f& to_world,
+                                    uint32_t user_id) {
+  // The placed vertices' box (the mapped corners of the mesh's box may be much larger).
+  Bounds3f bounds;
+  RTCGeometry geom = newTriangleGeometry(impl_->device, mesh, &to_world, &bounds);
+  TopGeometry top;
+  top.user_id = user_id;
+  uint32_t id = impl_->attach(geom, top);
+  impl_->scene->bounds.extend(bounds);
   impl_->scene->triangles += mesh.numTriangles();
   return id;
 }

@@ -38,3 +38,14 @@ scene_case(instances_1e7 scene_instances_1e7.json
 # '.' stands for the backslashes, which the driver's argument passing does not keep).
 scene_case(escape_key scene_escape_key.json
   "scene_escape_key.json: camera..x1b.2J.x07: unknown key")
+
+# --memory-budget (GiB for --build auto's flattened BVHs) is parsed strictly with its range: a
+# negative, non-numeric or NaN budget is refused before any work, in both rendering programs.
+bad_input_test(scene_memory_budget_negative render
+  "@CORPUS@/scene_ok.json -o @OUT@/x.exr --memory-budget -1"
+  REGEX "--memory-budget: must be in \\[0, 1048576\\], got -1" INPUTS @CORPUS@/scene_ok.json
+  OUTPUTS @OUT@/x.exr TIMEOUT 20)
+bad_input_test(scene_memory_budget_nan render-compare
+  "@CORPUS@/scene_ok.json --out @OUT@/r --memory-budget nan"
+  REGEX "--memory-budget: expected a number, got 'nan'" INPUTS @CORPUS@/scene_ok.json
+  OUTPUTS @OUT@/r TIMEOUT 20)

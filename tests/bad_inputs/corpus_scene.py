@@ -28,6 +28,8 @@ def scene(**changes):
 
 def build(out: pathlib.Path, data: pathlib.Path) -> None:
     (out / "scene_tri.obj").write_text(TRIANGLE_OBJ)
+    # A valid scene: the flag cases (--memory-budget) must fail on the flag alone.
+    (out / "scene_ok.json").write_text(scene())
     cases = {
         # Rendered inf/NaN tables with exit code 0.
         "scene_radiance_1e38.json": scene(light__radiance=[1e38, 1e38, 1e38]),

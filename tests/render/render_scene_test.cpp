@@ -114,16 +114,25 @@ TEST(RenderScene, FlattenedInstancesTraceLikeInstances) {
   const std::filesystem::path path = b.write(dir);
   RenderSceneOptions o = test::quiet();
   const auto instanced = loadRenderScene(path, o);
-  o.flatten_instances = true;
+  o.instance_build = InstanceBuild::kFlat;
   const auto flat = loadRenderScene(path, o);
   EXPECT_FALSE(instanced->instancesFlattened());
   EXPECT_TRUE(flat->instancesFlattened());
-  // auto: flattened when originals + proxies fit the triangle bound, instanced otherwise.
+  // auto: flattened when the estimated bytes of originals + proxies fit the budget, instanced
+  // otherwise (the estimate is a fixed number of bytes per flattened triangle).
   RenderSceneOptions a = test::quiet();
-  a.auto_flatten_triangles = flat->originalTriangles() + flat->proxyTriangles();
-  EXPECT_TRUE(loadRenderScene(path, a)->instancesFlattened());
-  a.auto_flatten_triangles -= 1;
-  EXPECT_FALSE(loadRenderScene(path, a)->instancesFlattened());
+  a.instance_build = InstanceBuild::kAuto;
+  const uint64_t flat_triangles = flat->originalTriangles() + flat->proxyTriangles();
+  a.memory_budget_bytes = kFlatBytesPerTriangle * double(flat_triangles);
+  const auto fits = loadRenderScene(path, a);
+  EXPECT_TRUE(fits->instancesFlattened());
+  EXPECT_EQ(fits->buildChoice().flat_triangles, flat_triangles);
+  EXPECT_STREQ(fits->buildChoice().name(), "flat");
+  a.memory_budget_bytes = kFlatBytesPerTriangle * double(flat_triangles - 1);
+  const auto over = loadRenderScene(path, a);
+  EXPECT_FALSE(over->instancesFlattened());
+  EXPECT_STREQ(over->buildChoice().name(), "instanced");
+  EXPECT_NE(over->buildChoice().reason.find("over the memory budget"), std::string::npos);
   EXPECT_EQ(flat->originalTriangles(), instanced->originalTriangles());
   EXPECT_EQ(flat->proxyTriangles(), instanced->proxyTriangles());
   RenderSettings settings;

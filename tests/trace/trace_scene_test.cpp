@@ -541,3 +541,47 @@ TEST(TraceDevice, ReportsEmbreeErrorsAsMessages) {
 
 }  // namespace
 }  // namespace proxyvis::test
+
+namespace proxyvis::test {
+namespace {
+
+// addMesh(mesh, to_world, id) places the vertices straight into Embree's buffer: the scene must
+// equal the one built from the transformed copy (the same bits, so the same answers and bounds),
+// and a transform that overflows a vertex is refused.
+TEST(TraceScene, PlacedMeshEqualsItsTransformedCopy) {
+  TraceDevice device;
+  const TriMesh soup = triangleSoup(300, {-1, -1, -1}, {1, 1, 1}, 0.3f, kSeed + 21);
+  const Affine3f xf = makeTransform(normalize(Vec3f(1, 2, 3)), 0.7f, 1.5f, {3, 0, 1});
+  TraceSceneBuilder placed_builder(device), copy_builder(device);
+  EXPECT_EQ(placed_builder.addMesh(soup, xf, 5), 0u);
+  copy_builder.addMesh(transformed(soup, xf), 5);
+  const auto placed = placed_builder.build(), copy = copy_builder.build();
+  EXPECT_EQ(placed->triangleCount(), copy->triangleCount());
+  const Bounds3f a = placed->bounds(), b = copy->bounds();
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(a.lo[k], b.lo[k]);
+    EXPECT_EQ(a.hi[k], b.hi[k]);
+  }
+  const auto segs = randomSegments(grown(b, 0.2f), kSeed + 22, 5000);
+  uint64_t hits = 0;
+  for (const Segment& s : segs) {
+    const Hit h1 = placed->intersect(s), h2 = copy->intersect(s);
+    ASSERT_EQ(h1.hit, h2.hit);
+    if (!h1.hit) continue;
+    ++hits;
+    EXPECT_EQ(h1.t, h2.t);
+    EXPECT_EQ(h1.prim_id, h2.prim_id);
+    EXPECT_EQ(h1.user_id, 5u);
+    EXPECT_TRUE(placed->occluded(s));
+    EXPECT_FALSE(placed->occluded(s, 5));  // its own user id is ignored
+  }
+  EXPECT_GT(hits, 100u);
+  TraceSceneBuilder bad(device);
+  Affine3f huge = Affine3f::translation({0, 0, 0});
+  huge.m[0][0] = 3e38f;  // finite entries whose image of a vertex overflows
+  huge.m[0][3] = 3e38f;
+  EXPECT_THROW(bad.addMesh(soup, huge, 1), Error);
+}
+
+}  // namespace
+}  // namespace proxyvis::test
