@@ -68,16 +68,25 @@ struct RegionTally {
 
 class RegionLearner {
  public:
-  static constexpr int kMinSamples = 64;            // observations before leaving exact
-  static constexpr double kExploreRate = 1.0 / 32;  // proxy rays traced in exact mode afterwards
-  // A region that has seen kSettledSamples segments and whose roulette is predicted below
-  // kSettledEfficiency of exact explores at kSettledExploreRate only: where the proxy clearly does
-  // not pay (points on an object with a proxy, which trace their own original either way) the
-  // exploration would otherwise be the estimator's main loss against exact.
-  static constexpr uint64_t kSettledSamples = 4096;
-  static constexpr double kSettledEfficiency = 0.8;
+  static constexpr int kMinSamples = 64;  // observations before leaving exact
+  // Warm-up (fewer than kMinSamples observations, or with measured costs fewer than 2 passes):
+  // one point in four explores. Every point exploring made the warm-up passes cost two rays per
+  // segment, a loss of several percent at a few dozen samples per pixel.
+  static constexpr double kWarmupExploreRate = 1.0 / 4;
+  // After the warm-up, an exact region explores at most kExploreRate of its points, thinning as
+  // kExploreRate * sqrt(kExploreSamples / samples) and capped so that the extra proxy rays cost
+  // at most kExploreBudget of exact; one whose roulette is predicted below kSettledEfficiency of
+  // exact (the proxy does not pay: points on an object with a proxy, which trace their own
+  // original either way) explores at kSettledExploreRate only.
+  static constexpr double kExploreRate = 1.0 / 32;
+  static constexpr double kExploreSamples = 4096;
+  static constexpr double kSettledEfficiency = 0.9;
   static constexpr double kSettledExploreRate = 1.0 / 1024;
-  static constexpr double kExploreBudget = 0.01;  // of exact's cost, for undecided regions
+  static constexpr double kExploreBudget = 0.01;
+  // Points explore in the same set for kExploreEpochPasses passes (a hash of the point and
+  // pass / kExploreEpochPasses): an explored point then has estimates of earlier passes, which
+  // the variance of exact visibility needs (see addEstimates).
+  static constexpr uint32_t kExploreEpochPasses = 8;
   static constexpr int64_t kFixedOne = int64_t(1) << 20;
   // Variance history and sample counts are kept for one point in kVarianceStride (the rest of an
   // exact region's queries record nothing, so that they cost what exact's do).
@@ -103,11 +112,13 @@ class RegionLearner {
 
   struct Plan {
     bool roulette = false;
-    RouletteQ q;           // roulette mode
-    double explore = 1.0;  // exact mode: fraction of segments also traced against the proxy
-    // Exact mode at kSettledExploreRate: only explored segments are recorded (the variance of
-    // exact visibility is no longer learned there; it matters only if the region comes back).
-    bool settled = false;
+    RouletteQ q;  // roulette mode
+    // Exact mode: fraction of points whose queries also trace the proxy.
+    double explore = kWarmupExploreRate;
+    // Exact mode without a trial: only explored queries record their segments and estimates;
+    // every other query traces the original as the exact estimator does, after adding its
+    // segments to the region's sample counter.
+    bool quiet = true;
     // Measured costs only: one query in kAltQueries runs the other mode (roulette with q, or
     // exact), for a same-pass comparison of the two modes' times.
     bool trial = false;
@@ -121,8 +132,13 @@ class RegionLearner {
   // over points: a hash of (point, pass), cheaper than a random number, and exploring never
   // changes an exact estimate, so it need not be independent of the estimates.
   bool exploresPoint(const Plan& plan, uint32_t point) const {
-    const uint64_t h = mixBits((uint64_t(passes_) << 32) | point);
+    const uint64_t h = mixBits((uint64_t(passes_ / kExploreEpochPasses) << 32) | point);
     return double(h >> 11) * 0x1p-53 < plan.explore;
+  }
+  // Whether a trial region times this query of its own mode (one in kAltQueries, never the
+  // alternated one). Depends only on the point and the pass.
+  bool timesOwnMode(const Plan& plan, uint32_t point) const {
+    return plan.trial && (point + passes_) % kAltQueries == kAltQueries / 2;
   }
   const Plan& plan(uint32_t region) const { return plans_[region]; }
   bool measuresCosts() const { return !options_.fixed_costs; }
@@ -138,7 +154,16 @@ class RegionLearner {
 
   // The calling thread's tally of `region` for this pass: the record*() calls add to it without
   // atomics; endPass() sums every thread's tallies (integer sums: the order does not matter).
-  RegionTally& local(uint32_t region);
+  // A thread-local cache of (learner, tallies) makes it a compare and a load, cheap enough for
+  // every query of an exact region to count its samples.
+  RegionTally& local(uint32_t region) {
+    LocalCache& c = localCache();
+    if (c.learner != id_) {
+      c.tallies = &threadTallies();
+      c.learner = id_;
+    }
+    return (*c.tallies)[region];
+  }
 
   // What the estimator saw of one segment it classed (V' traced).
   struct SegmentObservation {
@@ -159,8 +184,10 @@ class RegionLearner {
   // segments in `ticks` (capped at tickCap() per segment).
   void recordQueryTime(RegionTally& t, bool roulette, uint64_t segments, uint64_t ticks) const;
   // Variance learning for one query's estimates. `point` may be kNoPoint. Each point must be
-  // passed at most once per pass (its history must come from earlier passes).
-  void addEstimates(uint32_t point, std::span<const double> estimates, RegionTally& t);
+  // passed at most once per pass (its history must come from earlier passes). Only one point in
+  // kVarianceStride is kept unless `every_point` (explored queries, already a sparse choice).
+  void addEstimates(uint32_t point, std::span<const double> estimates, RegionTally& t,
+                    bool every_point = false);
 
   // Single-threaded. beginPass freezes the plans from everything folded in so far; endPass folds
   // the pass's counters into the statistics. In measured mode they also calibrate CPU ticks
@@ -195,6 +222,19 @@ class RegionLearner {
     uint32_t count = 0;
   };
 
+  struct LocalCache {
+    uint64_t learner = 0;  // id_ of the learner whose tallies follow (0: none)
+    std::vector<RegionTally>* tallies = nullptr;
+  };
+  // initial-exec: one load from the thread pointer (the library is linked statically).
+  static LocalCache& localCache() {
+    static thread_local LocalCache cache __attribute__((tls_model("initial-exec")));
+    return cache;
+  }
+  std::vector<RegionTally>& threadTallies();
+
+  // Unique per learner for the life of the process (an address could be reused by a later one).
+  uint64_t id_ = 0;
   Options options_;
   std::vector<Plan> plans_;
   // ets_key_per_instance: a native TLS key, the fastest lookup TBB offers (once per query).
@@ -213,6 +253,9 @@ class RegionLearner {
   uint64_t pass_start_ticks_ = 0;
   double calib_ns_ = 0, calib_ticks_ = 0;
   double nsPerTick() const { return calib_ticks_ > 0 ? calib_ns_ / calib_ticks_ : 1.0; }
+  // An exact-mode region's exploration rate given its model, the efficiency of roulette against
+  // exact and the samples seen.
+  static double exploreRate(const RouletteModel& m, double efficiency, double samples);
 };
 
 }  // namespace proxyvis
