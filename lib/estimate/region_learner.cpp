@@ -237,6 +237,11 @@ void RegionLearner::beginPass() {
       // Both must agree: the model (per-ray costs) and the measured times (with hysteresis).
       roulette = d.roulette &&
                  efficiency >= (p.roulette ? kStayOnRouletteEfficiency : 1.0 + options_.margin);
+    } else if (measuresCosts()) {
+      // Until both modes are timed, the model alone only starts a trial: single rays timed on a
+      // loaded machine can be off by a factor of ten (a preempted ray), and a region switched to
+      // roulette on such a cost loses to exact until the trial catches it.
+      roulette = false;
     }
     const bool trial = measuresCosts() && (roulette || d.roulette);
     p = Plan{roulette, d.q, exploreRate(m, efficiency, learned_[r].samples), !roulette && !trial,

@@ -98,7 +98,7 @@ class RegionLearner {
   // a candidate (or that uses roulette) runs one query in kAltQueries in the other mode
   // (Plan::trial), interleaved with its own, and both are timed; the comparison needs
   // kMinModeSegments timed segments of each, weights decaying by kModeDecay per pass.
-  static constexpr double kMinModeSegments = 512;
+  static constexpr double kMinModeSegments = 256;
   static constexpr double kModeDecay = 0.98;
   static constexpr uint32_t kAltQueries = 16;
 
