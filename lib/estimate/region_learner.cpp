@@ -218,10 +218,12 @@ void RegionLearner::beginPass() {
       tick_cap_ =
           std::max<uint64_t>(kMinTickCap, uint64_t(kTickCapOverWorstMean * worst_ns / nsPerTick()));
   }
+  explore_salt_ = uint32_t(mixBits(passes_ / kExploreEpochPasses));
+  counts_samples_ = passes_ % kSampleCountPasses == 0;
   for (uint32_t r = 0; r < plans_.size(); ++r) {
     Plan& p = plans_[r];
     if (observations(r) < uint64_t(kMinSamples) || (measuresCosts() && passes_ < 2)) {
-      p = Plan{false, RouletteQ{1, 1}, kWarmupExploreRate, true, false};
+      p = Plan{};  // warm-up: exact, exploring kWarmupExploreRate
       continue;
     }
     const RouletteModel m = model(r);
@@ -244,8 +246,8 @@ void RegionLearner::beginPass() {
       roulette = false;
     }
     const bool trial = measuresCosts() && (roulette || d.roulette);
-    p = Plan{roulette, d.q, exploreRate(m, efficiency, learned_[r].samples), !roulette && !trial,
-             trial};
+    const double explore = exploreRate(m, efficiency, learned_[r].samples);
+    p = Plan{roulette, d.q, explore, uint32_t(explore * 0x1p32), !roulette && !trial, trial};
   }
 }
 

@@ -6,10 +6,11 @@
 // pass's own random numbers and every estimate stays unbiased):
 //
 //  exact     trace the original for every segment (no added variance). To keep learning, also
-//            trace the proxy first for a fraction `explore` of the queries (all of them until the
-//            region has kMinSamples observations, then at most kExploreRate, thinning as the
-//            statistics grow and capped at kExploreBudget of exact's cost): each such segment
-//            reveals its class (V, V') and the cost of both rays. Costs explore * c_p only.
+//            trace the proxy first for a fraction `explore` of the points (kWarmupExploreRate
+//            until the region has kMinSamples observations, then at most kExploreRate, thinning
+//            as the statistics grow and capped at kExploreBudget of exact's cost): each such
+//            segment reveals its class (V, V') and the cost of both rays. The other queries take
+//            the exact estimator's path (Plan::quiet), so exact mode costs explore * c_p more.
 //  roulette  always trace the proxy, correct with q_i (roulette.h). P(V'=i) comes from every proxy
 //            ray; P(error | V'=i) from the corrections actually traced, each weighted by 1/q_i of
 //            its pass (Horvitz-Thompson), so the rate estimate is unbiased whatever q was used.
@@ -87,9 +88,14 @@ class RegionLearner {
   // pass / kExploreEpochPasses): an explored point then has estimates of earlier passes, which
   // the variance of exact visibility needs (see addEstimates).
   static constexpr uint32_t kExploreEpochPasses = 8;
+  static constexpr uint32_t kWeylMultiplier = 0x9e3779b9u;  // 2^32 / golden ratio, odd
+  // Samples are counted in one pass in kSampleCountPasses (see countsSamples()); a region's pixels
+  // are the same every pass, so this loses nothing but the counter's cost.
+  static constexpr uint32_t kSampleCountPasses = 8;
   static constexpr int64_t kFixedOne = int64_t(1) << 20;
-  // Variance history and sample counts are kept for one point in kVarianceStride (the rest of an
-  // exact region's queries record nothing, so that they cost what exact's do).
+  // In roulette and trial regions the variance history is kept for one point in kVarianceStride
+  // (the history update is the learner's largest per-query cost); quiet exact regions keep it for
+  // their explored points only.
   static constexpr uint32_t kVarianceStride = 4;
   // Measured mode costs (measured-cost mode only). The per-ray costs predict what roulette would
   // cost, but a ray timed alone among rays of the other scene runs on caches that scene warmed,
@@ -113,8 +119,10 @@ class RegionLearner {
   struct Plan {
     bool roulette = false;
     RouletteQ q;  // roulette mode
-    // Exact mode: fraction of points whose queries also trace the proxy.
+    // Exact mode: fraction of points whose queries also trace the proxy, and the same as a
+    // threshold of exploresPoint's 32-bit sequence (explore * 2^32).
     double explore = kWarmupExploreRate;
+    uint32_t explore_below = uint32_t(kWarmupExploreRate * 0x1p32);
     // Exact mode without a trial: only explored queries record their segments and estimates;
     // every other query traces the original as the exact estimator does, after adding its
     // segments to the region's sample counter.
@@ -131,10 +139,15 @@ class RegionLearner {
   // Whether an exact-mode query of `point` explores this pass, with probability plan.explore
   // over points: a hash of (point, pass), cheaper than a random number, and exploring never
   // changes an exact estimate, so it need not be independent of the estimates.
+  // A Weyl sequence, point * golden ratio mod 2^32 shifted by a salt drawn per epoch, falls below
+  // explore * 2^32 for that fraction of the points, evenly spread: one multiply and a compare,
+  // where a full hash was a measurable part of an exact query's cost.
   bool exploresPoint(const Plan& plan, uint32_t point) const {
-    const uint64_t h = mixBits((uint64_t(passes_ / kExploreEpochPasses) << 32) | point);
-    return double(h >> 11) * 0x1p-53 < plan.explore;
+    return point * kWeylMultiplier + explore_salt_ < plan.explore_below;
   }
+  // Whether this pass counts samples (one pass in kSampleCountPasses, each query then counting
+  // kSampleCountPasses times its segments): the counter is an exact query's only other cost.
+  bool countsSamples() const { return counts_samples_; }
   // Whether a trial region times this query of its own mode (one in kAltQueries, never the
   // alternated one). Depends only on the point and the pass.
   bool timesOwnMode(const Plan& plan, uint32_t point) const {
@@ -247,7 +260,9 @@ class RegionLearner {
   ClassCosts global_costs_;  // ns when measured (once calibrated)
   double per_sample_ = 0;
   uint64_t tick_cap_ = uint64_t(1) << 22;
-  uint32_t passes_ = 0;  // passes folded in so far
+  uint32_t passes_ = 0;         // passes folded in so far
+  uint32_t explore_salt_ = 0;   // exploresPoint's shift for this pass's epoch
+  bool counts_samples_ = true;  // see countsSamples()
   // Tick calibration: the pass being timed, and totals over passes.
   int64_t pass_start_ns_ = 0;
   uint64_t pass_start_ticks_ = 0;

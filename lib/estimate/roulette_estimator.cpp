@@ -41,17 +41,20 @@ void RouletteEstimator::estimate(const ShadingPointQuery& q, Rng& rng, std::span
     return q.point == ShadingPointQuery::kNoPoint ? rng.uniformFloat() < plan.explore
                                                   : learner_.exploresPoint(plan, q.point);
   };
-  // Every query counts its segments in the region's tally (a thread-local compare and load).
-  RegionTally& t = learner_.local(q.region);
-  RegionLearner::recordSamples(t, q.segments.size());
+  // In one pass in kSampleCountPasses, every query counts its segments in the region's tally
+  // (a thread-local compare and load).
+  if (learner_.countsSamples())
+    RegionLearner::recordSamples(learner_.local(q.region),
+                                 q.segments.size() * RegionLearner::kSampleCountPasses);
   if (region_plan.quiet) {
-    // An exact region without a trial: the exact estimator's path and the counter above; only
-    // explored queries record more.
+    // An exact region without a trial: the exact estimator's path; only explored queries
+    // record more.
     if (!explores(region_plan)) {
       for (size_t j = 0; j < q.segments.size(); ++j)
         out[j] = exactSample(*q.tracer, q.segments[j], counts);
       return;
     }
+    RegionTally& t = learner_.local(q.region);
     estimateRecorded(q, rng, region_plan, out, counts, t, nullptr);
     learner_.addEstimates(q.point, out.first(q.segments.size()), t, true);
     return;
@@ -62,6 +65,7 @@ void RouletteEstimator::estimate(const ShadingPointQuery& q, Rng& rng, std::span
   RegionLearner::Plan alt_plan = region_plan;
   if (alt) alt_plan.roulette = !region_plan.roulette;
   const RegionLearner::Plan& plan = alt ? alt_plan : region_plan;
+  RegionTally& t = learner_.local(q.region);
   TimingCounters* timing = learner_.measuresCosts() ? &timing_.local() : nullptr;
   // One query in kAltQueries of a trial region is timed whole in each mode, for the cost of
   // its region's mode (region_learner.h).
