@@ -71,9 +71,10 @@ class RegionLearner {
  public:
   static constexpr int kMinSamples = 64;  // observations before leaving exact
   // Warm-up (fewer than kMinSamples observations, or with measured costs fewer than 2 passes):
-  // one point in four explores. Every point exploring made the warm-up passes cost two rays per
-  // segment, a loss of several percent at a few dozen samples per pixel.
-  static constexpr double kWarmupExploreRate = 1.0 / 4;
+  // one point in eight explores, which gives a 16 x 16 tile its kMinSamples observations in the
+  // two passes measured costs need anyway. Every point exploring made the warm-up passes cost two
+  // rays per segment, a loss of several percent at a few dozen samples per pixel.
+  static constexpr double kWarmupExploreRate = 1.0 / 8;
   // After the warm-up, an exact region explores at most kExploreRate of its points, thinning as
   // kExploreRate * sqrt(kExploreSamples / samples) and capped so that the extra proxy rays cost
   // at most kExploreBudget of exact; one whose roulette is predicted below kSettledEfficiency of
