@@ -35,8 +35,8 @@ void RouletteEstimator::estimate(const ShadingPointQuery& q, Rng& rng, std::span
                                  RayCounts& counts) {
   PV_CHECK_MSG(q.region < num_regions_, "query region out of range of EstimatorSetup::num_regions");
   const RegionLearner::Plan& region_plan = learner_.plan(q.region);
-  // Exploring never changes an exact estimate, so it need not be independent of it: a hash of
-  // (point, pass) decides, cheaper than a random number.
+  // Exploring never changes an exact estimate, so it need not be independent of it: the point's
+  // place in RegionLearner::exploresPoint's sequence decides, cheaper than a random number.
   auto explores = [&](const RegionLearner::Plan& plan) {
     return q.point == ShadingPointQuery::kNoPoint ? rng.uniformFloat() < plan.explore
                                                   : learner_.exploresPoint(plan, q.point);
