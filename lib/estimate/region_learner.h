@@ -82,11 +82,11 @@ class RegionLearner {
   // original either way) explores at kSettledExploreRate only.
   static constexpr double kExploreRate = 1.0 / 32;
   static constexpr double kExploreSamples = 4096;
-  static constexpr double kSettledEfficiency = 0.9;
+  static constexpr double kSettledEfficiency = 1.0;
   static constexpr double kSettledExploreRate = 1.0 / 1024;
-  static constexpr double kExploreBudget = 0.01;
-  // Points explore in the same set for kExploreEpochPasses passes (a hash of the point and
-  // pass / kExploreEpochPasses): an explored point then has estimates of earlier passes, which
+  static constexpr double kExploreBudget = 0.005;
+  // Points explore in the same set for kExploreEpochPasses passes (exploresPoint's salt changes
+  // per epoch of that many passes): an explored point then has estimates of earlier passes, which
   // the variance of exact visibility needs (see addEstimates).
   static constexpr uint32_t kExploreEpochPasses = 8;
   static constexpr uint32_t kWeylMultiplier = 0x9e3779b9u;  // 2^32 / golden ratio, odd
