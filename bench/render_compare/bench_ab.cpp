@@ -1,12 +1,14 @@
 // A/B efficiency of two estimators (default: roulette against exact) at equal time, measured
 // within one process so that both see the same machine: the scene is loaded once, a converged
 // exact reference is rendered first, then the two estimators alternate, N times, each render
-// given the same time budget and its own seed (the order within a pair alternates too, so a
-// slow drift of the machine's load favours neither). Every render starts a fresh estimator, as
-// render-compare does. Efficiency = 1 / (MSE x seconds) against the reference; the table gives
-// the ratio B/A per pair and its mean, min, max and standard error, with seconds of wall time
-// (what equal time means) and with the process's CPU seconds over the render (on a shared,
-// loaded machine the CPU share a render gets varies a lot, and the CPU ratio removes that).
+// given the same time budget and its own seed, or one seed per pair with --common-seed (the
+// order within a pair alternates too, so a slow drift of the machine's load favours neither).
+// Every render starts a fresh estimator, as render-compare does. Efficiency = 1 / (MSE x seconds)
+// against the reference; the table gives the ratio B/A per pair and its mean, min, max and standard
+// error (--common-seed gives both renders of a pair one seed, which cancels most of the noise the
+// two share), with seconds of wall time (what equal time means) and with the process's CPU seconds
+// over the render (on a shared, loaded machine the CPU share a render gets varies a lot, and the
+// CPU ratio removes that).
 // --spp N renders N samples per pixel instead of a time budget: at equal samples the ratio of
 // CPU times isolates an estimator's per-sample overhead (where it traces the same rays).
 //
@@ -40,6 +42,9 @@ struct Options {
   int alternations = 10;
   double ref_seconds = 30;
   int spp = 0;  // > 0: equal samples instead of equal time
+  // Both renders of a pair use the same seed (common random numbers): the light samples are keyed
+  // on (seed, pixel, pass), so where B traces what A traces their errors cancel in the ratio.
+  bool common_seed = false;
   bool show_pairs = true;
 };
 
@@ -134,7 +139,7 @@ int run(const Options& o, RenderFlags flags, uint64_t seed) {
   std::vector<double> wall, cpu;
   double var1_sum = 0, mse_a_sum = 0;  // A's per-sample variance (MSE x spp), A's MSE
   for (int i = 0; i < o.alternations; ++i) {
-    const uint64_t seed_a = seed + 2 * uint64_t(i), seed_b = seed_a + 1;
+    const uint64_t seed_a = seed + 2 * uint64_t(i), seed_b = o.common_seed ? seed_a : seed_a + 1;
     const std::vector<float>& ref = reference.radiance.pixels;
     Run ra, rb;
     if (i % 2 == 0) {
@@ -204,6 +209,9 @@ int main(int argc, char** argv) {
   app.add_option("--spp", o.spp, "Equal samples per pixel instead of equal time (0 = time)")
       ->check(proxyvis::integerIn(0, 1 << 20))
       ->capture_default_str();
+  app.add_flag("--common-seed", o.common_seed,
+               "Both renders of a pair with the same seed (common random numbers: a far smaller "
+               "spread where the MSE has heavy tails, e.g. a small bright light)");
   app.add_flag("!--no-pairs", o.show_pairs, "Print only the summary row");
   proxyvis::addRenderFlags(app, flags);
   proxyvis::CommonOptions common;
