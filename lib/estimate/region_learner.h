@@ -120,13 +120,13 @@ class RegionLearner {
   struct Plan {
     bool roulette = false;
     RouletteQ q;  // roulette mode
-    // Exact mode: fraction of points whose queries also trace the proxy, and the same as a
+    // Exact mode: fraction of points whose queries also trace the proxy (< 1), and the same as a
     // threshold of exploresPoint's 32-bit sequence (explore * 2^32).
     double explore = kWarmupExploreRate;
     uint32_t explore_below = uint32_t(kWarmupExploreRate * 0x1p32);
     // Exact mode without a trial: only explored queries record their segments and estimates;
-    // every other query traces the original as the exact estimator does, after adding its
-    // segments to the region's sample counter.
+    // every other query traces the original as the exact estimator does (in one pass in
+    // kSampleCountPasses after adding to the region's sample counter).
     bool quiet = true;
     // Measured costs only: one query in kAltQueries runs the other mode (roulette with q, or
     // exact), for a same-pass comparison of the two modes' times.
@@ -137,12 +137,12 @@ class RegionLearner {
   bool alternate(const Plan& plan, uint32_t point) const {
     return plan.trial && (point + passes_) % kAltQueries == 0;
   }
-  // Whether an exact-mode query of `point` explores this pass, with probability plan.explore
-  // over points: a hash of (point, pass), cheaper than a random number, and exploring never
-  // changes an exact estimate, so it need not be independent of the estimates.
-  // A Weyl sequence, point * golden ratio mod 2^32 shifted by a salt drawn per epoch, falls below
-  // explore * 2^32 for that fraction of the points, evenly spread: one multiply and a compare,
-  // where a full hash was a measurable part of an exact query's cost.
+  // Whether an exact-mode query of `point` explores this pass, for a fraction plan.explore of the
+  // points. Exploring never changes an exact estimate, so the choice need not be random or
+  // independent of the estimates: a Weyl sequence, point * 2^32 / golden ratio mod 2^32 shifted
+  // by a salt drawn per epoch, falls below explore * 2^32 for that fraction of the points, evenly
+  // spread. One multiply and a compare, where a full hash was a measurable part of an exact
+  // query's cost.
   bool exploresPoint(const Plan& plan, uint32_t point) const {
     return point * kWeylMultiplier + explore_salt_ < plan.explore_below;
   }
