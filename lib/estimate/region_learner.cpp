@@ -1,6 +1,7 @@
 #include "estimate/region_learner.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 
@@ -29,6 +30,11 @@ constexpr double kNoAddedVarianceEfficiency = 1e9;
 // Hysteresis: a region already on roulette stays there while its measured efficiency is at least
 // this (switching needs 1 + margin), so timing noise does not flip it every pass.
 constexpr double kStayOnRouletteEfficiency = 1.05;
+
+uint64_t nextLearnerId() {
+  static std::atomic<uint64_t> next{1};
+  return next.fetch_add(1, std::memory_order_relaxed);
+}
 
 int64_t toFixed(double x) {
   return int64_t(x * double(RegionLearner::kFixedOne));
@@ -71,7 +77,11 @@ RegionDecision decideRegion(const RouletteModel& m, ProxyClass cls, double q_min
 }
 
 RegionLearner::RegionLearner(uint32_t num_regions, uint32_t num_points, const Options& options)
-    : options_(options), plans_(num_regions), learned_(num_regions), points_(num_points) {
+    : id_(nextLearnerId()),
+      options_(options),
+      plans_(num_regions),
+      learned_(num_regions),
+      points_(num_points) {
   PV_CHECK(num_regions > 0);
   PV_CHECK(options.q_min > 0 && options.q_min <= 1);
   if (options_.fixed_costs) {
@@ -107,20 +117,21 @@ void RegionLearner::recordQueryTime(RegionTally& t, bool roulette, uint64_t segm
   t.mode_ticks[mode] += std::min(ticks, tick_cap_ * segments);
 }
 
-RegionTally& RegionLearner::local(uint32_t region) {
-  PV_CHECK(region < plans_.size());
+std::vector<RegionTally>& RegionLearner::threadTallies() {
+  // Sized once per thread and never reallocated (endPass refills it), so the cached pointer in
+  // local() stays valid for the learner's life.
   std::vector<RegionTally>& v = locals_.local();
   if (v.empty()) v.resize(plans_.size());
-  return v[region];
+  return v;
 }
 
-void RegionLearner::addEstimates(uint32_t point, std::span<const double> estimates,
-                                 RegionTally& t) {
+void RegionLearner::addEstimates(uint32_t point, std::span<const double> estimates, RegionTally& t,
+                                 bool every_point) {
   if (estimates.empty()) return;
   if (point != ShadingPointQuery::kNoPoint && point < points_.size()) {
     // One point in RegionLearner::kVarianceStride is enough for a region's mean V(1-V), and the
     // history update is the learner's largest per-query cost.
-    if (point % RegionLearner::kVarianceStride != 0) return;
+    if (!every_point && point % RegionLearner::kVarianceStride != 0) return;
     PointHistory& h = points_[point];
     if (h.count > 0) {
       const double prev = double(h.sum) / (double(h.count) * double(kFixedOne));
@@ -207,10 +218,12 @@ void RegionLearner::beginPass() {
       tick_cap_ =
           std::max<uint64_t>(kMinTickCap, uint64_t(kTickCapOverWorstMean * worst_ns / nsPerTick()));
   }
+  explore_salt_ = uint32_t(mixBits(passes_ / kExploreEpochPasses));
+  counts_samples_ = passes_ % kSampleCountPasses == 0;
   for (uint32_t r = 0; r < plans_.size(); ++r) {
     Plan& p = plans_[r];
     if (observations(r) < uint64_t(kMinSamples) || (measuresCosts() && passes_ < 2)) {
-      p = Plan{false, RouletteQ{1, 1}, 1.0};
+      p = Plan{};  // warm-up: exact, exploring kWarmupExploreRate
       continue;
     }
     const RouletteModel m = model(r);
@@ -226,25 +239,28 @@ void RegionLearner::beginPass() {
       // Both must agree: the model (per-ray costs) and the measured times (with hysteresis).
       roulette = d.roulette &&
                  efficiency >= (p.roulette ? kStayOnRouletteEfficiency : 1.0 + options_.margin);
+    } else if (measuresCosts()) {
+      // Until both modes are timed, the model alone only starts a trial: single rays timed on a
+      // loaded machine can be off by a factor of ten (a preempted ray), and a region switched to
+      // roulette on such a cost loses to exact until the trial catches it.
+      roulette = false;
     }
     const bool trial = measuresCosts() && (roulette || d.roulette);
-    const bool settled =
-        uint64_t(learned_[r].samples) >= kSettledSamples && efficiency < kSettledEfficiency;
-    // Exploration of an undecided exact region thins out as its statistics grow (their error
-    // falls as 1/sqrt(samples), so does the rate needed to keep them current).
-    const double samples = std::max(1.0, learned_[r].samples);
-    // An explored segment costs one proxy ray more; where that ray is dear (a point on an
-    // object with a proxy traces its own original in V' too) the rate is cut so that exploring
-    // costs at most kExploreBudget of exact.
-    const double proxy_ray = m.p_blocked * m.costs.proxy[0] + (1 - m.p_blocked) * m.costs.proxy[1];
-    const double affordable = proxy_ray > 0 ? kExploreBudget * exactCost(m) / proxy_ray : 1.0;
-    const double explore =
-        settled ? kSettledExploreRate
-                : std::clamp(std::min(affordable,
-                                      kExploreRate * std::sqrt(double(kSettledSamples) / samples)),
-                             kSettledExploreRate, kExploreRate);
-    p = Plan{roulette, d.q, explore, settled && !roulette, trial};
+    const double explore = exploreRate(m, efficiency, learned_[r].samples);
+    p = Plan{roulette, d.q, explore, uint32_t(explore * 0x1p32), !roulette && !trial, trial};
   }
+}
+
+double RegionLearner::exploreRate(const RouletteModel& m, double efficiency, double samples) {
+  if (efficiency < kSettledEfficiency) return kSettledExploreRate;
+  // The statistics' error falls as 1/sqrt(samples), so does the rate needed to keep them current.
+  const double thinning = kExploreRate * std::sqrt(kExploreSamples / std::max(1.0, samples));
+  // An explored segment costs one proxy ray more; where that ray is dear (a point on an object
+  // with a proxy traces its own original in V' too) the rate is cut so that exploring costs at
+  // most kExploreBudget of exact.
+  const double proxy_ray = m.p_blocked * m.costs.proxy[0] + (1 - m.p_blocked) * m.costs.proxy[1];
+  const double affordable = proxy_ray > 0 ? kExploreBudget * exactCost(m) / proxy_ray : 1.0;
+  return std::clamp(std::min(affordable, thinning), kSettledExploreRate, kExploreRate);
 }
 
 void RegionLearner::endPass() {

@@ -6,10 +6,11 @@
 // pass's own random numbers and every estimate stays unbiased):
 //
 //  exact     trace the original for every segment (no added variance). To keep learning, also
-//            trace the proxy first for a fraction `explore` of the queries (all of them until the
-//            region has kMinSamples observations, then at most kExploreRate, thinning as the
-//            statistics grow and capped at kExploreBudget of exact's cost): each such segment
-//            reveals its class (V, V') and the cost of both rays. Costs explore * c_p only.
+//            trace the proxy first for a fraction `explore` of the points (kWarmupExploreRate
+//            until the region has kMinSamples observations, then at most kExploreRate, thinning
+//            as the statistics grow and capped at kExploreBudget of exact's cost): each such
+//            segment reveals its class (V, V') and the cost of both rays. The other queries take
+//            the exact estimator's path (Plan::quiet), so exact mode costs explore * c_p more.
 //  roulette  always trace the proxy, correct with q_i (roulette.h). P(V'=i) comes from every proxy
 //            ray; P(error | V'=i) from the corrections actually traced, each weighted by 1/q_i of
 //            its pass (Horvitz-Thompson), so the rate estimate is unbiased whatever q was used.
@@ -68,19 +69,34 @@ struct RegionTally {
 
 class RegionLearner {
  public:
-  static constexpr int kMinSamples = 64;            // observations before leaving exact
-  static constexpr double kExploreRate = 1.0 / 32;  // proxy rays traced in exact mode afterwards
-  // A region that has seen kSettledSamples segments and whose roulette is predicted below
-  // kSettledEfficiency of exact explores at kSettledExploreRate only: where the proxy clearly does
-  // not pay (points on an object with a proxy, which trace their own original either way) the
-  // exploration would otherwise be the estimator's main loss against exact.
-  static constexpr uint64_t kSettledSamples = 4096;
-  static constexpr double kSettledEfficiency = 0.8;
+  static constexpr int kMinSamples = 64;  // observations before leaving exact
+  // Warm-up (fewer than kMinSamples observations, or with measured costs fewer than 2 passes):
+  // one point in eight explores, which gives a 16 x 16 tile its kMinSamples observations in the
+  // two passes measured costs need anyway. Every point exploring made the warm-up passes cost two
+  // rays per segment, a loss of several percent at a few dozen samples per pixel.
+  static constexpr double kWarmupExploreRate = 1.0 / 8;
+  // After the warm-up, an exact region explores at most kExploreRate of its points, thinning as
+  // kExploreRate * sqrt(kExploreSamples / samples) and capped so that the extra proxy rays cost
+  // at most kExploreBudget of exact; one whose roulette is predicted below kSettledEfficiency of
+  // exact (the proxy does not pay: points on an object with a proxy, which trace their own
+  // original either way) explores at kSettledExploreRate only.
+  static constexpr double kExploreRate = 1.0 / 32;
+  static constexpr double kExploreSamples = 4096;
+  static constexpr double kSettledEfficiency = 1.0;
   static constexpr double kSettledExploreRate = 1.0 / 1024;
-  static constexpr double kExploreBudget = 0.01;  // of exact's cost, for undecided regions
+  static constexpr double kExploreBudget = 0.005;
+  // Points explore in the same set for kExploreEpochPasses passes (exploresPoint's salt changes
+  // per epoch of that many passes): an explored point then has estimates of earlier passes, which
+  // the variance of exact visibility needs (see addEstimates).
+  static constexpr uint32_t kExploreEpochPasses = 8;
+  static constexpr uint32_t kWeylMultiplier = 0x9e3779b9u;  // 2^32 / golden ratio, odd
+  // Samples are counted in one pass in kSampleCountPasses (see countsSamples()); a region's pixels
+  // are the same every pass, so this loses nothing but the counter's cost.
+  static constexpr uint32_t kSampleCountPasses = 8;
   static constexpr int64_t kFixedOne = int64_t(1) << 20;
-  // Variance history and sample counts are kept for one point in kVarianceStride (the rest of an
-  // exact region's queries record nothing, so that they cost what exact's do).
+  // In roulette and trial regions the variance history is kept for one point in kVarianceStride
+  // (the history update is the learner's largest per-query cost); quiet exact regions keep it for
+  // their explored points only.
   static constexpr uint32_t kVarianceStride = 4;
   // Measured mode costs (measured-cost mode only). The per-ray costs predict what roulette would
   // cost, but a ray timed alone among rays of the other scene runs on caches that scene warmed,
@@ -89,7 +105,7 @@ class RegionLearner {
   // a candidate (or that uses roulette) runs one query in kAltQueries in the other mode
   // (Plan::trial), interleaved with its own, and both are timed; the comparison needs
   // kMinModeSegments timed segments of each, weights decaying by kModeDecay per pass.
-  static constexpr double kMinModeSegments = 512;
+  static constexpr double kMinModeSegments = 256;
   static constexpr double kModeDecay = 0.98;
   static constexpr uint32_t kAltQueries = 16;
 
@@ -103,11 +119,15 @@ class RegionLearner {
 
   struct Plan {
     bool roulette = false;
-    RouletteQ q;           // roulette mode
-    double explore = 1.0;  // exact mode: fraction of segments also traced against the proxy
-    // Exact mode at kSettledExploreRate: only explored segments are recorded (the variance of
-    // exact visibility is no longer learned there; it matters only if the region comes back).
-    bool settled = false;
+    RouletteQ q;  // roulette mode
+    // Exact mode: fraction of points whose queries also trace the proxy (< 1), and the same as a
+    // threshold of exploresPoint's 32-bit sequence (explore * 2^32).
+    double explore = kWarmupExploreRate;
+    uint32_t explore_below = uint32_t(kWarmupExploreRate * 0x1p32);
+    // Exact mode without a trial: only explored queries record their segments and estimates;
+    // every other query traces the original as the exact estimator does (in one pass in
+    // kSampleCountPasses after adding to the region's sample counter).
+    bool quiet = true;
     // Measured costs only: one query in kAltQueries runs the other mode (roulette with q, or
     // exact), for a same-pass comparison of the two modes' times.
     bool trial = false;
@@ -117,12 +137,22 @@ class RegionLearner {
   bool alternate(const Plan& plan, uint32_t point) const {
     return plan.trial && (point + passes_) % kAltQueries == 0;
   }
-  // Whether an exact-mode query of `point` explores this pass, with probability plan.explore
-  // over points: a hash of (point, pass), cheaper than a random number, and exploring never
-  // changes an exact estimate, so it need not be independent of the estimates.
+  // Whether an exact-mode query of `point` explores this pass, for a fraction plan.explore of the
+  // points. Exploring never changes an exact estimate, so the choice need not be random or
+  // independent of the estimates: a Weyl sequence, point * 2^32 / golden ratio mod 2^32 shifted
+  // by a salt drawn per epoch, falls below explore * 2^32 for that fraction of the points, evenly
+  // spread. One multiply and a compare, where a full hash was a measurable part of an exact
+  // query's cost.
   bool exploresPoint(const Plan& plan, uint32_t point) const {
-    const uint64_t h = mixBits((uint64_t(passes_) << 32) | point);
-    return double(h >> 11) * 0x1p-53 < plan.explore;
+    return point * kWeylMultiplier + explore_salt_ < plan.explore_below;
+  }
+  // Whether this pass counts samples (one pass in kSampleCountPasses, each query then counting
+  // kSampleCountPasses times its segments): the counter is an exact query's only other cost.
+  bool countsSamples() const { return counts_samples_; }
+  // Whether a trial region times this query of its own mode (one in kAltQueries, never the
+  // alternated one). Depends only on the point and the pass.
+  bool timesOwnMode(const Plan& plan, uint32_t point) const {
+    return plan.trial && (point + passes_) % kAltQueries == kAltQueries / 2;
   }
   const Plan& plan(uint32_t region) const { return plans_[region]; }
   bool measuresCosts() const { return !options_.fixed_costs; }
@@ -138,7 +168,16 @@ class RegionLearner {
 
   // The calling thread's tally of `region` for this pass: the record*() calls add to it without
   // atomics; endPass() sums every thread's tallies (integer sums: the order does not matter).
-  RegionTally& local(uint32_t region);
+  // A thread-local cache of (learner, tallies) makes it a compare and a load, cheap enough for
+  // every query of an exact region to count its samples.
+  RegionTally& local(uint32_t region) {
+    LocalCache& c = localCache();
+    if (c.learner != id_) {
+      c.tallies = &threadTallies();
+      c.learner = id_;
+    }
+    return (*c.tallies)[region];
+  }
 
   // What the estimator saw of one segment it classed (V' traced).
   struct SegmentObservation {
@@ -159,8 +198,10 @@ class RegionLearner {
   // segments in `ticks` (capped at tickCap() per segment).
   void recordQueryTime(RegionTally& t, bool roulette, uint64_t segments, uint64_t ticks) const;
   // Variance learning for one query's estimates. `point` may be kNoPoint. Each point must be
-  // passed at most once per pass (its history must come from earlier passes).
-  void addEstimates(uint32_t point, std::span<const double> estimates, RegionTally& t);
+  // passed at most once per pass (its history must come from earlier passes). Only one point in
+  // kVarianceStride is kept unless `every_point` (explored queries, already a sparse choice).
+  void addEstimates(uint32_t point, std::span<const double> estimates, RegionTally& t,
+                    bool every_point = false);
 
   // Single-threaded. beginPass freezes the plans from everything folded in so far; endPass folds
   // the pass's counters into the statistics. In measured mode they also calibrate CPU ticks
@@ -195,6 +236,19 @@ class RegionLearner {
     uint32_t count = 0;
   };
 
+  struct LocalCache {
+    uint64_t learner = 0;  // id_ of the learner whose tallies follow (0: none)
+    std::vector<RegionTally>* tallies = nullptr;
+  };
+  // initial-exec: one load from the thread pointer (the library is linked statically).
+  static LocalCache& localCache() {
+    static thread_local LocalCache cache __attribute__((tls_model("initial-exec")));
+    return cache;
+  }
+  std::vector<RegionTally>& threadTallies();
+
+  // Unique per learner for the life of the process (an address could be reused by a later one).
+  uint64_t id_ = 0;
   Options options_;
   std::vector<Plan> plans_;
   // ets_key_per_instance: a native TLS key, the fastest lookup TBB offers (once per query).
@@ -207,12 +261,17 @@ class RegionLearner {
   ClassCosts global_costs_;  // ns when measured (once calibrated)
   double per_sample_ = 0;
   uint64_t tick_cap_ = uint64_t(1) << 22;
-  uint32_t passes_ = 0;  // passes folded in so far
+  uint32_t passes_ = 0;         // passes folded in so far
+  uint32_t explore_salt_ = 0;   // exploresPoint's shift for this pass's epoch
+  bool counts_samples_ = true;  // see countsSamples()
   // Tick calibration: the pass being timed, and totals over passes.
   int64_t pass_start_ns_ = 0;
   uint64_t pass_start_ticks_ = 0;
   double calib_ns_ = 0, calib_ticks_ = 0;
   double nsPerTick() const { return calib_ticks_ > 0 ? calib_ns_ / calib_ticks_ : 1.0; }
+  // An exact-mode region's exploration rate given its model, the efficiency of roulette against
+  // exact and the samples seen.
+  static double exploreRate(const RouletteModel& m, double efficiency, double samples);
 };
 
 }  // namespace proxyvis

@@ -35,49 +35,54 @@ void RouletteEstimator::estimate(const ShadingPointQuery& q, Rng& rng, std::span
                                  RayCounts& counts) {
   PV_CHECK_MSG(q.region < num_regions_, "query region out of range of EstimatorSetup::num_regions");
   const RegionLearner::Plan& region_plan = learner_.plan(q.region);
-  // A trial region runs one query in RegionLearner::kAltQueries in its other mode.
+  // Exploring never changes an exact estimate, so it need not be independent of it: the point's
+  // place in RegionLearner::exploresPoint's sequence decides, cheaper than a random number.
+  auto explores = [&](const RegionLearner::Plan& plan) {
+    return q.point == ShadingPointQuery::kNoPoint ? rng.uniformFloat() < plan.explore
+                                                  : learner_.exploresPoint(plan, q.point);
+  };
+  // In one pass in kSampleCountPasses, every query counts its segments in the region's tally
+  // (a thread-local compare and load).
+  if (learner_.countsSamples())
+    RegionLearner::recordSamples(learner_.local(q.region),
+                                 q.segments.size() * RegionLearner::kSampleCountPasses);
+  if (region_plan.quiet) {
+    // An exact region without a trial: the exact estimator's path; only explored queries
+    // record more.
+    if (!explores(region_plan)) {
+      for (size_t j = 0; j < q.segments.size(); ++j)
+        out[j] = exactSample(*q.tracer, q.segments[j], counts);
+      return;
+    }
+    RegionTally& t = learner_.local(q.region);
+    estimateRecorded(q, rng, region_plan, out, counts, t, nullptr);
+    learner_.addEstimates(q.point, out.first(q.segments.size()), t, true);
+    return;
+  }
+  // Roulette, or an exact region on trial: a trial region runs one query in
+  // RegionLearner::kAltQueries in its other mode.
   const bool alt = learner_.alternate(region_plan, q.point);
   RegionLearner::Plan alt_plan = region_plan;
   if (alt) alt_plan.roulette = !region_plan.roulette;
   const RegionLearner::Plan& plan = alt ? alt_plan : region_plan;
-  // The region's tally is fetched (a thread-local lookup) only when something is recorded: a
-  // settled exact region records its rare explored segments and timed queries only, so its
-  // queries cost what the exact estimator's do.
-  RegionTally* tally = nullptr;
-  auto local = [&]() -> RegionTally& {
-    if (!tally) tally = &learner_.local(q.region);
-    return *tally;
-  };
-  const bool sampled_point =
-      q.point == ShadingPointQuery::kNoPoint || q.point % RegionLearner::kVarianceStride == 0;
-  const bool quiet = (!plan.roulette && plan.settled) || !sampled_point;
-  if (sampled_point)
-    RegionLearner::recordSamples(
-        local(), q.segments.size() *
-                     (q.point == ShadingPointQuery::kNoPoint ? 1 : RegionLearner::kVarianceStride));
+  RegionTally& t = learner_.local(q.region);
   TimingCounters* timing = learner_.measuresCosts() ? &timing_.local() : nullptr;
-  // One query in kAltQueries of a trial region is timed whole, for the cost of its region's mode
-  // (region_learner.h); not while a region still explores every segment (that is not what exact
-  // mode costs later).
-  const bool time_query =
-      timing && (plan.roulette || plan.explore < 1) &&
-      (alt || (region_plan.trial && timing->queries++ % RegionLearner::kAltQueries == 0));
+  // One query in kAltQueries of a trial region is timed whole in each mode, for the cost of
+  // its region's mode (region_learner.h).
+  const bool time_query = timing && region_plan.trial &&
+                          (alt || (q.point == ShadingPointQuery::kNoPoint
+                                       ? timing->queries++ % RegionLearner::kAltQueries == 0
+                                       : learner_.timesOwnMode(region_plan, q.point)));
   const uint64_t query_start = time_query ? cpuTicks() : 0;
-  // Exact mode explores whole queries: one random number per query, and most queries of an
-  // exact region take the exact estimator's path (exploring never changes the estimate).
-  auto explores = [&] {
-    return q.point == ShadingPointQuery::kNoPoint ? rng.uniformFloat() < plan.explore
-                                                  : learner_.exploresPoint(plan, q.point);
-  };
-  if (!plan.roulette && plan.explore < 1 && !explores()) {
+  if (!plan.roulette && !explores(plan)) {
     for (size_t j = 0; j < q.segments.size(); ++j)
       out[j] = exactSample(*q.tracer, q.segments[j], counts);
   } else {
-    estimateRecorded(q, rng, plan, out, counts, local(), timing);
+    estimateRecorded(q, rng, plan, out, counts, t, timing);
   }
-  if (!quiet) learner_.addEstimates(q.point, out.first(q.segments.size()), local());
+  learner_.addEstimates(q.point, out.first(q.segments.size()), t);
   if (time_query)
-    learner_.recordQueryTime(local(), plan.roulette, q.segments.size(), cpuTicks() - query_start);
+    learner_.recordQueryTime(t, plan.roulette, q.segments.size(), cpuTicks() - query_start);
 }
 
 // Roulette or exploring exact: every segment is classed (V') and recorded in `t`. Timed rays:
@@ -90,8 +95,8 @@ void RouletteEstimator::estimateRecorded(const ShadingPointQuery& q, Rng& rng,
   for (size_t j = 0; j < q.segments.size(); ++j) {
     const double u = plan.roulette ? double(rng.uniformFloat()) : 1.0;
     uint32_t timed_index = 0;  // which timed roulette segment this is
-    bool timed = timing != nullptr;
-    if (timed && plan.roulette) {
+    bool timed = learner_.measuresCosts();
+    if (timed && plan.roulette && timing) {
       const uint32_t k = timing->roulette_segments++;
       timed = k % kTimedSegmentStride == 0;
       timed_index = k / kTimedSegmentStride;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <thread>
 #include <vector>
 
@@ -83,8 +84,9 @@ TEST(Decision, NothingToEstimateAndNoErrorsChoosesTheCheaperRay) {
 // A synthetic image: region r's points all draw their segments from mixes[r]; one segment per
 // point and pass, keyed on (point, pass).
 struct ImageRun {
-  std::vector<std::vector<double>> estimates;  // [point][pass]
-  std::vector<RayCounts> late_counts;          // per region, in the last quarter of the passes
+  std::vector<std::vector<double>> estimates;       // [point][pass]
+  std::vector<RayCounts> late_counts;               // per region, in the last quarter of the passes
+  std::vector<std::vector<RayCounts>> pass_counts;  // [pass][region]
   LearnedSummary summary;
 };
 
@@ -131,7 +133,9 @@ ImageRun runImage(const std::vector<ClassProbabilities>& mixes, ProxyClass cls, 
     for (int t = 0; t < threads; ++t) pool.emplace_back(work, t);
     for (auto& th : pool) th.join();
     e->endPass();
+    run.pass_counts.emplace_back(regions);
     for (uint32_t p = 0; p < points; ++p) {
+      run.pass_counts.back()[p / kPointsPerRegion] += counts[p];
       for (double x : pass_out[p]) run.estimates[p].push_back(x);
       if (pass >= passes * 3 / 4) run.late_counts[p / kPointsPerRegion] += counts[p];
     }
@@ -232,6 +236,57 @@ TEST(Learning, ChoosesProxyWhereItPaysAndExactElsewhereAndStaysUnbiased) {
     EXPECT_LE(std::abs(m.mean - kTwoRegions[r].vAvg()), z * std::sqrt(m.variance / m.n))
         << "region " << r << " seed " << kSeed;
   }
+}
+
+// Warm-up explores one point in eight (both rays), not every point: at a few dozen samples per
+// pixel, every point exploring cost several percent against exact.
+TEST(Learning, WarmUpExploresAnEighthOfThePoints) {
+  const ImageRun run = runImage(kTwoRegions, ProxyClass::kGeneral, 2, 1, false, true);
+  for (uint32_t r = 0; r < kTwoRegions.size(); ++r) {
+    const RayCounts& c = run.pass_counts[0][r];
+    EXPECT_EQ(c.original, uint64_t(kPointsPerRegion)) << "region " << r;  // exact answers
+    EXPECT_GE(c.proxy, uint64_t(kPointsPerRegion / 16)) << "region " << r;
+    EXPECT_LE(c.proxy, uint64_t(kPointsPerRegion / 4)) << "region " << r;
+  }
+}
+
+// Region 1 of kTwoRegions, where the proxy does not pay (predicted about 0.8x exact), goes to
+// exact right after the warm-up and then traces exactly one original ray per sample, and a proxy
+// ray only for the rare explored points (at most 1 in 1024 once settled).
+TEST(Learning, RegionWhereTheProxyDoesNotPayTracesOneOriginalPerSampleAfterWarmUp) {
+  constexpr int kPasses = 64, kWarmUpPasses = 12;
+  const ImageRun run = runImage(kTwoRegions, ProxyClass::kGeneral, kPasses, 2, false, true);
+  uint64_t proxy = 0;
+  for (int pass = kWarmUpPasses; pass < kPasses; ++pass) {
+    const RayCounts& c = run.pass_counts[size_t(pass)][1];
+    EXPECT_EQ(c.original, uint64_t(kPointsPerRegion)) << "pass " << pass;
+    EXPECT_EQ(c.probe, 0u);
+    proxy += c.proxy;
+  }
+  EXPECT_LE(proxy, uint64_t(kPointsPerRegion * (kPasses - kWarmUpPasses) / 100));
+  // Region 0, where the proxy pays, keeps using it: fewer originals than samples.
+  for (int pass = kWarmUpPasses; pass < kPasses; ++pass)
+    EXPECT_LT(run.pass_counts[size_t(pass)][0].original, uint64_t(kPointsPerRegion / 2));
+}
+
+// The thread-local cache behind RegionLearner::local() keeps learners apart, also a learner
+// made where a destroyed one lived.
+TEST(Recording, ThreadTallyCacheKeepsLearnersApart) {
+  auto a = std::make_unique<RegionLearner>(2, 0, RegionLearner::Options{});
+  RegionLearner b(2, 0, RegionLearner::Options{});
+  RegionLearner::recordSamples(a->local(1), 5);
+  RegionLearner::recordSamples(b.local(1), 7);
+  RegionLearner::recordSamples(a->local(1), 1);
+  EXPECT_EQ(a->local(1).samples, 6u);
+  EXPECT_EQ(b.local(1).samples, 7u);
+  EXPECT_EQ(a->local(0).samples, 0u);
+  a.reset();
+  a = std::make_unique<RegionLearner>(2, 0, RegionLearner::Options{});
+  EXPECT_EQ(a->local(1).samples, 0u);
+  a->endPass();
+  EXPECT_EQ(b.local(1).samples, 7u);  // a's endPass leaves b's tallies alone
+  b.endPass();
+  EXPECT_EQ(b.local(1).samples, 0u);  // folded in and cleared
 }
 
 TEST(Learning, MeasuredCostsStayUnbiased) {
