@@ -116,7 +116,12 @@ int run(const Options& opt) {
   }
 
   const double tpn = ticksPerNanosecond();
-  CeilingStats stats(lights, w, h, opt.tile, uint64_t(opt.max_ray_us * 1e3 * tpn));
+  // All shading points, then those on placed meshes (the terrain) and on instances (plants).
+  const uint64_t cap = uint64_t(opt.max_ray_us * 1e3 * tpn);
+  CeilingStats stats(lights, w, h, opt.tile, cap);
+  CeilingStats by_surface[2] = {CeilingStats(lights, w, h, opt.tile, cap),
+                                CeilingStats(lights, w, h, opt.tile, cap)};
+  const char* surface_names[2] = {"terrain", "plants"};
   const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
   uint64_t k = 0;
   for (const auto& pass : passes)
@@ -138,8 +143,10 @@ int run(const Options& opt) {
       if (k++ % 2) traceProxy(), traceOriginal();
       else traceOriginal(), traceProxy();
       stats.add(s.light, s.pixel, vp, v, tp, to);
+      by_surface[scene->objects()[s.object].instance >= 0].add(s.light, s.pixel, vp, v, tp, to);
     }
   stats.finish();
+  for (CeilingStats& b : by_surface) b.finish();
 
   // c_s: what a light sample costs outside visibility (primary ray share, light sampling), from
   // an exact render on the same single thread.
@@ -152,8 +159,13 @@ int run(const Options& opt) {
   const RenderResult exact = render(*scene, rs);
   const double cpu = threadCpuSeconds() - cpu0;
   const double c_s_ns = cpu * (exact.shading_seconds / exact.seconds) * 1e9 / (double(w) * h * opt.spp);
-  const std::vector<CeilingRow> rows =
+  std::vector<CeilingRow> rows =
       ceilingRows(stats, names, powerWeights(desc), cls, opt.q_min, c_s_ns, tpn);
+  for (int b = 0; b < 2; ++b)
+    for (CeilingRow& r : ceilingRows(by_surface[b], names, powerWeights(desc), cls, opt.q_min, c_s_ns, tpn)) {
+      r.light += std::string(" on ") + surface_names[b];
+      rows.push_back(r);
+    }
 
   std::printf("## %s: %s (%dx%d, %d passes, proxy class %s, %llu proxy triangles, load %.1f s, "
               "c_s %.0f ns)\n\n",
@@ -237,6 +249,8 @@ int main(int argc, char** argv) {
                  "Build cells within this distance of a shading point (scene units)")
       ->check(proxyvis::positiveNumber())
       ->capture_default_str();
+  app.add_flag("--cluster-fused", o.cluster.fused,
+               "Cluster proxies: one scene per cell (terrain, other cells' proxies, own originals)");
   app.add_flag("!--cluster-from-originals", o.cluster.from_proxies,
                "Cluster proxies from the instances' originals, not their proxies");
   proxyvis::CommonOptions common;

@@ -89,14 +89,17 @@ ClusterTracer::ClusterTracer(const RenderScene& scene, const ClusterOptions& opt
                                                : originals_[m];
   }
 
-  TraceSceneBuilder builder(*device_);
+  // The cell proxies are small flattened meshes: a context filter skips the own cell's proxy at
+  // little cost, where mask-then-filter would trace every segment that escapes twice.
+  TraceSceneOptions trace_options;
+  trace_options.ignore = IgnoreStrategy::kFilter;
+  TraceSceneBuilder builder(*device_, trace_options);
   // Placed meshes (the terrain) stay exact in the proxy scene, with a user id no cell has.
-  for (uint32_t i = 0; i < objects.size(); ++i) {
-    if (objects[i].instance >= 0) continue;
-    TriMesh world;
-    append(world, loadMesh(desc.meshes[objects[i].mesh].file), objects[i].to_world);
-    builder.addMesh(world, uint32_t(cells));
-  }
+  for (uint32_t i = 0; i < objects.size(); ++i)
+    if (objects[i].instance < 0)
+      append(terrain_, loadMesh(desc.meshes[objects[i].mesh].file), objects[i].to_world);
+  if (!terrain_.empty()) builder.addMesh(terrain_, uint32_t(cells));
+  cell_proxy_.resize(size_t(cells));
   std::vector<int64_t> prototype(desc.meshes.size(), -1);
   for (int c = 0; c < cells; ++c) {
     if (members[size_t(c)].empty()) continue;
@@ -116,6 +119,7 @@ ClusterTracer::ClusterTracer(const RenderScene& scene, const ClusterOptions& opt
         }
         summary_.proxy_triangles += proxy.numTriangles();
         builder.addMesh(proxy, uint32_t(c));
+        cell_proxy_[size_t(c)] = std::move(proxy);
         ++summary_.built;
         continue;
       } catch (const Error& e) {
@@ -131,12 +135,17 @@ ClusterTracer::ClusterTracer(const RenderScene& scene, const ClusterOptions& opt
   }
   proxies_ = builder.build();
   own_.resize(size_t(cells));
+  if (options.fused) fused_ = std::make_unique<FusedCellScenes>(*device_);
   // Members are needed again for the own-cell scenes.
   members_ = std::move(members);
   summary_.build_seconds = watch.seconds();
 }
 
 void ClusterTracer::prepare(uint32_t cell) {
+  if (options_.fused) {
+    if (!fused_->built(cell)) fused_->buildCell(cell, fusedPlacements(cell));
+    return;
+  }
   if (own_[cell] || members_[cell].empty()) return;
   TraceSceneBuilder builder(*device_);
   std::vector<int64_t> prototype(originals_.size(), -1);
@@ -148,7 +157,33 @@ void ClusterTracer::prepare(uint32_t cell) {
   own_[cell] = builder.build();
 }
 
+std::vector<FusedCellScenes::Placement> ClusterTracer::fusedPlacements(uint32_t cell) {
+  if (fused_leaf_mesh_.empty()) {  // leaves once: terrain, every plant mesh, every cell proxy
+    fused_leaf_mesh_.assign(originals_.size(), ~0u);
+    fused_leaf_cell_.assign(cell_proxy_.size(), ~0u);
+    if (!terrain_.empty()) fused_terrain_ = fused_->addLeaf(terrain_);
+    for (size_t m = 0; m < originals_.size(); ++m)
+      if (!originals_[m].empty()) fused_leaf_mesh_[m] = fused_->addLeaf(originals_[m]);
+    for (size_t c = 0; c < cell_proxy_.size(); ++c)
+      if (!cell_proxy_[c].empty()) fused_leaf_cell_[c] = fused_->addLeaf(cell_proxy_[c]);
+  }
+  std::vector<FusedCellScenes::Placement> out;
+  if (!terrain_.empty()) out.push_back({fused_terrain_, Affine3f{}});
+  for (uint32_t c = 0; c < cell_proxy_.size(); ++c) {
+    if (c != cell && fused_leaf_cell_[c] != ~0u) {
+      out.push_back({fused_leaf_cell_[c], Affine3f{}});
+      continue;
+    }
+    for (uint32_t i : members_[c]) {
+      const RenderObject& o = scene_.objects()[i];
+      out.push_back({fused_leaf_mesh_[o.mesh], o.to_world});
+    }
+  }
+  return out;
+}
+
 bool ClusterTracer::proxyVisible(const Segment& s, uint32_t cell) const {
+  if (options_.fused) return !fused_->occluded(cell, s);
   if (proxies_->occluded(s, cell)) return false;
   return !(own_[cell] && own_[cell]->occluded(s));
 }

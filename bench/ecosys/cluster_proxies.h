@@ -6,12 +6,14 @@
 //          and [segment misses the originals of the shading point's own cell],
 // where the shading point's cell is its instance's cell (a plant) or the cell under the point
 // (the terrain). With outside cell proxies, V' = 1 still implies V = 1 (no HM'), as for the
-// per-object rule. Cells farther than `margin` from every shading point are never built: their
+// per-object rule (ClusterOptions::fused traces the same V' in one scene per cell, fused_cells.h).
+// Cells farther than `margin` from every shading point are never built: their
 // instances' originals stand in the proxy scene (exact, only dearer), so the answer stays right.
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "fused_cells.h"
 #include "mesh/tri_mesh.h"
 #include "render/render_scene.h"
 #include "trace/trace_scene.h"
@@ -27,6 +29,10 @@ struct ClusterOptions {
   // Build each cell's proxy from the instances' own proxies (the scene's chosen proxy, when it
   // has one) instead of their originals: far fewer triangles for the wrap, still outside.
   bool from_proxies = true;
+  // One Embree scene per cell holding the terrain, the OTHER cells' proxies and the cell's own
+  // originals as instances of shared BVHs, so that V' is one traversal with nothing to ignore
+  // (instead of the proxy scene under an ignore filter plus the own cell's originals).
+  bool fused = false;
 };
 
 struct ClusterSummary {
@@ -45,7 +51,7 @@ class ClusterTracer {
 
   // The cell whose originals a shading point on `object` at `p` traces itself.
   uint32_t cellOf(uint32_t object, const Vec3f& p) const;
-  // Builds that cell's own-originals scene if not yet built (outside any timed section).
+  // Builds that cell's own-originals scene (fused: its whole V' scene) if not yet built (outside any timed section).
   void prepare(uint32_t cell);
   bool proxyVisible(const Segment& s, uint32_t cell) const;
   bool originalVisible(const Segment& s) const { return !scene_.originals().occluded(s); }
@@ -62,9 +68,16 @@ class ClusterTracer {
   std::unique_ptr<TraceScene> proxies_;
   std::vector<std::unique_ptr<TraceScene>> own_;  // per cell, lazily
   std::vector<std::vector<uint32_t>> members_;    // per cell: its instances' object indices
+  TriMesh terrain_;                               // placed meshes, world space
+  std::vector<TriMesh> cell_proxy_;               // per cell; empty if not built
   ClusterSummary summary_;
 
+  std::unique_ptr<FusedCellScenes> fused_;
+  uint32_t fused_terrain_ = 0;
+  std::vector<uint32_t> fused_leaf_mesh_, fused_leaf_cell_;  // leaf per mesh / per cell proxy
+
   uint32_t cellAt(const Vec3f& p) const;
+  std::vector<FusedCellScenes::Placement> fusedPlacements(uint32_t cell);
 };
 
 }  // namespace proxyvis::ecosys

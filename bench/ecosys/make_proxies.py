@@ -59,8 +59,10 @@ def main():
                 mesh["proxies"] = []
                 continue
             out, rep = ok
-            mesh["proxies"] = [{"kind": kind, "method": method, "file": os.path.abspath(out),
-                                "class": rep["class"], "sha256": sha256(out)}]
+            proxy = {"kind": kind, "method": method, "file": os.path.abspath(out)}
+            if rep.get("class"):  # an unverified (general) proxy records no class
+                proxy.update({"class": rep["class"], "sha256": sha256(out)})
+            mesh["proxies"] = [proxy]
     with open(os.path.join(out_dir, "scene.json"), "w") as f:
         json.dump(scene, f, indent=1)
     with open(os.path.join(out_dir, "failed.txt"), "w") as f:
