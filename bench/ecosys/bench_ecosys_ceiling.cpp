@@ -69,8 +69,10 @@ std::vector<double> powerWeights(const SceneDesc& desc) {
 std::vector<std::string> split(const std::string& s) {
   std::vector<std::string> out(1);
   for (char c : s) {
-    if (c == ',') out.emplace_back();
-    else out.back().push_back(c);
+    if (c == ',')
+      out.emplace_back();
+    else
+      out.back().push_back(c);
   }
   return out;
 }
@@ -104,11 +106,12 @@ int run(const Options& opt) {
     for (const LightSegment& s : passes[0]) focus.push_back(s.segment.org);
     cluster.emplace(*scene, opt.cluster, focus);
     const ClusterSummary& cs = cluster->summary();
-    std::printf("cluster proxies: %d cells of %.1f units, %d built (%s), %d failed, %llu triangles, "
-                "%.1f s%s%s\n",
-                cs.cells, double(opt.cluster.cell), cs.built, opt.cluster.method.c_str(), cs.failed,
-                (unsigned long long)cs.proxy_triangles, cs.build_seconds,
-                cs.first_failure.empty() ? "" : "; first failure: ", cs.first_failure.c_str());
+    std::printf(
+        "cluster proxies: %d cells of %.1f units, %d built (%s), %d failed, %llu triangles, "
+        "%.1f s%s%s\n",
+        cs.cells, double(opt.cluster.cell), cs.built, opt.cluster.method.c_str(), cs.failed,
+        (unsigned long long)cs.proxy_triangles, cs.build_seconds,
+        cs.first_failure.empty() ? "" : "; first failure: ", cs.first_failure.c_str());
     cls = ProxyClass::kOutside;  // hulls and wraps of outside inputs contain their instances
     proxy_triangles = cs.proxy_triangles;
     for (const auto& pass : passes)
@@ -140,8 +143,10 @@ int run(const Options& opt) {
         v = tracer.originalVisible(s.segment);
         to = cpuTicks() - a;
       };
-      if (k++ % 2) traceProxy(), traceOriginal();
-      else traceOriginal(), traceProxy();
+      if (k++ % 2)
+        traceProxy(), traceOriginal();
+      else
+        traceOriginal(), traceProxy();
       stats.add(s.light, s.pixel, vp, v, tp, to);
       by_surface[scene->objects()[s.object].instance >= 0].add(s.light, s.pixel, vp, v, tp, to);
     }
@@ -158,46 +163,55 @@ int run(const Options& opt) {
   const double cpu0 = threadCpuSeconds();
   const RenderResult exact = render(*scene, rs);
   const double cpu = threadCpuSeconds() - cpu0;
-  const double c_s_ns = cpu * (exact.shading_seconds / exact.seconds) * 1e9 / (double(w) * h * opt.spp);
+  const double c_s_ns =
+      cpu * (exact.shading_seconds / exact.seconds) * 1e9 / (double(w) * h * opt.spp);
   std::vector<CeilingRow> rows =
       ceilingRows(stats, names, powerWeights(desc), cls, opt.q_min, c_s_ns, tpn);
   for (int b = 0; b < 2; ++b)
-    for (CeilingRow& r : ceilingRows(by_surface[b], names, powerWeights(desc), cls, opt.q_min, c_s_ns, tpn)) {
+    for (CeilingRow& r :
+         ceilingRows(by_surface[b], names, powerWeights(desc), cls, opt.q_min, c_s_ns, tpn)) {
       r.light += std::string(" on ") + surface_names[b];
       rows.push_back(r);
     }
 
-  std::printf("## %s: %s (%dx%d, %d passes, proxy class %s, %llu proxy triangles, load %.1f s, "
-              "c_s %.0f ns)\n\n",
-              opt.label.c_str(), opt.scene.c_str(), w, h, opt.passes, proxyClassName(cls),
-              (unsigned long long)proxy_triangles, load_seconds, c_s_ns);
-  std::printf("| light | share | segments | P(V'=0) | P(MH') | P(HM') | mean V(1-V) | c_p 0/1 (ns) | "
-              "c_o 0/1 (ns) | q=1 | ceiling rays | ceiling render | roulette regions |\n");
+  std::printf(
+      "## %s: %s (%dx%d, %d passes, proxy class %s, %llu proxy triangles, load %.1f s, "
+      "c_s %.0f ns)\n\n",
+      opt.label.c_str(), opt.scene.c_str(), w, h, opt.passes, proxyClassName(cls),
+      (unsigned long long)proxy_triangles, load_seconds, c_s_ns);
+  std::printf(
+      "| light | share | segments | P(V'=0) | P(MH') | P(HM') | mean V(1-V) | c_p 0/1 (ns) | "
+      "c_o 0/1 (ns) | q=1 | ceiling rays | ceiling render | roulette regions |\n");
   std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   std::FILE* tsv = opt.tsv.empty() ? nullptr : std::fopen(opt.tsv.c_str(), "a");
-  if (!opt.tsv.empty() && !tsv) throw WriteError(opt.tsv, "cannot open for appending", std::strerror(errno), "check the folder");
+  if (!opt.tsv.empty() && !tsv)
+    throw WriteError(opt.tsv, "cannot open for appending", std::strerror(errno),
+                     "check the folder");
   for (const CeilingRow& r : rows) {
-    std::printf("| %s | %.3f | %llu | %.4f | %.4f | %.4f | %.4f | %.0f / %.0f | %.0f / %.0f | %.3f | "
-                "%.3f | %.3f | %d of %d |\n",
-                r.light.c_str(), r.weight, (unsigned long long)r.segments, r.p_blocked, r.p_mh,
-                r.p_hm, r.var_exact, r.c_p[0], r.c_p[1], r.c_o[0], r.c_o[1], r.culling_shadow,
-                r.ceiling_shadow, r.ceiling_render, r.regions_roulette, r.regions);
+    std::printf(
+        "| %s | %.3f | %llu | %.4f | %.4f | %.4f | %.4f | %.0f / %.0f | %.0f / %.0f | %.3f | "
+        "%.3f | %.3f | %d of %d |\n",
+        r.light.c_str(), r.weight, (unsigned long long)r.segments, r.p_blocked, r.p_mh, r.p_hm,
+        r.var_exact, r.c_p[0], r.c_p[1], r.c_o[0], r.c_o[1], r.culling_shadow, r.ceiling_shadow,
+        r.ceiling_render, r.regions_roulette, r.regions);
     if (tsv)
-      std::fprintf(tsv,
-                   "%s\t%s\t%s\t%llu\t%.3f\t%.4f\t%.4f\t%.4f\t%.4f\t%.1f\t%.1f\t%.1f\t%.1f\t%.3f\t%.3f\t%"
-                   ".3f\t%d\t%d\t%.0f\n",
-                   opt.label.c_str(), proxyClassName(cls), r.light.c_str(),
-                   (unsigned long long)proxy_triangles, r.weight, r.p_blocked, r.p_mh, r.p_hm,
-                   r.var_exact, r.c_p[0], r.c_p[1], r.c_o[0], r.c_o[1], r.culling_shadow,
-                   r.ceiling_shadow, r.ceiling_render, r.regions_roulette, r.regions, c_s_ns);
+      std::fprintf(
+          tsv,
+          "%s\t%s\t%s\t%llu\t%.3f\t%.4f\t%.4f\t%.4f\t%.4f\t%.1f\t%.1f\t%.1f\t%.1f\t%.3f\t%.3f\t%"
+          ".3f\t%d\t%d\t%.0f\n",
+          opt.label.c_str(), proxyClassName(cls), r.light.c_str(),
+          (unsigned long long)proxy_triangles, r.weight, r.p_blocked, r.p_mh, r.p_hm, r.var_exact,
+          r.c_p[0], r.c_p[1], r.c_o[0], r.c_o[1], r.culling_shadow, r.ceiling_shadow,
+          r.ceiling_render, r.regions_roulette, r.regions, c_s_ns);
   }
   if (tsv) std::fclose(tsv);
   std::printf("\n%llu of %llu samples had a ray slower than %.0f us (preempted): not timed.\n",
               (unsigned long long)stats.preempted(), (unsigned long long)k, opt.max_ray_us);
-  std::printf("\nq=1: roulette with q = 1 where errors are possible (culling for outside proxies), "
-              "shadow rays only. Ceilings: oracle per (tile, light) region choosing exact or "
-              "roulette(q*), efficiency vs exact; 'render' adds c_s to every sample. Variance per "
-              "light sample, not radiance-weighted; single-thread TSC timings.\n\n");
+  std::printf(
+      "\nq=1: roulette with q = 1 where errors are possible (culling for outside proxies), "
+      "shadow rays only. Ceilings: oracle per (tile, light) region choosing exact or "
+      "roulette(q*), efficiency vs exact; 'render' adds c_s to every sample. Variance per "
+      "light sample, not radiance-weighted; single-thread TSC timings.\n\n");
   return 0;
 }
 
@@ -205,7 +219,8 @@ int run(const Options& opt) {
 }  // namespace proxyvis::ecosys
 
 int main(int argc, char** argv) {
-  CLI::App app{"bench_ecosys_ceiling: per-light oracle ceiling of per-prototype or cluster proxies"};
+  CLI::App app{
+      "bench_ecosys_ceiling: per-light oracle ceiling of per-prototype or cluster proxies"};
   proxyvis::ecosys::Options o;
   app.add_option("scene", o.scene, "Scene with proxies")->required();
   app.add_option("--label", o.label, "Name of this variant in the table")->required();
@@ -249,8 +264,9 @@ int main(int argc, char** argv) {
                  "Build cells within this distance of a shading point (scene units)")
       ->check(proxyvis::positiveNumber())
       ->capture_default_str();
-  app.add_flag("--cluster-fused", o.cluster.fused,
-               "Cluster proxies: one scene per cell (terrain, other cells' proxies, own originals)");
+  app.add_flag(
+      "--cluster-fused", o.cluster.fused,
+      "Cluster proxies: one scene per cell (terrain, other cells' proxies, own originals)");
   app.add_flag("!--cluster-from-originals", o.cluster.from_proxies,
                "Cluster proxies from the instances' originals, not their proxies");
   proxyvis::CommonOptions common;

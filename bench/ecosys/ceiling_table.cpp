@@ -115,7 +115,8 @@ double ratio(double var_e, double cost_e, double var, double cost) {
 
 }  // namespace
 
-std::vector<CeilingRow> ceilingRows(const CeilingStats& stats, const std::vector<std::string>& names,
+std::vector<CeilingRow> ceilingRows(const CeilingStats& stats,
+                                    const std::vector<std::string>& names,
                                     std::vector<double> light_weights, ProxyClass cls, double q_min,
                                     double c_s_ns, double ticks_per_ns) {
   const int lights = stats.lights();
@@ -152,9 +153,12 @@ std::vector<CeilingRow> ceilingRows(const CeilingStats& stats, const std::vector
     const Totals shadow = oracle(stats, l, fallback, cls, q_min);
     fallback.per_sample = c_s_ns * ticks_per_ns;
     const Totals whole = oracle(stats, l, fallback, cls, q_min);
-    row.ceiling_shadow = ratio(shadow.var_exact, shadow.cost_exact, shadow.var_oracle, shadow.cost_oracle);
-    row.ceiling_render = ratio(whole.var_exact, whole.cost_exact, whole.var_oracle, whole.cost_oracle);
-    row.culling_shadow = ratio(shadow.var_exact, shadow.cost_exact, shadow.var_culling, shadow.cost_culling);
+    row.ceiling_shadow =
+        ratio(shadow.var_exact, shadow.cost_exact, shadow.var_oracle, shadow.cost_oracle);
+    row.ceiling_render =
+        ratio(whole.var_exact, whole.cost_exact, whole.var_oracle, whole.cost_oracle);
+    row.culling_shadow =
+        ratio(shadow.var_exact, shadow.cost_exact, shadow.var_culling, shadow.cost_culling);
     row.regions = shadow.regions;
     row.regions_roulette = shadow.regions_roulette;
     rows.push_back(row);

@@ -56,8 +56,8 @@ struct CeilingRow {
   uint64_t segments = 0;
   double p_blocked = 0, p_mh = 0, p_hm = 0, var_exact = 0;
   double c_p[2] = {0, 0}, c_o[2] = {0, 0};  // ns per ray given V' = 0 / 1
-  double ceiling_shadow = 1;  // oracle per region, shadow rays alone (c_s = 0)
-  double ceiling_render = 1;  // oracle per region with c_s added to every sample
+  double ceiling_shadow = 1;                // oracle per region, shadow rays alone (c_s = 0)
+  double ceiling_render = 1;                // oracle per region with c_s added to every sample
   double culling_shadow = 1;  // q = 1 everywhere (culling for an outside proxy), shadow rays alone
   int regions = 0, regions_roulette = 0;
 };
@@ -65,7 +65,8 @@ struct CeilingRow {
 // Rows for each light and, when there are several, one for the mix with `light_weights` (the
 // fraction of light samples each light gets; normalized here). `c_s_ns` is the per-sample cost
 // outside visibility (ns), `ticks_per_ns` converts the ray timings.
-std::vector<CeilingRow> ceilingRows(const CeilingStats& stats, const std::vector<std::string>& names,
+std::vector<CeilingRow> ceilingRows(const CeilingStats& stats,
+                                    const std::vector<std::string>& names,
                                     std::vector<double> light_weights, ProxyClass cls, double q_min,
                                     double c_s_ns, double ticks_per_ns);
 

@@ -21,11 +21,11 @@
 namespace proxyvis::ecosys {
 
 struct ClusterOptions {
-  float cell = 10;             // cell side, scene units
-  std::string method = "hull"; // "hull" or "wrap"
-  float alpha = 0.5f;          // wrap: alpha, scene units
-  float offset = 0.05f;        // wrap: offset, scene units
-  float margin = 10;           // build cells within this distance (cells) of a shading point
+  float cell = 10;              // cell side, scene units
+  std::string method = "hull";  // "hull" or "wrap"
+  float alpha = 0.5f;           // wrap: alpha, scene units
+  float offset = 0.05f;         // wrap: offset, scene units
+  float margin = 10;            // build cells within this distance (cells) of a shading point
   // Build each cell's proxy from the instances' own proxies (the scene's chosen proxy, when it
   // has one) instead of their originals: far fewer triangles for the wrap, still outside.
   bool from_proxies = true;
@@ -51,7 +51,8 @@ class ClusterTracer {
 
   // The cell whose originals a shading point on `object` at `p` traces itself.
   uint32_t cellOf(uint32_t object, const Vec3f& p) const;
-  // Builds that cell's own-originals scene (fused: its whole V' scene) if not yet built (outside any timed section).
+  // Builds that cell's own-originals scene (fused: its whole V' scene) if not yet built (outside
+  // any timed section).
   void prepare(uint32_t cell);
   bool proxyVisible(const Segment& s, uint32_t cell) const;
   bool originalVisible(const Segment& s) const { return !scene_.originals().occluded(s); }
@@ -63,7 +64,7 @@ class ClusterTracer {
   float x0_ = 0, y0_ = 0;
   int nx_ = 1, ny_ = 1;
   std::vector<uint32_t> cell_of_object_;  // plants: the instance's cell; placed meshes: ~0u
-  std::vector<TriMesh> originals_;       // per mesh (plants only), object space
+  std::vector<TriMesh> originals_;        // per mesh (plants only), object space
   std::unique_ptr<TraceDevice> device_;
   std::unique_ptr<TraceScene> proxies_;
   std::vector<std::unique_ptr<TraceScene>> own_;  // per cell, lazily
