@@ -2,7 +2,8 @@
 # The whole ecosys proxy comparison: makes every per-prototype proxy variant with proxy-gen
 # (make_proxies.py; cached in OUT/<variant>/), runs bench_ecosys_ceiling on each and on the
 # cluster-proxy variants, and prints one table (print_table.py). Results of docs/
-# proxies_on_foliage.md. Takes about 40 minutes on 2 cores, most of it building the wraps.
+# proxies_on_foliage.md. About 20 minutes on 2 idle cores the first time (most of it the default
+# wraps), 5 minutes once the proxies exist.
 #
 # usage: bench/ecosys/run_comparison.sh [BUILD_DIR [OUT_DIR [PASSES]]]
 #        (defaults: build, out/ecosys-proxies, 16); run from the repository root.
