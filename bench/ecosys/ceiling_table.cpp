@@ -1,6 +1,7 @@
 #include "ceiling_table.h"
 
 #include <algorithm>
+#include <limits>
 #include <numeric>
 
 #include "estimate/roulette.h"
@@ -95,7 +96,9 @@ Totals oracle(const CeilingStats& stats, int light, const ClassCosts& fallback, 
     const RouletteQ q = optimalRouletteQ(m, cls, q_min);
     const double ve = m.var_exact, ce = exactCost(m);
     const double vr = rouletteVariance(m, q), cr = rouletteCost(m, q);
-    const bool use = vr * cr < ve * ce;
+    // Where neither adds variance (every pixel fully lit or fully shadowed, no proxy error) the
+    // products are both 0 and only the cost decides.
+    const bool use = vr * cr < ve * ce || (vr == 0 && ve == 0 && cr < ce);
     t.regions_roulette += use;
     t.var_exact += n * ve, t.cost_exact += n * ce;
     t.var_oracle += n * (use ? vr : ve), t.cost_oracle += n * (use ? cr : ce);
@@ -109,8 +112,11 @@ Totals oracle(const CeilingStats& stats, int light, const ClassCosts& fallback, 
   return t;
 }
 
+// Efficiency of an estimator relative to exact, 1/(Var x Cost) over exact's; with no variance on
+// either side the cost ratio (as rouletteEfficiencyVsExact does).
 double ratio(double var_e, double cost_e, double var, double cost) {
-  return var * cost > 0 ? (var_e * cost_e) / (var * cost) : 1.0;
+  if (var == 0) return var_e == 0 ? cost_e / cost : std::numeric_limits<double>::infinity();
+  return (var_e * cost_e) / (var * cost);
 }
 
 }  // namespace

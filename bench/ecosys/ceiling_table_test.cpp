@@ -47,6 +47,18 @@ TEST(CeilingTable, ProxyWrongWhereExactHasNoVarianceFallsBackToExact) {
   EXPECT_NEAR(rows[0].culling_shadow, 10.0 / 11.0, 1e-9);
 }
 
+TEST(CeilingTable, NoVarianceAndNoErrorsLetsTheCheaperProxyWin) {
+  // Every pixel fully lit and the proxy never wrong (MM' only): both estimators are exact, so the
+  // oracle takes the cheaper one: proxy 1 against original 10, ceiling 10.
+  CeilingStats s(1, 1, 1, 16, 1000);
+  addSamples(s, 100, true, true, 1, 10);
+  s.finish();
+  const auto rows = ceilingRows(s, {"sun"}, {1.0}, ProxyClass::kOutside, 0.05, 0.0, 1.0);
+  EXPECT_DOUBLE_EQ(rows[0].var_exact, 0.0);
+  EXPECT_NEAR(rows[0].ceiling_shadow, 10.0, 1e-9);
+  EXPECT_EQ(rows[0].regions_roulette, 1);
+}
+
 TEST(CeilingTable, PreemptedRaysCountForProbabilitiesButNotForCosts) {
   CeilingStats s(1, 1, 1, 16, 100);
   addSamples(s, 20, true, true, 2, 4);
