@@ -125,10 +125,15 @@ int run(const Options& opt) {
   CeilingStats by_surface[2] = {CeilingStats(lights, w, h, opt.tile, cap),
                                 CeilingStats(lights, w, h, opt.tile, cap)};
   const char* surface_names[2] = {"terrain", "plants"};
+  // The same split again by pass parity, for the held-out ceiling: [surface: all, terrain,
+  // plants][even, odd].
+  std::vector<std::vector<CeilingStats>> halves(3);
+  for (auto& h2 : halves)
+    for (int f = 0; f < 2; ++f) h2.emplace_back(lights, w, h, opt.tile, cap);
   const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
   uint64_t k = 0;
-  for (const auto& pass : passes)
-    for (const LightSegment& s : pass) {
+  for (size_t pi = 0; pi < passes.size(); ++pi)
+    for (const LightSegment& s : passes[pi]) {
       bool vp = false, v = false;
       uint64_t tp = 0, to = 0;
       const SceneTracer tracer(*scene, s.object);
@@ -148,10 +153,15 @@ int run(const Options& opt) {
       else
         traceOriginal(), traceProxy();
       stats.add(s.light, s.pixel, vp, v, tp, to);
-      by_surface[scene->objects()[s.object].instance >= 0].add(s.light, s.pixel, vp, v, tp, to);
+      const int surface = scene->objects()[s.object].instance >= 0;
+      by_surface[surface].add(s.light, s.pixel, vp, v, tp, to);
+      halves[0][pi % 2].add(s.light, s.pixel, vp, v, tp, to);
+      halves[1 + surface][pi % 2].add(s.light, s.pixel, vp, v, tp, to);
     }
   stats.finish();
   for (CeilingStats& b : by_surface) b.finish();
+  for (auto& h2 : halves)
+    for (CeilingStats& b : h2) b.finish();
 
   // c_s: what a light sample costs outside visibility (primary ray share, light sampling), from
   // an exact render on the same single thread.
@@ -167,12 +177,24 @@ int run(const Options& opt) {
       cpu * (exact.shading_seconds / exact.seconds) * 1e9 / (double(w) * h * opt.spp);
   std::vector<CeilingRow> rows =
       ceilingRows(stats, names, powerWeights(desc), cls, opt.q_min, c_s_ns, tpn);
-  for (int b = 0; b < 2; ++b)
-    for (CeilingRow& r :
-         ceilingRows(by_surface[b], names, powerWeights(desc), cls, opt.q_min, c_s_ns, tpn)) {
+  auto heldOut = [&](std::vector<CeilingRow>& out, std::vector<CeilingStats>& h2) {
+    const auto a =
+        ceilingRows(h2[1], names, powerWeights(desc), cls, opt.q_min, c_s_ns, tpn, &h2[0]);
+    const auto b =
+        ceilingRows(h2[0], names, powerWeights(desc), cls, opt.q_min, c_s_ns, tpn, &h2[1]);
+    for (size_t i = 0; i < out.size() && i < a.size() && i < b.size(); ++i)
+      out[i].ceiling_heldout = 0.5 * (a[i].ceiling_shadow + b[i].ceiling_shadow);
+  };
+  heldOut(rows, halves[0]);
+  for (int b = 0; b < 2; ++b) {
+    std::vector<CeilingRow> more =
+        ceilingRows(by_surface[b], names, powerWeights(desc), cls, opt.q_min, c_s_ns, tpn);
+    heldOut(more, halves[1 + b]);
+    for (CeilingRow& r : more) {
       r.light += std::string(" on ") + surface_names[b];
       rows.push_back(r);
     }
+  }
 
   std::printf(
       "## %s: %s (%dx%d, %d passes, proxy class %s, %llu proxy triangles, load %.1f s, "
@@ -181,8 +203,8 @@ int run(const Options& opt) {
       (unsigned long long)proxy_triangles, load_seconds, c_s_ns);
   std::printf(
       "| light | share | segments | P(V'=0) | P(MH') | P(HM') | mean V(1-V) | c_p 0/1 (ns) | "
-      "c_o 0/1 (ns) | q=1 | ceiling rays | ceiling render | roulette regions |\n");
-  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+      "c_o 0/1 (ns) | q=1 | ceiling rays | ceiling render | held-out rays | roulette regions |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   std::FILE* tsv = opt.tsv.empty() ? nullptr : std::fopen(opt.tsv.c_str(), "a");
   if (!opt.tsv.empty() && !tsv)
     throw WriteError(opt.tsv, "cannot open for appending", std::strerror(errno),
@@ -190,19 +212,19 @@ int run(const Options& opt) {
   for (const CeilingRow& r : rows) {
     std::printf(
         "| %s | %.3f | %llu | %.4f | %.4f | %.4f | %.4f | %.0f / %.0f | %.0f / %.0f | %.3f | "
-        "%.3f | %.3f | %d of %d |\n",
+        "%.3f | %.3f | %.3f | %d of %d |\n",
         r.light.c_str(), r.weight, (unsigned long long)r.segments, r.p_blocked, r.p_mh, r.p_hm,
         r.var_exact, r.c_p[0], r.c_p[1], r.c_o[0], r.c_o[1], r.culling_shadow, r.ceiling_shadow,
-        r.ceiling_render, r.regions_roulette, r.regions);
+        r.ceiling_render, r.ceiling_heldout, r.regions_roulette, r.regions);
     if (tsv)
       std::fprintf(
           tsv,
           "%s\t%s\t%s\t%llu\t%.3f\t%.4f\t%.4f\t%.4f\t%.4f\t%.1f\t%.1f\t%.1f\t%.1f\t%.3f\t%.3f\t%"
-          ".3f\t%d\t%d\t%.0f\n",
+          ".3f\t%d\t%d\t%.0f\t%.3f\n",
           opt.label.c_str(), proxyClassName(cls), r.light.c_str(),
           (unsigned long long)proxy_triangles, r.weight, r.p_blocked, r.p_mh, r.p_hm, r.var_exact,
           r.c_p[0], r.c_p[1], r.c_o[0], r.c_o[1], r.culling_shadow, r.ceiling_shadow,
-          r.ceiling_render, r.regions_roulette, r.regions, c_s_ns);
+          r.ceiling_render, r.regions_roulette, r.regions, c_s_ns, r.ceiling_heldout);
   }
   if (tsv) std::fclose(tsv);
   std::printf("\n%llu of %llu samples had a ray slower than %.0f us (preempted): not timed.\n",
@@ -210,7 +232,8 @@ int run(const Options& opt) {
   std::printf(
       "\nq=1: roulette with q = 1 where errors are possible (culling for outside proxies), "
       "shadow rays only. Ceilings: oracle per (tile, light) region choosing exact or "
-      "roulette(q*), efficiency vs exact; 'render' adds c_s to every sample. Variance per "
+      "roulette(q*), efficiency vs exact; 'render' adds c_s to every sample; 'held-out' decides "
+      "on even passes and scores on odd ones and the reverse (mean of the two). Variance per "
       "light sample, not radiance-weighted; single-thread TSC timings.\n\n");
   return 0;
 }

@@ -82,8 +82,10 @@ struct Totals {
   int regions = 0, regions_roulette = 0;
 };
 
-Totals oracle(const CeilingStats& stats, int light, const ClassCosts& fallback, ProxyClass cls,
-              double q_min) {
+// The oracle decides per region from `train` (exact or roulette, and q) and is scored on `stats`;
+// train == stats scores it on the samples it decided from (optimistic: it fits their noise).
+Totals oracle(const CeilingStats& stats, const CeilingStats& train, int light,
+              const ClassCosts& fallback, ProxyClass cls, double q_min) {
   Totals t;
   double n_all = 0;
   for (int tile = 0; tile < stats.tiles(); ++tile) {
@@ -92,13 +94,21 @@ Totals oracle(const CeilingStats& stats, int light, const ClassCosts& fallback, 
     if (n == 0) continue;
     ++t.regions;
     n_all += n;
+    const RegionStats& rt = train.region(light, tile);
+    bool use = false;
+    RouletteQ q;
+    if (rt.samples() > 0) {
+      const RouletteModel mt = modelOf(rt, fallback);
+      q = optimalRouletteQ(mt, cls, q_min);
+      const double ve = mt.var_exact, ce = exactCost(mt);
+      const double vr = rouletteVariance(mt, q), cr = rouletteCost(mt, q);
+      // Where neither adds variance (every pixel fully lit or fully shadowed, no proxy error)
+      // the products are both 0 and only the cost decides.
+      use = vr * cr < ve * ce || (vr == 0 && ve == 0 && cr < ce);
+    }
     const RouletteModel m = modelOf(r, fallback);
-    const RouletteQ q = optimalRouletteQ(m, cls, q_min);
     const double ve = m.var_exact, ce = exactCost(m);
     const double vr = rouletteVariance(m, q), cr = rouletteCost(m, q);
-    // Where neither adds variance (every pixel fully lit or fully shadowed, no proxy error) the
-    // products are both 0 and only the cost decides.
-    const bool use = vr * cr < ve * ce || (vr == 0 && ve == 0 && cr < ce);
     t.regions_roulette += use;
     t.var_exact += n * ve, t.cost_exact += n * ce;
     t.var_oracle += n * (use ? vr : ve), t.cost_oracle += n * (use ? cr : ce);
@@ -124,7 +134,7 @@ double ratio(double var_e, double cost_e, double var, double cost) {
 std::vector<CeilingRow> ceilingRows(const CeilingStats& stats,
                                     const std::vector<std::string>& names,
                                     std::vector<double> light_weights, ProxyClass cls, double q_min,
-                                    double c_s_ns, double ticks_per_ns) {
+                                    double c_s_ns, double ticks_per_ns, const CeilingStats* train) {
   const int lights = stats.lights();
   const double wsum = std::accumulate(light_weights.begin(), light_weights.end(), 0.0);
   for (double& w : light_weights) w /= wsum;
@@ -156,9 +166,10 @@ std::vector<CeilingRow> ceilingRows(const CeilingStats& stats,
       row.c_p[i] = fallback.proxy[i] / ticks_per_ns;
       row.c_o[i] = fallback.original[i] / ticks_per_ns;
     }
-    const Totals shadow = oracle(stats, l, fallback, cls, q_min);
+    const CeilingStats& tr = train ? *train : stats;
+    const Totals shadow = oracle(stats, tr, l, fallback, cls, q_min);
     fallback.per_sample = c_s_ns * ticks_per_ns;
-    const Totals whole = oracle(stats, l, fallback, cls, q_min);
+    const Totals whole = oracle(stats, tr, l, fallback, cls, q_min);
     row.ceiling_shadow =
         ratio(shadow.var_exact, shadow.cost_exact, shadow.var_oracle, shadow.cost_oracle);
     row.ceiling_render =

@@ -58,16 +58,22 @@ struct CeilingRow {
   double c_p[2] = {0, 0}, c_o[2] = {0, 0};  // ns per ray given V' = 0 / 1
   double ceiling_shadow = 1;                // oracle per region, shadow rays alone (c_s = 0)
   double ceiling_render = 1;                // oracle per region with c_s added to every sample
+  // Two-fold: the oracle decides on even passes and is scored on odd ones, and the reverse;
+  // the mean of the two shadow-ray ceilings (filled in by the bench).
+  double ceiling_heldout = 1;
   double culling_shadow = 1;  // q = 1 everywhere (culling for an outside proxy), shadow rays alone
   int regions = 0, regions_roulette = 0;
 };
 
 // Rows for each light and, when there are several, one for the mix with `light_weights` (the
 // fraction of light samples each light gets; normalized here). `c_s_ns` is the per-sample cost
-// outside visibility (ns), `ticks_per_ns` converts the ray timings.
+// outside visibility (ns), `ticks_per_ns` converts the ray timings. With `train`, the oracle
+// chooses per region from those statistics (other passes of the same pixels) and is scored on
+// `stats`: a held-out ceiling that does not reward choices fitted to the scored samples' noise.
 std::vector<CeilingRow> ceilingRows(const CeilingStats& stats,
                                     const std::vector<std::string>& names,
                                     std::vector<double> light_weights, ProxyClass cls, double q_min,
-                                    double c_s_ns, double ticks_per_ns);
+                                    double c_s_ns, double ticks_per_ns,
+                                    const CeilingStats* train = nullptr);
 
 }  // namespace proxyvis::ecosys

@@ -59,6 +59,24 @@ TEST(CeilingTable, NoVarianceAndNoErrorsLetsTheCheaperProxyWin) {
   EXPECT_EQ(rows[0].regions_roulette, 1);
 }
 
+TEST(CeilingTable, HeldOutOracleIsScoredOnSamplesItDidNotDecideFrom) {
+  // Decided on 100 HH' (no error seen: roulette, q0 = q_min = 0.05); scored on 99 HH' + 1 MH':
+  // V_p(1-V_p) = 100/99 * 0.01 * 0.99 = 0.01, roulette adds 0.01 * (1/0.05 - 1) = 0.19, its cost
+  // 1 + 0.05 * 10 = 1.5 against exact's 10: 0.01 * 10 / (0.2 * 1.5) = 1/3. Deciding on the scored
+  // samples themselves keeps exact (ceiling 1).
+  CeilingStats train(1, 1, 1, 16, 1000), scored(1, 1, 1, 16, 1000);
+  addSamples(train, 100, false, false, 1, 10);
+  addSamples(scored, 99, false, false, 1, 10);
+  addSamples(scored, 1, false, true, 1, 10);
+  train.finish();
+  scored.finish();
+  const auto held =
+      ceilingRows(scored, {"sun"}, {1.0}, ProxyClass::kOutside, 0.05, 0.0, 1.0, &train);
+  EXPECT_NEAR(held[0].ceiling_shadow, 1.0 / 3.0, 1e-9);
+  const auto self = ceilingRows(scored, {"sun"}, {1.0}, ProxyClass::kOutside, 0.05, 0.0, 1.0);
+  EXPECT_DOUBLE_EQ(self[0].ceiling_shadow, 1.0);
+}
+
 TEST(CeilingTable, PreemptedRaysCountForProbabilitiesButNotForCosts) {
   CeilingStats s(1, 1, 1, 16, 100);
   addSamples(s, 20, true, true, 2, 4);

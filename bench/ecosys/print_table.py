@@ -9,7 +9,7 @@ import sys
 
 FIELDS = ["variant", "class", "light", "proxy_tris", "share", "p0", "p_mh", "p_hm", "var",
           "cp0", "cp1", "co0", "co1", "q1", "ceil_rays", "ceil_render", "roul_regions",
-          "regions", "c_s"]
+          "regions", "c_s", "ceil_heldout"]
 
 
 def main():
@@ -21,15 +21,15 @@ def main():
             r = dict(zip(FIELDS, line.rstrip("\n").split("\t")))
             rows[(r["variant"], r["light"])] = r
     head = ("| variant | class | proxy triangles | light | P(V'=0) | P(MH') | P(HM') | mean V(1-V) "
-            "| c_p 0 / 1 (ns) | c_o 0 / 1 (ns) | q=1 | ceiling rays | ceiling render |\n"
-            "|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+            "| c_p 0 / 1 (ns) | c_o 0 / 1 (ns) | q=1 | ceiling rays | ceiling render | held-out rays |\n"
+            "|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
 
     def line(r):
         return (f"| {r['variant']} | {r['class']} | {int(r['proxy_tris']):,} | {r['light']} "
                 f"| {r['p0']} | {r['p_mh']} | {r['p_hm']} | {r['var']} "
                 f"| {float(r['cp0']):.0f} / {float(r['cp1']):.0f} "
                 f"| {float(r['co0']):.0f} / {float(r['co1']):.0f} "
-                f"| {r['q1']} | {r['ceil_rays']} | {r['ceil_render']} |")
+                f"| {r['q1']} | {r['ceil_rays']} | {r['ceil_render']} | {r['ceil_heldout']} |")
 
     print(head)
     for (variant, light), r in rows.items():
