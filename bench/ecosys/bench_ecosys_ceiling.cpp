@@ -130,6 +130,12 @@ int run(const Options& opt) {
   std::vector<std::vector<CeilingStats>> halves(3);
   for (auto& h2 : halves)
     for (int f = 0; f < 2; ++f) h2.emplace_back(lights, w, h, opt.tile, cap);
+  // Regions keyed by (light, surface, tile), as a learner that keeps terrain and plant points
+  // apart would have them: channel 2 * light + surface, in full and by pass parity.
+  CeilingStats split(2 * lights, w, h, opt.tile, cap);
+  std::vector<CeilingStats> split_halves;
+  for (int f = 0; f < 2; ++f) split_halves.emplace_back(2 * lights, w, h, opt.tile, cap);
+  std::vector<double> split_count(size_t(2 * lights), 0.0);
   const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
   uint64_t k = 0;
   for (size_t pi = 0; pi < passes.size(); ++pi)
@@ -157,11 +163,17 @@ int run(const Options& opt) {
       by_surface[surface].add(s.light, s.pixel, vp, v, tp, to);
       halves[0][pi % 2].add(s.light, s.pixel, vp, v, tp, to);
       halves[1 + surface][pi % 2].add(s.light, s.pixel, vp, v, tp, to);
+      const uint32_t channel = 2 * s.light + uint32_t(surface);
+      split.add(channel, s.pixel, vp, v, tp, to);
+      split_halves[pi % 2].add(channel, s.pixel, vp, v, tp, to);
+      split_count[channel] += 1;
     }
   stats.finish();
   for (CeilingStats& b : by_surface) b.finish();
   for (auto& h2 : halves)
     for (CeilingStats& b : h2) b.finish();
+  split.finish();
+  for (CeilingStats& b : split_halves) b.finish();
 
   // c_s: what a light sample costs outside visibility (primary ray share, light sampling), from
   // an exact render on the same single thread.
@@ -177,15 +189,39 @@ int run(const Options& opt) {
       cpu * (exact.shading_seconds / exact.seconds) * 1e9 / (double(w) * h * opt.spp);
   std::vector<CeilingRow> rows =
       ceilingRows(stats, names, powerWeights(desc), cls, opt.q_min, c_s_ns, tpn);
-  auto heldOut = [&](std::vector<CeilingRow>& out, std::vector<CeilingStats>& h2) {
-    const auto a =
-        ceilingRows(h2[1], names, powerWeights(desc), cls, opt.q_min, c_s_ns, tpn, &h2[0]);
-    const auto b =
-        ceilingRows(h2[0], names, powerWeights(desc), cls, opt.q_min, c_s_ns, tpn, &h2[1]);
+  auto heldOutFor = [&](std::vector<CeilingRow>& out, std::vector<CeilingStats>& h2,
+                        const std::vector<std::string>& row_names,
+                        const std::vector<double>& weights) {
+    const auto a = ceilingRows(h2[1], row_names, weights, cls, opt.q_min, c_s_ns, tpn, &h2[0]);
+    const auto b = ceilingRows(h2[0], row_names, weights, cls, opt.q_min, c_s_ns, tpn, &h2[1]);
     for (size_t i = 0; i < out.size() && i < a.size() && i < b.size(); ++i)
       out[i].ceiling_heldout = 0.5 * (a[i].ceiling_shadow + b[i].ceiling_shadow);
   };
+  auto heldOut = [&](std::vector<CeilingRow>& out, std::vector<CeilingStats>& h2) {
+    heldOutFor(out, h2, names, powerWeights(desc));
+  };
   heldOut(rows, halves[0]);
+  {
+    // The light mix with regions split by surface: each (light, surface) channel weighted by its
+    // light's power share times the surface's share of that light's samples.
+    const std::vector<double> power = powerWeights(desc);
+    std::vector<std::string> split_names;
+    std::vector<double> split_weights;
+    for (int l = 0; l < lights; ++l)
+      for (int b = 0; b < 2; ++b) {
+        split_names.push_back(names[size_t(l)] + " on " + surface_names[b]);
+        const double n_l = split_count[size_t(2 * l)] + split_count[size_t(2 * l + 1)];
+        split_weights.push_back(n_l > 0 ? power[size_t(l)] * split_count[size_t(2 * l + b)] / n_l
+                                        : 0.0);
+      }
+    std::vector<CeilingRow> by_channel =
+        ceilingRows(split, split_names, split_weights, cls, opt.q_min, c_s_ns, tpn);
+    heldOutFor(by_channel, split_halves, split_names, split_weights);
+    if (by_channel.size() > 1) {
+      by_channel.back().light = "mix, regions split by surface";
+      rows.push_back(by_channel.back());
+    }
+  }
   for (int b = 0; b < 2; ++b) {
     std::vector<CeilingRow> more =
         ceilingRows(by_surface[b], names, powerWeights(desc), cls, opt.q_min, c_s_ns, tpn);

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Prints the rows bench_ecosys_ceiling appended to a TSV file (--tsv) as two Markdown tables:
 every shading point per light and for the light mix, then the mix split by surface (terrain,
-plants). Later rows of the same variant and light replace earlier ones.
+plants) and the whole mix with learning regions split by surface. Later rows of the same variant and light replace earlier ones.
 
 usage: print_table.py RESULTS.tsv
 """
@@ -33,12 +33,12 @@ def main():
 
     print(head)
     for (variant, light), r in rows.items():
-        if " on " not in light:
+        if " on " not in light and "split" not in light:
             print(line(r))
     print()
     print(head)
     for (variant, light), r in rows.items():
-        if light.startswith("mix on "):
+        if light.startswith("mix on ") or "split" in light:
             print(line(r))
 
 
