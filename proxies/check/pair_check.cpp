@@ -1,5 +1,7 @@
 #include "proxies/check/pair_check.h"
 
+#include <fmt/core.h>
+
 #include <cmath>
 
 #include "proxies/check/mesh_distance.h"
@@ -76,9 +78,16 @@ PairCheckReport checkPair(const TriMesh& original, const TriMesh& proxy,
   }
   ClassifyOptions co;
   co.segments = options.rays;
+  co.max_attempts = options.max_attempts;
   co.max_error_segments = options.max_error_segments;
   co.quiet = options.quiet;
   r.sampled = classifySegments(*original_scene, *proxy_scene, generator, co);
+  if (r.sampled.counts.total() < options.rays)
+    r.shortfall = fmt::format(
+        "only {} of {} segments classified after {} attempts: the distribution's other segments "
+        "pass neither the original nor the proxy{}",
+        r.sampled.counts.total(), options.rays, r.sampled.attempts,
+        r.distribution_note.empty() ? "" : " (see the distribution note)");
   finishVerdicts(r);
   r.seconds = whole.seconds();
   return r;

@@ -85,6 +85,12 @@ bool segmentCrossesBox(const Segment& s, const Bounds3f& b) {
 
 }  // namespace
 
+SegmentGenerator segmentsCrossing(SegmentGenerator generator, const Bounds3f& box) {
+  return [generator = std::move(generator), box](uint64_t index, Segment& out) {
+    return generator(index, out) && segmentCrossesBox(out, box);
+  };
+}
+
 SegmentGenerator instanceSceneSegments(const TraceScene& full, const SceneDesc& scene,
                                        uint32_t mesh_index, const Bounds3f& object_bounds,
                                        uint64_t seed) {
@@ -114,6 +120,7 @@ SegmentGenerator instanceSceneSegments(const TraceScene& full, const SceneDesc& 
       ++crossing;
       if (hashKeys(pick, k) % crossing == 0) chosen = k;
     }
+    if (crossing == 0) return false;
     const Affine3f& m = (*placements)[chosen].to_object;
     out = s;
     out.org = m.apply(s.org);

@@ -18,12 +18,16 @@ namespace proxyvis {
 SegmentGenerator sceneSegments(const TraceScene& full, const SceneDesc& scene,
                                uint32_t exclude_user_id, uint64_t seed);
 
+// `generator` restricted to the segments that cross `box` (the others give none): a segment that
+// passes outside the box of both original and proxy misses both and says nothing about the proxy.
+SegmentGenerator segmentsCrossing(SegmentGenerator generator, const Bounds3f& box);
+
 // The scene distribution for a mesh that only appears through instances, in its object space:
 // each world segment of sceneSegments (excluding shading points on its instances) is mapped into
 // the object space of one of the mesh's instances whose world box it crosses (chosen by a hash
-// of the index when several do; the first instance when none does: then it misses both original
-// and proxy, as in the renderer). `object_bounds`: the original's box in object space. Throws
-// Error if the mesh has no instance or one is singular.
+// of the index when several do). A segment that crosses no instance's box gives none: it would
+// miss both original and proxy. `object_bounds`: the box of the original and its proxy together
+// in object space. Throws Error if the mesh has no instance or one is singular.
 SegmentGenerator instanceSceneSegments(const TraceScene& full, const SceneDesc& scene,
                                        uint32_t mesh_index, const Bounds3f& object_bounds,
                                        uint64_t seed);
