@@ -167,11 +167,11 @@ int runScene(const Args& a, const CommonOptions& common) {
   planned.push_back({"--out-dir", scene_out.string()});
   planned.push_back({"--json", common.json_path});
   checkOutputs(inputs, planned);
+  // Before any folder is made: an unusable --cache fails the run with nothing written.
+  const std::unique_ptr<ProxyCache> cache = openCache(a);
   std::error_code ec;
   fs::create_directories(a.out_dir, ec);
   if (ec) throw WriteError(a.out_dir, "cannot create the output directory", ec.message());
-
-  const std::unique_ptr<ProxyCache> cache = openCache(a);
 
   std::vector<json> reports(n);
   std::vector<std::optional<ProxyRef>> refs(n);
