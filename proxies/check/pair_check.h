@@ -31,6 +31,9 @@ struct PairCheckOptions {
   bool quiet = false;
   // Another segment distribution (e.g. the scene's); empty = the sphere around both meshes.
   SegmentGenerator generator;
+  // Segments classified already (proxy-check's scene stream shares its draws among meshes): used
+  // as the sampled counts instead of sampling; distribution_name/note describe them.
+  const Classification* classified = nullptr;
   std::string distribution_name, distribution_note;
 };
 
