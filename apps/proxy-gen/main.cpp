@@ -281,9 +281,15 @@ int main(int argc, char** argv) {
   app.add_option("-o,--output", a.output, "Output mesh (mesh input)");
   app.add_option("--out-dir", a.out_dir,
                  "Output directory (scene input): DIR/<mesh>.<kind>.ply, DIR/scene.json");
-  app.add_option("--alpha", a.alpha, "wrap: alpha as a fraction of the diagonal (default 1/50)")
+  app.add_option(
+         "--alpha", a.alpha,
+         "wrap: alpha as a fraction of the diagonal (default 1/50; in a scene, 1/10 for an open "
+         "mesh such as foliage, see docs/proxies.md)")
       ->check(numberIn(kAlphaRange.lo, kAlphaRange.hi));
-  app.add_option("--offset", a.offset, "wrap: offset as a fraction of the diagonal (default 1/600)")
+  app.add_option(
+         "--offset", a.offset,
+         "wrap: offset as a fraction of the diagonal (default 1/600; in a scene, 1/100 for an "
+         "open mesh)")
       ->check(numberIn(kOffsetRange.lo, kOffsetRange.hi));
   app.add_option("--max-faces", a.max_faces,
                  "Face budget (0 = none). Outside/inside proxies keep their guarantee while "
