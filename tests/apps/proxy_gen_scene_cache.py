@@ -180,6 +180,28 @@ def main() -> None:
     if hashes(cache) != before or hashes(work / "out7") != hashes(work / "out1"):
         fail("--no-cache changed the cache or the outputs")
 
+    # A run killed (SIGKILL) while writing leaves no entry that is used: every report in the cache
+    # vouches for a proxy file with its hash, and the next run writes what the first one did.
+    kill_cache = work / "cache_killed"
+    for delay in (0.3, 0.8, 1.5):
+        proc = subprocess.Popen([str(BIN / "proxy-gen"), str(scene), "--kind", "outside",
+                                 "--out-dir", str(work / "out8"), "-q", "--cache",
+                                 str(kill_cache)],
+                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        time.sleep(delay)
+        proc.kill()
+        proc.wait()
+        for meta in kill_cache.glob("*.json"):
+            entry = json.loads(meta.read_text())
+            if "skipped" in entry["report"]:
+                continue
+            ply = meta.with_suffix(".ply")
+            if hashlib.sha256(ply.read_bytes()).hexdigest() != entry["proxy_sha256"]:
+                fail(f"killed after {delay} s: {meta.name} vouches for a different {ply.name}")
+    gen(scene, work / "out8", kill_cache)
+    if hashes(work / "out8") != hashes(work / "out1"):
+        fail("after killed runs the outputs differ from the first run's")
+
     # proxy-check: exactly N classified segments per prototype, and no HM' for outside proxies.
     n = 300
     run([BIN / "proxy-check", work / "out1" / "scene.json", "--distribution", "scene",
