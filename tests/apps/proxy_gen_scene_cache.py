@@ -108,6 +108,10 @@ def main() -> None:
     if r1["cache"]["generated"] != 3 or r1["cache"]["cached"] != 0:
         fail(f"first run cache summary: {r1['cache']}")
     out_scene = json.loads((work / "out1" / "scene.json").read_text())
+    # The written scene keeps "make_proxy": false (and writes no key where it is true).
+    kept = {m["name"]: m.get("make_proxy") for m in out_scene["meshes"]}
+    if kept != {"ground": None, "flower": None, "grass": None, "flower2": False}:
+        fail(f"make_proxy in the written scene: {kept}")
     for m in out_scene["meshes"]:
         want = 1 if m["name"] in ("flower", "grass") else 0
         if len(m["proxies"]) != want:
