@@ -7,6 +7,8 @@
 //               (every proxy of every mesh; instanced meshes: their prototype)
 #include <fmt/core.h>
 
+#include <tbb/parallel_for.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -17,11 +19,13 @@
 #include "proxies/check/check_report.h"
 #include "proxies/check/pair_check.h"
 #include "proxies/check/scene_segments.h"
+#include "proxies/check/scene_stream.h"
 #include "scene/scene_desc.h"
 #include "util/app_main.h"
 #include "util/error.h"
 #include "util/output_path.h"
 #include "util/output_set.h"
+#include "util/progress.h"
 #include "util/sha256.h"
 
 namespace fs = std::filesystem;
@@ -103,6 +107,77 @@ ProxyClass provenClass(const PairCheckReport& r) {
   return ProxyClass::kGeneral;
 }
 
+// Draws per prototype until --rays segments are classified; a prototype that the scene's segments
+// rarely cross stops after this many attempts per requested segment, with a warning.
+constexpr uint64_t kSceneAttemptsPerRay = 1000;
+
+// One (mesh, proxy) pair of the scene: its meshes (in world space for a placed mesh under the
+// scene distribution, else in object space) and its check.
+struct ScenePair {
+  uint32_t mesh = 0;
+  size_t proxy = 0;
+  TriMesh original, proxy_mesh;
+  PairCheckReport report;
+};
+
+// Every pair's segments from one shared stream of the scene's draws: a primary ray into the whole
+// scene per index serves every proxy, instead of one per proxy.
+std::vector<Classification> classifyScenePairs(const Options& o, const SceneDesc& scene,
+                                               const TraceScene& full,
+                                               const std::vector<ScenePair>& pairs) {
+  TraceDevice device;
+  std::vector<std::unique_ptr<TraceScene>> scenes;
+  std::vector<MeshPlacements> placements(pairs.size());
+  std::vector<StreamTarget> targets(pairs.size());
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    const ScenePair& c = pairs[i];
+    for (const TriMesh* m : {&c.original, &c.proxy_mesh}) {
+      TraceSceneBuilder builder(device);
+      builder.addMesh(*m);
+      scenes.push_back(builder.build());
+    }
+    // A segment outside the box of both misses both: only the others are counted.
+    Bounds3f both = c.original.bounds();
+    both.extend(c.proxy_mesh.bounds());
+    placements[i] = scene.meshes[c.mesh].place
+                        ? placedMeshPlacements(c.mesh, both, o.common.seed)
+                        : instancedMeshPlacements(scene, c.mesh, both, o.common.seed);
+    targets[i] = {scenes[2 * i].get(), scenes[2 * i + 1].get(), &placements[i]};
+  }
+  ClassifyOptions co;
+  co.segments = o.rays;
+  co.max_attempts = o.rays * kSceneAttemptsPerRay;
+  co.quiet = o.common.quiet;
+  if (!o.dump_errors.empty()) co.max_error_segments = 1'000'000;
+  return classifySceneStream(worldSceneSegments(full, scene, o.common.seed), targets, co);
+}
+
+void checkScenePair(const Options& o, const SceneDesc& scene, const Classification* classified,
+                    ScenePair& c) {
+  const SceneMeshDesc& mesh = scene.meshes[c.mesh];
+  const ProxyRef& ref = mesh.proxies[c.proxy];
+  PairCheckOptions po = pairOptions(o);
+  po.quiet = true;
+  if (classified) {
+    po.classified = classified;
+    po.max_attempts = o.rays * kSceneAttemptsPerRay;
+    po.distribution_name = "scene";
+    po.distribution_note =
+        mesh.place
+            ? "camera primary hits on the other objects (an object's own shadow rays use its "
+              "original) to uniform light samples, those crossing the box of original or proxy; a "
+              "light sample inside the proxy would void the outside guarantee (docs/design.md, "
+              "pitfall 2)"
+            : "camera primary hits on the other objects to uniform light samples, those crossing "
+              "the box of an instance of this mesh (original or proxy), each mapped into the "
+              "object space of one such instance";
+  }
+  // Without --expect, the class the scene claims is what must hold (docs/design.md, pitfall 4).
+  if (!po.expect && ref.verified_class) po.expect = ref.verified_class;
+  c.report = checkPair(c.original, c.proxy_mesh, po);
+  c.report.label = fmt::format("{} / {} ({})", mesh.name, ref.kind, ref.method);
+}
+
 int runScene(const Options& o) {
   const SceneDesc scene = loadSceneDesc(o.inputs[0]);
   SceneDesc proven = scene;  // --write-scene: the classes the checks prove, with their hashes
@@ -110,51 +185,50 @@ int runScene(const Options& o) {
   TraceDevice device;
   std::unique_ptr<TraceScene> full;
   if (o.distribution == "scene") full = buildFullScene(device, scene);
+  std::vector<ScenePair> checked;
+  for (uint32_t m = 0; m < scene.meshes.size(); ++m)
+    for (size_t p = 0; p < scene.meshes[m].proxies.size(); ++p) {
+      checked.emplace_back();
+      checked.back().mesh = m;
+      checked.back().proxy = p;
+    }
+  const size_t pairs = checked.size();
+  // Instanced or placed, a proxy is checked against its original in object space (the
+  // containment relation does not change under an affine, invertible placement); a placed mesh
+  // under the scene distribution in world space, where its segments are.
+  tbb::parallel_for(size_t(0), pairs, [&](size_t i) {
+    ScenePair& c = checked[i];
+    const SceneMeshDesc& mesh = scene.meshes[c.mesh];
+    const bool world = full && mesh.place;
+    c.original = world ? transformedMesh(loadMesh(mesh.file), mesh.transform) : loadMesh(mesh.file);
+    const fs::path& file = mesh.proxies[c.proxy].file;
+    c.proxy_mesh = world ? transformedMesh(loadMesh(file), mesh.transform) : loadMesh(file);
+  });
+  std::vector<Classification> classified;
+  if (full) classified = classifyScenePairs(o, scene, *full, checked);
+  // The exact checks and distances, pairs in parallel, one progress bar over them.
+  Progress progress("proxy-check", pairs, o.common.quiet || pairs < 2);
+  tbb::parallel_for(size_t(0), pairs, [&](size_t i) {
+    checkScenePair(o, scene, full ? &classified[i] : nullptr, checked[i]);
+    progress.update();
+  });
+  progress.done();
   nlohmann::json checks = nlohmann::json::array();
   std::vector<ErrorSegment> all_errors;
   bool failed = false;
-  size_t pairs = 0;
-  for (const SceneMeshDesc& mesh : scene.meshes) {
-    if (mesh.proxies.empty()) continue;
-    // Instanced or placed, the proxy is checked against the prototype in its own space: the
-    // containment relation does not change under the (affine, invertible) placement.
-    const uint32_t mesh_index = uint32_t(&mesh - scene.meshes.data());
-    const bool scene_rays = full && mesh.place;
-    const TriMesh original =
-        scene_rays ? transformedMesh(loadMesh(mesh.file), mesh.transform) : loadMesh(mesh.file);
-    for (const ProxyRef& ref : mesh.proxies) {
-      ProxyRef& record = proven.meshes[mesh_index].proxies[size_t(&ref - mesh.proxies.data())];
-      PairCheckOptions po = pairOptions(o);
-      if (scene_rays) {
-        po.generator = sceneSegments(*full, scene, mesh_index, o.common.seed);
-        po.distribution_name = "scene";
-        po.distribution_note =
-            "camera primary hits on the other objects (an object's own shadow rays use its "
-            "original) to uniform light samples; a light sample inside the proxy would void the "
-            "outside guarantee (docs/design.md, pitfall 2)";
-      } else if (full) {
-        po.generator =
-            instanceSceneSegments(*full, scene, mesh_index, original.bounds(), o.common.seed);
-        po.distribution_name = "scene";
-        po.distribution_note =
-            "camera primary hits on the other objects to uniform light samples, each mapped into "
-            "the object space of one instance of this mesh whose box it crosses";
-      }
-      // Without --expect, the class the scene claims is what must hold (docs/design.md, pitfall 4).
-      if (!po.expect && ref.verified_class) po.expect = ref.verified_class;
-      const TriMesh proxy =
-          scene_rays ? transformedMesh(loadMesh(ref.file), mesh.transform) : loadMesh(ref.file);
-      PairCheckReport r = checkPair(original, proxy, po);
-      r.label = fmt::format("{} / {} ({})", mesh.name, ref.kind, ref.method);
-      printHuman(o, formatHumanReport(r) + "\n");
-      printMismatch(r);
-      failed = failed || r.failed();
-      record.verified_class = provenClass(r);
-      record.sha256 = sha256OfFile(ref.file);
-      checks.push_back(toJson(r));
-      all_errors.insert(all_errors.end(), r.sampled.errors.begin(), r.sampled.errors.end());
-      ++pairs;
-    }
+  for (ScenePair& c : checked) {
+    const PairCheckReport& r = c.report;
+    printHuman(o, formatHumanReport(r) + "\n");
+    printMismatch(r);
+    if (r.shortfall)
+      std::fprintf(stderr, "proxy-check: warning: %s: %s\n", r.label.c_str(), r.shortfall->c_str());
+    failed = failed || r.failed();
+    const ProxyRef& ref = scene.meshes[c.mesh].proxies[c.proxy];
+    ProxyRef& record = proven.meshes[c.mesh].proxies[c.proxy];
+    record.verified_class = provenClass(r);
+    record.sha256 = sha256OfFile(ref.file);
+    checks.push_back(toJson(r));
+    all_errors.insert(all_errors.end(), r.sampled.errors.begin(), r.sampled.errors.end());
   }
   if (pairs == 0)
     throw Error(o.inputs[0], "the scene lists no proxies", "there is nothing to check",
@@ -183,7 +257,10 @@ int main(int argc, char** argv) {
   app.add_option("inputs", o.inputs, "ORIGINAL PROXY (meshes: .obj .ply .off .drc) or SCENE.json")
       ->required()
       ->expected(1, 2);
-  app.add_option("--rays", o.rays, "Number of segments to sample")
+  app.add_option("--rays", o.rays,
+                 "Number of segments to classify (per proxy). The scene distribution counts only "
+                 "segments that cross the box of original or proxy and draws until it has N, or "
+                 "gives up with a warning after 1000 N attempts")
       ->check(integerIn(1, kMaxRays))
       ->capture_default_str();
   app.add_option("--distribution", o.distribution,

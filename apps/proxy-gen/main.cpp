@@ -7,13 +7,16 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <mutex>
+#include <map>
+#include <memory>
 
 #include "mesh/io/mesh_io.h"
 #include "output_paths.h"
+#include "proxies/pipeline/proxy_cache.h"
 #include "proxies/pipeline/proxy_pipeline.h"
 #include "proxies/pipeline/written_class.h"
 #include "scene/scene_desc.h"
+#include "scene_mesh.h"
 #include "stage_progress.h"
 #include "summary_text.h"
 #include "util/app_main.h"
@@ -40,6 +43,8 @@ struct Args {
   double max_seconds = 600;
   bool fill_holes = false;
   bool progress = false;  // the bar also when stderr is not a terminal
+  std::string cache_dir;  // scene mode: the proxy cache (empty = the default folder)
+  bool no_cache = false;
 };
 
 ProxyGenOptions toOptions(const Args& a, const CommonOptions& common) {
@@ -117,6 +122,26 @@ int runMesh(const Args& a, const CommonOptions& common) {
   return kExitOk;
 }
 
+// The proxy cache of scene mode: --cache DIR (an error when unusable), none with --no-cache, else
+// the default folder, which is only a convenience: when it is unusable the run goes on without.
+std::unique_ptr<ProxyCache> openCache(const Args& a) {
+  if (a.no_cache) return nullptr;
+  if (!a.cache_dir.empty()) return std::make_unique<ProxyCache>(a.cache_dir);
+  const fs::path dir = defaultProxyCacheDir();
+  if (dir.empty()) {
+    std::fprintf(stderr,
+                 "proxy-gen: note: no proxy cache: neither XDG_CACHE_HOME nor HOME is set (give "
+                 "--cache DIR)\n");
+    return nullptr;
+  }
+  try {
+    return std::make_unique<ProxyCache>(dir);
+  } catch (const Error& e) {
+    std::fprintf(stderr, "proxy-gen: note: no proxy cache: %s\n", e.what());
+    return nullptr;
+  }
+}
+
 int runScene(const Args& a, const CommonOptions& common) {
   if (a.out_dir.empty())
     throw Error(a.input, "no output directory", "a scene input needs --out-dir DIR",
@@ -142,55 +167,27 @@ int runScene(const Args& a, const CommonOptions& common) {
   planned.push_back({"--out-dir", scene_out.string()});
   planned.push_back({"--json", common.json_path});
   checkOutputs(inputs, planned);
+  // Before any folder is made: an unusable --cache fails the run with nothing written.
+  const std::unique_ptr<ProxyCache> cache = openCache(a);
   std::error_code ec;
   fs::create_directories(a.out_dir, ec);
   if (ec) throw WriteError(a.out_dir, "cannot create the output directory", ec.message());
 
   std::vector<json> reports(n);
   std::vector<std::optional<ProxyRef>> refs(n);
-  std::vector<std::string> errors(n), skipped(n);
+  std::vector<std::string> errors(n), skipped(n), cache_notes(n);
   std::vector<int> codes(n, kExitOk);
   Progress progress("proxy-gen", n, common.quiet, a.progress);
   tbb::parallel_for(size_t(0), n, [&](size_t i) {
     const SceneMeshDesc& mesh = scene.meshes[i];
-    const fs::path& out = proxy_files[i];
     try {
       ProxyGenOptions o = base;
       o.seed = hashKeys(common.seed, i);  // per-mesh stream: same result at any thread count
-      const Stopwatch load_clock;
-      const TriMesh input = loadMesh(mesh.file);
-      const double load_seconds = load_clock.seconds();
-      // A proxy only pays if it has fewer faces than its original; no closed mesh has fewer
-      // than 4, so a smaller original (a ground quad) is skipped without trying.
-      if (input.numTriangles() < 4) {
-        skipped[i] = fmt::format("{} faces: no closed proxy can have fewer", input.numTriangles());
-      } else {
-        ProxyGenResult r = generateProxy(input, o);
-        addLoadSeconds(r.report, load_seconds);
-        if (r.proxy.numTriangles() >= input.numTriangles()) {
-          skipped[i] = fmt::format("its {} proxy has {} faces, the original {}: not cheaper",
-                                   a.kind, r.proxy.numTriangles(), input.numTriangles());
-        } else {
-          saveMesh(r.proxy, out);
-          r.report["name"] = mesh.name;
-          r.report["output"] = out.string();
-          ProxyRef ref;
-          ref.kind = a.kind;
-          ref.method = r.report["method"].get<std::string>();
-          ref.file = fs::absolute(out);
-          // The class the report writes (general when proven only for a stand-in of the
-          // input); the hash says which file content it was proven for.
-          if (const std::optional<ProxyClass> c = writtenClass(r.report)) {
-            ref.verified_class = c;
-            ref.sha256 = sha256OfFile(out);
-          }
-          refs[i] = ref;
-          reports[i] = std::move(r.report);
-        }
-      }
-      if (!skipped[i].empty())
-        reports[i] = {
-            {"name", mesh.name}, {"skipped", skipped[i]}, {"faces", input.numTriangles()}};
+      SceneMeshProxy p = proxyForSceneMesh(mesh, o, proxy_files[i], cache.get());
+      reports[i] = std::move(p.report);
+      refs[i] = std::move(p.ref);
+      skipped[i] = std::move(p.skipped);
+      cache_notes[i] = std::move(p.cache_note);
     } catch (const Error& e) {
       errors[i] = e.what();
       codes[i] = e.exitCode();
@@ -212,6 +209,7 @@ int runScene(const Args& a, const CommonOptions& common) {
 
   int code = kExitOk;
   std::string summary;
+  std::map<std::string, size_t> cache_counts{{"cached", 0}, {"generated", 0}};
   for (size_t i = 0; i < n; ++i) {
     if (!errors[i].empty()) {
       // The failure goes to stderr like any error (one line per failed mesh); the scene is
@@ -221,21 +219,38 @@ int runScene(const Args& a, const CommonOptions& common) {
       code = std::max(code, codes[i]);
       continue;
     }
+    if (!cache_notes[i].empty())
+      std::fprintf(stderr, "proxy-gen: note: %s: %s\n", scene.meshes[i].file.c_str(),
+                   cache_notes[i].c_str());
+    const std::string state = reports[i].value("cache", "off");
+    if (state != "off") ++cache_counts[state];
+    const std::string from = state == "off" ? "" : fmt::format(" ({})", state);
     if (!skipped[i].empty()) {
-      summary += fmt::format("== {}: no proxy ({})\n", scene.meshes[i].name, skipped[i]);
+      summary += fmt::format("== {}: no proxy ({}){}\n", scene.meshes[i].name, skipped[i], from);
       continue;
     }
     noteWrittenClass(reports[i], scene.meshes[i].file.string());
-    summary += fmt::format("== {}\n{}", scene.meshes[i].name, proxySummaryText(reports[i]));
+    summary += fmt::format("== {}{}\n{}", scene.meshes[i].name, from, proxySummaryText(reports[i]));
     auto& proxies = scene.meshes[i].proxies;
     std::erase_if(proxies, [&](const ProxyRef& p) { return p.kind == a.kind; });
     proxies.push_back(*refs[i]);
   }
   saveSceneDesc(scene, scene_out);
   summary += fmt::format("scene with proxies: {}\n", scene_out.string());
+  json cache_report = nullptr;
+  if (cache) {
+    cache_report = {{"dir", cache->dir().string()},
+                    {"cached", cache_counts["cached"]},
+                    {"generated", cache_counts["generated"]}};
+    summary += fmt::format("proxy cache: {} ({} cached, {} generated)\n", cache->dir().string(),
+                           cache_counts["cached"], cache_counts["generated"]);
+  }
   OutputSet outputs(MissingFolders::kCreate);
-  emit({{"scene", a.input}, {"scene_out", scene_out.string()}, {"meshes", reports}}, summary,
-       common, outputs);
+  emit({{"scene", a.input},
+        {"scene_out", scene_out.string()},
+        {"cache", cache_report},
+        {"meshes", reports}},
+       summary, common, outputs);
   return code;
 }
 
@@ -266,9 +281,15 @@ int main(int argc, char** argv) {
   app.add_option("-o,--output", a.output, "Output mesh (mesh input)");
   app.add_option("--out-dir", a.out_dir,
                  "Output directory (scene input): DIR/<mesh>.<kind>.ply, DIR/scene.json");
-  app.add_option("--alpha", a.alpha, "wrap: alpha as a fraction of the diagonal (default 1/50)")
+  app.add_option(
+         "--alpha", a.alpha,
+         "wrap: alpha as a fraction of the diagonal (default 1/50; in a scene, 1/10 for an open "
+         "mesh such as foliage, see docs/proxies.md)")
       ->check(numberIn(kAlphaRange.lo, kAlphaRange.hi));
-  app.add_option("--offset", a.offset, "wrap: offset as a fraction of the diagonal (default 1/600)")
+  app.add_option(
+         "--offset", a.offset,
+         "wrap: offset as a fraction of the diagonal (default 1/600; in a scene, 1/100 for an "
+         "open mesh)")
       ->check(numberIn(kOffsetRange.lo, kOffsetRange.hi));
   app.add_option("--max-faces", a.max_faces,
                  "Face budget (0 = none). Outside/inside proxies keep their guarantee while "
@@ -303,6 +324,15 @@ int main(int argc, char** argv) {
       "--fill-holes", a.fill_holes,
       "inside: fill the holes of an open input first; the proxy is then written as class general "
       "(a ray through a hole can reach it), see docs/proxy_classes.md");
+  auto* cache_opt =
+      app.add_option("--cache", a.cache_dir,
+                     "Scene input: the proxy cache folder (default "
+                     "$XDG_CACHE_HOME/proxyvis/proxies, else ~/.cache/proxyvis/proxies). A proxy "
+                     "is taken from it when the mesh file's SHA-256, every setting and this build "
+                     "are the same; see docs/proxies.md");
+  app.add_flag("--no-cache", a.no_cache,
+               "Scene input: generate every proxy, neither read nor write the cache")
+      ->excludes(cache_opt);
   addCommonOptions(app, common);
   app.add_flag("--progress", a.progress,
                "Show the progress bar (stages of one mesh, meshes of a scene) on stderr even when "

@@ -15,6 +15,7 @@
 //                             "scale": s | [sx, sy, sz]}
 //                            | [12 or 16 numbers, row-major 3x4 / 4x4],
 //               "place": true,     // false: only placed through "instances"
+//               "make_proxy": true, // false: proxy-gen's scene mode skips this mesh
 //               "proxies": [{"kind": "outside", "method": "wrap",
 //                            "file": "dragon-plane/dragon.outside.ply",
 //                            "class": "outside",     // verified by proxy-gen/proxy-check
@@ -80,6 +81,9 @@ struct SceneMeshDesc {
   Vec3f albedo{0.7f, 0.7f, 0.7f};
   Affine3f transform;  // used when place == true
   bool place = true;
+  // false: proxy-gen's scene mode builds no proxy for this mesh (e.g. a terrain that only
+  // receives shadows); proxies listed here are still used.
+  bool make_proxy = true;
   std::vector<ProxyRef> proxies;
 };
 

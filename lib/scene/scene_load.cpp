@@ -215,7 +215,7 @@ ProxyRef parseProxy(const Field& f, const fs::path& dir) {
 }
 
 SceneMeshDesc parseMesh(const Field& f, const fs::path& dir) {
-  f.expectObject({"name", "file", "albedo", "transform", "place", "proxies"});
+  f.expectObject({"name", "file", "albedo", "transform", "place", "make_proxy", "proxies"});
   SceneMeshDesc m;
   m.name = f["name"].asString();
   if (m.name.empty() || m.name.find_first_of(" \t\r\n#") != std::string::npos)
@@ -231,6 +231,7 @@ SceneMeshDesc parseMesh(const Field& f, const fs::path& dir) {
   }
   if (f.has("transform")) m.transform = parseTransform(f["transform"]);
   if (f.has("place")) m.place = f["place"].asBool();
+  if (f.has("make_proxy")) m.make_proxy = f["make_proxy"].asBool();
   if (f.has("proxies")) {
     const Field ps = f["proxies"];
     for (size_t i = 0, n = ps.arraySize(); i < n; ++i) m.proxies.push_back(parseProxy(ps[i], dir));

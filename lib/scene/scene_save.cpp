@@ -79,6 +79,7 @@ json sceneToJson(const SceneDesc& scene, const fs::path& dir, const fs::path& in
                {"albedo", toJson(m.albedo)},
                {"transform", toJson(m.transform)},
                {"place", m.place}};
+    if (!m.make_proxy) jm["make_proxy"] = false;
     json proxies = json::array();
     for (const ProxyRef& p : m.proxies) {
       json jp = {{"kind", p.kind}};

@@ -110,9 +110,12 @@ std::string formatHumanReport(const PairCheckReport& r) {
     out += fmt::format("  volume ratio proxy/original: none ({})\n", noVolumeRatioReason(r));
   out += fmt::format("  Hausdorff distance (sampled, a lower bound): {}\n",
                      hausdorffText(distances(r)));
-  out +=
-      fmt::format("\nSegments: {} ({} distribution, seed {}{})\n", c.total(), r.distribution,
-                  r.seed, r.sampled.skipped ? fmt::format(", {} skipped", r.sampled.skipped) : "");
+  out += fmt::format(
+      "\nSegments: {} ({} distribution, seed {}{})\n", c.total(), r.distribution, r.seed,
+      r.sampled.skipped
+          ? fmt::format(", {} attempts: {} gave no segment", r.sampled.attempts, r.sampled.skipped)
+          : "");
+  if (r.shortfall) out += fmt::format("  WARNING: {}\n", *r.shortfall);
   out += fmt::format("  {}\n", r.distribution_note);
   out += fmt::format("  {:<6} {:>12} {:>10}  {:<24}  {}\n", "class", "count", "fraction",
                      "95 % interval", "meaning");
@@ -195,6 +198,9 @@ nlohmann::json toJson(const PairCheckReport& r) {
   j["seed"] = r.seed;
   j["rays"] = c.total();
   j["rays_requested"] = r.rays_requested;
+  j["attempts"] = r.sampled.attempts;
+  j["skipped"] = r.sampled.skipped;
+  j["shortfall"] = r.shortfall ? nlohmann::json(*r.shortfall) : nlohmann::json(nullptr);
   j["distribution"] = r.distribution;
   j["seconds"] = r.seconds;
   j["original"] = meshJson(r.original);

@@ -1,5 +1,7 @@
 #include "proxies/check/pair_check.h"
 
+#include <fmt/core.h>
+
 #include <cmath>
 
 #include "proxies/check/mesh_distance.h"
@@ -59,11 +61,8 @@ PairCheckReport checkPair(const TriMesh& original, const TriMesh& proxy,
       sampledOneSidedDistance(proxy, original, options.distance_samples, hashKeys(options.seed, 2));
   r.original_diagonal = original.diagonal();
 
-  TraceDevice device;
-  std::unique_ptr<TraceScene> original_scene = buildScene(device, original);
-  std::unique_ptr<TraceScene> proxy_scene = buildScene(device, proxy);
   SegmentGenerator generator = options.generator;
-  if (generator) {
+  if (generator || options.classified) {
     r.distribution = options.distribution_name;
     r.distribution_note = options.distribution_note;
   } else {
@@ -74,11 +73,25 @@ PairCheckReport checkPair(const TriMesh& original, const TriMesh& proxy,
         "segments between independent uniform points on a sphere around both meshes: both ends "
         "lie outside both, so an outside proxy can show no HM' and an inside proxy no MH'";
   }
-  ClassifyOptions co;
-  co.segments = options.rays;
-  co.max_error_segments = options.max_error_segments;
-  co.quiet = options.quiet;
-  r.sampled = classifySegments(*original_scene, *proxy_scene, generator, co);
+  if (options.classified) {
+    r.sampled = *options.classified;
+  } else {
+    TraceDevice device;
+    std::unique_ptr<TraceScene> original_scene = buildScene(device, original);
+    std::unique_ptr<TraceScene> proxy_scene = buildScene(device, proxy);
+    ClassifyOptions co;
+    co.segments = options.rays;
+    co.max_attempts = options.max_attempts;
+    co.max_error_segments = options.max_error_segments;
+    co.quiet = options.quiet;
+    r.sampled = classifySegments(*original_scene, *proxy_scene, generator, co);
+  }
+  if (r.sampled.counts.total() < options.rays)
+    r.shortfall = fmt::format(
+        "only {} of {} segments classified after {} attempts: the distribution's other segments "
+        "pass neither the original nor the proxy{}",
+        r.sampled.counts.total(), options.rays, r.sampled.attempts,
+        r.distribution_note.empty() ? "" : " (see the distribution note)");
   finishVerdicts(r);
   r.seconds = whole.seconds();
   return r;

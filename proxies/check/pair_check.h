@@ -20,7 +20,10 @@ struct MeshSummary {
 };
 
 struct PairCheckOptions {
-  uint64_t rays = 1'000'000;
+  uint64_t rays = 1'000'000;  // segments to classify
+  // Indices to draw at most while looking for `rays` segments (a generator may give none for an
+  // index); 0 = rays.
+  uint64_t max_attempts = 0;
   uint64_t seed = 0;
   std::optional<ProxyClass> expect;
   uint64_t max_error_segments = 0;  // kept for --dump-errors
@@ -28,6 +31,9 @@ struct PairCheckOptions {
   bool quiet = false;
   // Another segment distribution (e.g. the scene's); empty = the sphere around both meshes.
   SegmentGenerator generator;
+  // Segments classified already (proxy-check's scene stream shares its draws among meshes): used
+  // as the sampled counts instead of sampling; distribution_name/note describe them.
+  const Classification* classified = nullptr;
   std::string distribution_name, distribution_note;
 };
 
@@ -47,7 +53,10 @@ struct PairCheckReport {
   std::optional<std::string> mismatch;  // sampled vs exact disagree: a bug, reported loudly
   std::optional<ProxyClass> expected;
   std::optional<std::string> contradiction;  // the evidence contradicts `expected`
-  double seconds = 0;                        // everything, loading excluded
+  // Fewer segments than requested were classified within max_attempts: how many, and why. A
+  // warning (the verdicts rest on fewer segments), not a failure.
+  std::optional<std::string> shortfall;
+  double seconds = 0;  // everything, loading excluded
 
   bool failed() const { return mismatch.has_value() || contradiction.has_value(); }
 };

@@ -50,8 +50,10 @@ Classification classifySegments(const TraceScene& original, const TraceScene& pr
   const size_t batch = std::max<size_t>(1, options.batch);
   std::vector<Segment> segs(batch);
   std::vector<uint8_t> valid(batch), hit_o(batch), hit_p(batch);
-  for (uint64_t first = 0; first < options.segments; first += batch) {
-    const size_t n = size_t(std::min<uint64_t>(batch, options.segments - first));
+  const uint64_t cap = std::max(options.max_attempts, options.segments);
+  uint64_t classified = 0;
+  for (uint64_t first = 0; classified < options.segments && first < cap; first += batch) {
+    const size_t n = size_t(std::min<uint64_t>(batch, cap - first));
     tbb::parallel_for(size_t(0), n, [&](size_t i) {
       valid[i] = generator(first + i, segs[i]) ? 1 : 0;
       if (!valid[i]) segs[i] = Segment{{}, 0, {1, 0, 0}, -1};  // empty range: never occluded
@@ -64,11 +66,15 @@ Classification classifySegments(const TraceScene& original, const TraceScene& pr
     original.occluded(in, std::span<uint8_t>(hit_o.data(), n));
     result.seconds_original += trace.seconds();
     ClassCounts c;
-    for (size_t i = 0; i < n; ++i) {
+    const uint64_t before = classified;
+    // In index order, so the segments counted are the same at any batch size or thread count.
+    for (size_t i = 0; i < n && classified < options.segments; ++i) {
+      ++result.attempts;
       if (!valid[i]) {
         ++result.skipped;
         continue;
       }
+      ++classified;
       const bool o = hit_o[i], p = hit_p[i];
       if (o && p)
         ++c.hh;
@@ -83,7 +89,7 @@ Classification classifySegments(const TraceScene& original, const TraceScene& pr
                                  segs[i].org + segs[i].tfar * segs[i].dir, o});
     }
     result.counts += c;
-    progress.update(n);
+    progress.update(classified - before);
   }
   progress.done();
   result.seconds = whole.seconds();

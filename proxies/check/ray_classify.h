@@ -37,7 +37,10 @@ struct ErrorSegment {
 };
 
 struct ClassifyOptions {
-  uint64_t segments = 1'000'000;    // indices 0 .. segments-1 are generated
+  // Segments to classify: indices 0, 1, ... are drawn until this many gave a segment (the
+  // lowest such indices count), or until max_attempts indices were drawn.
+  uint64_t segments = 1'000'000;
+  uint64_t max_attempts = 0;        // 0 or less than segments: segments (every index gives one)
   uint32_t batch = 1u << 16;        // segments generated and traced per batch
   uint64_t max_error_segments = 0;  // how many error segments to keep (lowest indices first)
   bool quiet = false;               // no progress bar
@@ -45,8 +48,9 @@ struct ClassifyOptions {
 
 struct Classification {
   ClassCounts counts;
-  uint64_t skipped = 0;  // indices for which the generator gave no segment
-  double seconds = 0;    // wall time of everything, generation included
+  uint64_t attempts = 0;  // indices drawn (the last one counted is attempts - 1)
+  uint64_t skipped = 0;   // of those, the indices for which the generator gave no segment
+  double seconds = 0;     // wall time of everything, generation included
   double seconds_original = 0, seconds_proxy = 0;  // batch tracing time against each
   std::vector<ErrorSegment> errors;                // by increasing index
   // c_p / c_o: time per segment against the proxy over the original (0 if not measured).

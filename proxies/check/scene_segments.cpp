@@ -37,8 +37,8 @@ std::unique_ptr<TraceScene> buildFullScene(TraceDevice& device, const SceneDesc&
   return builder.build();
 }
 
-SegmentGenerator sceneSegments(const TraceScene& full, const SceneDesc& scene,
-                               uint32_t exclude_user_id, uint64_t seed) {
+WorldSegmentSource worldSceneSegments(const TraceScene& full, const SceneDesc& scene,
+                                      uint64_t seed) {
   if (scene.lights.empty())
     throw Error(scene.path.string(), "the scene has no lights",
                 "the scene distribution ends segments on light samples",
@@ -47,78 +47,105 @@ SegmentGenerator sceneSegments(const TraceScene& full, const SceneDesc& scene,
   auto lights = std::make_shared<LightSampler>(scene.lights);
   // Offsets relative to the scene size keep segment ends off the surfaces they start on.
   const float eps = 1e-5f * std::max(1.0f, full.bounds().diagonal());
-  return [&full, camera, lights, exclude_user_id, seed, eps](uint64_t index, Segment& out) {
+  return [&full, camera, lights, seed, eps](uint64_t index) {
+    WorldSegment w;
     Rng rng(seed, index);
     const float fx = rng.uniformFloat() * float(camera->width());
     const float fy = rng.uniformFloat() * float(camera->height());
     Segment primary{camera->eye(), 0, camera->direction(fx, fy),
                     std::numeric_limits<float>::infinity()};
     const Hit hit = full.intersect(primary);
-    if (!hit.hit || hit.user_id == exclude_user_id) return false;
+    if (!hit.hit) return w;
     Vec3f n = normalize(hit.ng);
     if (dot(n, primary.dir) > 0) n = -n;  // the side the camera sees
     const Vec3f p = primary.org + hit.t * primary.dir + eps * n;
     const float u0 = rng.uniformFloat(), u1 = rng.uniformFloat(), u2 = rng.uniformFloat();
     const LightSample ls = lights->sample(u0, u1, u2);
-    out.org = p;
-    out.dir = ls.point - p;
-    out.tnear = 0;
-    out.tfar = 1.0f - 1e-4f;  // stop short of the light itself
+    w.segment.org = p;
+    w.segment.dir = ls.point - p;
+    w.segment.tnear = 0;
+    w.segment.tfar = 1.0f - 1e-4f;  // stop short of the light itself
+    w.hit_user = hit.user_id;
+    w.valid = true;
+    return w;
+  };
+}
+
+SegmentGenerator sceneSegments(const TraceScene& full, const SceneDesc& scene,
+                               uint32_t exclude_user_id, uint64_t seed) {
+  WorldSegmentSource world = worldSceneSegments(full, scene, seed);
+  return [world, exclude_user_id](uint64_t index, Segment& out) {
+    const WorldSegment w = world(index);
+    if (!w.valid || w.hit_user == exclude_user_id) return false;
+    out = w.segment;
     return true;
   };
 }
 
-namespace {
-
-bool segmentCrossesBox(const Segment& s, const Bounds3f& b) {
-  float t0 = s.tnear, t1 = s.tfar;
-  for (int a = 0; a < 3; ++a) {
-    const float inv = 1.0f / s.dir[a];
-    float ta = (b.lo[a] - s.org[a]) * inv, tb = (b.hi[a] - s.org[a]) * inv;
-    if (ta > tb) std::swap(ta, tb);
-    t0 = std::max(t0, ta);
-    t1 = std::min(t1, tb);
-    if (!(t0 <= t1)) return false;  // also false for NaN (a zero direction on a slab's edge)
-  }
-  return true;
+SegmentGenerator segmentsCrossing(SegmentGenerator generator, const Bounds3f& box) {
+  return [generator = std::move(generator), box](uint64_t index, Segment& out) {
+    return generator(index, out) && segmentCrossesBox(out, box);
+  };
 }
 
-}  // namespace
+MeshPlacements placedMeshPlacements(uint32_t mesh, const Bounds3f& both, uint64_t seed) {
+  MeshPlacements m;
+  m.mesh = mesh;
+  m.seed = seed;
+  m.to_object.push_back(Affine3f{});
+  m.world_boxes = std::make_unique<BoxTree>(std::vector<Bounds3f>{both});
+  return m;
+}
+
+MeshPlacements instancedMeshPlacements(const SceneDesc& scene, uint32_t mesh, const Bounds3f& both,
+                                       uint64_t seed) {
+  MeshPlacements m;
+  m.mesh = mesh;
+  m.seed = seed;
+  std::vector<Bounds3f> boxes;
+  for (const SceneInstanceDesc& inst : scene.instances) {
+    if (inst.mesh != mesh) continue;
+    const std::optional<Affine3f> inv = inverse(inst.transform);
+    if (!inv) throw Error(scene.path.string(), "singular instance transform");
+    m.to_object.push_back(*inv);
+    boxes.push_back(transformedBounds(both, inst.transform));
+  }
+  if (boxes.empty())
+    throw Error(scene.path.string(), "mesh has no instances",
+                "the instanced scene distribution needs at least one");
+  m.world_boxes = std::make_unique<BoxTree>(std::move(boxes));
+  return m;
+}
+
+bool segmentForMesh(const MeshPlacements& m, uint64_t index, const WorldSegment& world,
+                    Segment& out, std::vector<uint32_t>& scratch) {
+  if (!world.valid || world.hit_user == m.mesh) return false;
+  scratch.clear();
+  m.world_boxes->crossed(world.segment, scratch);
+  if (scratch.empty()) return false;
+  // Reservoir sampling of one crossed placement, uniform among them, in increasing order.
+  const uint64_t pick = hashKeys(m.seed ^ 0x5bd1e995u, index);
+  uint32_t crossing = 0, chosen = 0;
+  for (const uint32_t k : scratch) {
+    ++crossing;
+    if (hashKeys(pick, k) % crossing == 0) chosen = k;
+  }
+  const Affine3f& to_object = m.to_object[chosen];
+  out = world.segment;
+  out.org = to_object.apply(world.segment.org);
+  out.dir = applyLinear(to_object, world.segment.dir);  // same t range: the map is affine
+  return true;
+}
 
 SegmentGenerator instanceSceneSegments(const TraceScene& full, const SceneDesc& scene,
                                        uint32_t mesh_index, const Bounds3f& object_bounds,
                                        uint64_t seed) {
-  struct Placement {
-    Affine3f to_object;
-    Bounds3f world;
-  };
-  auto placements = std::make_shared<std::vector<Placement>>();
-  for (const SceneInstanceDesc& inst : scene.instances) {
-    if (inst.mesh != mesh_index) continue;
-    const std::optional<Affine3f> inv = inverse(inst.transform);
-    if (!inv) throw Error(scene.path.string(), "singular instance transform");
-    placements->push_back({*inv, transformedBounds(object_bounds, inst.transform)});
-  }
-  if (placements->empty())
-    throw Error(scene.path.string(), "mesh has no instances",
-                "the instanced scene distribution needs at least one");
-  SegmentGenerator world = sceneSegments(full, scene, mesh_index, seed);
-  return [world, placements, seed](uint64_t index, Segment& out) {
-    Segment s;
-    if (!world(index, s)) return false;
-    uint32_t crossing = 0, chosen = 0;
-    const uint64_t pick = hashKeys(seed ^ 0x5bd1e995u, index);
-    for (uint32_t k = 0; k < placements->size(); ++k) {
-      if (!segmentCrossesBox(s, (*placements)[k].world)) continue;
-      // Reservoir sampling of one crossed instance, uniform among them.
-      ++crossing;
-      if (hashKeys(pick, k) % crossing == 0) chosen = k;
-    }
-    const Affine3f& m = (*placements)[chosen].to_object;
-    out = s;
-    out.org = m.apply(s.org);
-    out.dir = applyLinear(m, s.dir);  // same t range: the map is affine
-    return true;
+  auto placements = std::make_shared<MeshPlacements>(
+      instancedMeshPlacements(scene, mesh_index, object_bounds, seed));
+  WorldSegmentSource world = worldSceneSegments(full, scene, seed);
+  return [world, placements](uint64_t index, Segment& out) {
+    thread_local std::vector<uint32_t> scratch;
+    return segmentForMesh(*placements, index, world(index), out, scratch);
   };
 }
 

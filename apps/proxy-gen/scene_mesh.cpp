@@ -1,0 +1,153 @@
+#include "scene_mesh.h"
+
+#include <fmt/core.h>
+
+#include "mesh/io/internal/sha256_sidecar.h"
+#include "mesh/io/mesh_io.h"
+#include "proxies/pipeline/written_class.h"
+#include "proxies/shared/parity_solid.h"
+#include "util/error.h"
+#include "util/input_file.h"
+#include "util/output_set.h"
+#include "util/sha256.h"
+#include "util/stopwatch.h"
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace proxyvis {
+
+namespace {
+
+// A generated proxy, or why the mesh gets none.
+struct Generated {
+  json report;
+  TriMesh proxy;
+  std::string skipped;
+};
+
+Generated generate(const std::string& bytes, const fs::path& file, ProxyGenOptions o) {
+  const Stopwatch load_clock;
+  const TriMesh input = parseMeshBytes(bytes, file);
+  const double load_seconds = load_clock.seconds();
+  Generated g;
+  // A proxy only pays if it has fewer faces than its original; no closed mesh has fewer than 4,
+  // so a smaller original (a ground quad) is skipped without trying.
+  if (input.numTriangles() < 4) {
+    g.skipped = fmt::format("{} faces: no closed proxy can have fewer", input.numTriangles());
+    g.report = {{"faces", input.numTriangles()}};
+    return g;
+  }
+  const bool open = !parityVolume(input).has_value();
+  if (open && o.kind == ProxyClass::kInside && !o.fill_holes) {
+    // In a scene this is a property of the mesh (foliage), not a mistake: the others go on.
+    g.skipped =
+        "open: it bounds no volume, so it has no inside proxy (--fill-holes makes a "
+        "general one)";
+    g.report = {{"faces", input.numTriangles()}};
+    return g;
+  }
+  const bool wrap = o.method.empty() || o.method == "wrap";
+  if (open && o.kind == ProxyClass::kOutside && wrap && !o.alpha && !o.offset) {
+    o.alpha = kOpenMeshWrapAlpha;
+    o.offset = kOpenMeshWrapOffset;
+  }
+  ProxyGenResult r = generateProxy(input, o);
+  json& seconds = r.report["seconds"];
+  seconds["load"] = load_seconds;
+  seconds["total"] = seconds.value("total", 0.0) + load_seconds;
+  if (r.proxy.numTriangles() >= input.numTriangles()) {
+    g.skipped = fmt::format("its {} proxy has {} faces, the original {}: not cheaper",
+                            proxyClassName(o.kind), r.proxy.numTriangles(), input.numTriangles());
+    g.report = {{"faces", input.numTriangles()}};
+    return g;
+  }
+  g.report = std::move(r.report);
+  g.proxy = std::move(r.proxy);
+  return g;
+}
+
+// The proxy file and its sidecar as saveMesh writes them, from bytes saveMesh wrote before.
+void writeProxyBytes(const std::string& bytes, const fs::path& out) {
+  OutputSet outputs;
+  outputs.add(out, [&](const fs::path& tmp) { writeFileBytes(tmp, bytes, out.string()); });
+  const fs::path sidecar = detail::sidecarPathOf(out);
+  outputs.addText(sidecar, detail::sidecarLine(out, bytes));
+  outputs.commit();
+}
+
+}  // namespace
+
+SceneMeshProxy proxyForSceneMesh(const SceneMeshDesc& mesh, const ProxyGenOptions& options,
+                                 const fs::path& out, const ProxyCache* cache) {
+  SceneMeshProxy result;
+  if (!mesh.make_proxy) {
+    result.skipped = "\"make_proxy\": false in the scene";
+    result.report = {{"name", mesh.name}, {"skipped", result.skipped}};
+    return result;
+  }
+  // The bytes are hashed for the cache key and parsed from memory on a miss: read once.
+  const std::string bytes = readTextFile(mesh.file);
+  detail::verifySidecar(mesh.file, bytes);
+  std::string key;
+  std::optional<CachedProxy> entry;
+  if (cache) {
+    key = proxyCacheKey(sha256Hex(bytes), proxyCacheSettings(options));
+    std::string damage;
+    entry = cache->find(key, &damage);
+    if (!damage.empty())
+      result.cache_note = fmt::format("cache entry {} was damaged ({}): generated again",
+                                      key.substr(0, 12), damage);
+  }
+  std::string state = cache ? "cached" : "off";
+  if (!entry) {
+    Generated g = generate(bytes, mesh.file, options);
+    entry.emplace();
+    if (!g.skipped.empty()) {
+      entry->report = std::move(g.report);
+      entry->report["skipped"] = g.skipped;
+    } else {
+      saveMesh(g.proxy, out);
+      const std::optional<std::string> written = readOwnFileBytes(out);
+      if (!written) throw WriteError(out.string(), "cannot read back the proxy just written");
+      entry->report = std::move(g.report);
+      entry->proxy_bytes = *written;
+    }
+    if (cache) {
+      state = "generated";
+      try {
+        cache->store(key, *entry);
+      } catch (const Error& e) {
+        // The proxy is written and good; only the next run will have to build it again.
+        result.cache_note = fmt::format("not stored in the cache: {}", e.what());
+      }
+    }
+  } else if (!entry->report.contains("skipped")) {
+    writeProxyBytes(entry->proxy_bytes, out);
+  }
+  result.report = std::move(entry->report);
+  result.report["name"] = mesh.name;
+  // An entry made from the same bytes elsewhere: the report names this scene's file.
+  if (result.report.contains("input") && result.report["input"].is_object())
+    result.report["input"]["path"] = mesh.file.string();
+  result.report["cache"] = state;
+  if (result.report.contains("skipped")) {
+    result.skipped = result.report["skipped"].get<std::string>();
+    return result;
+  }
+  result.report["output"] = out.string();
+  ProxyRef ref;
+  ref.kind = proxyClassName(options.kind);
+  ref.method = result.report.value("method", "");
+  ref.file = fs::absolute(out);
+  // The class the report writes (general when proven only for a stand-in of the input); the
+  // hash says which file content it was proven for: the bytes just written.
+  if (const std::optional<ProxyClass> c = writtenClass(result.report)) {
+    ref.verified_class = c;
+    ref.sha256 = sha256Hex(entry->proxy_bytes);
+  }
+  result.ref = ref;
+  return result;
+}
+
+}  // namespace proxyvis

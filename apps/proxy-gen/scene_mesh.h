@@ -1,0 +1,40 @@
+#pragma once
+// proxy-gen's work on one mesh of a scene: its proxy taken from the proxy cache or generated and
+// written, or the reason it gets none (docs/proxies.md, "Whole scenes").
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "proxies/pipeline/proxy_cache.h"
+#include "proxies/pipeline/proxy_pipeline.h"
+#include "scene/scene_desc.h"
+
+namespace proxyvis {
+
+// Outside wrap sizes for an open mesh in a scene when none are given (fractions of its
+// diagonal). The single-mesh defaults follow every leaf of a plant: on the ecosys prototypes they
+// took 602 s and most proxies were not cheaper than their original; these take 7 s
+// (docs/proxies.md).
+inline constexpr double kOpenMeshWrapAlpha = 0.1;
+inline constexpr double kOpenMeshWrapOffset = 0.01;
+
+struct SceneMeshProxy {
+  // The generator's report with "name", "output" and "cache" ("cached", "generated", "off"), or
+  // {"name", "skipped", ...} for a mesh that gets no proxy.
+  nlohmann::json report;
+  std::optional<ProxyRef> ref;  // the proxy to list in the scene (absent when skipped)
+  std::string skipped;          // why the mesh gets no proxy; empty when it got one
+  // What went wrong with the cache (a damaged entry generated again, an entry not stored), for a
+  // note on stderr; empty when nothing did.
+  std::string cache_note;
+};
+
+// Builds (or takes from `cache`, when not null) the proxy of `mesh` with `options` and writes it
+// to `out` (with its .sha256 sidecar). A mesh with "make_proxy": false, with fewer than 4 faces,
+// without an inside (for an inside proxy of an open mesh), or whose proxy would not have fewer
+// faces is skipped. Throws what generateProxy and loadMesh throw.
+SceneMeshProxy proxyForSceneMesh(const SceneMeshDesc& mesh, const ProxyGenOptions& options,
+                                 const std::filesystem::path& out, const ProxyCache* cache);
+
+}  // namespace proxyvis

@@ -1,0 +1,128 @@
+#include "proxies/pipeline/proxy_cache.h"
+
+#include <fmt/core.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <system_error>
+
+#include "util/atomic_write.h"
+#include "util/error.h"
+#include "util/output_set.h"
+#include "util/proxy_class.h"
+#include "util/sha256.h"
+
+namespace fs = std::filesystem;
+
+namespace proxyvis {
+
+namespace {
+
+// Bumped when the entry layout or the key's content changes: older entries then miss.
+constexpr int kCacheFormat = 1;
+// No proxy file or report proxy-gen writes comes near this; a larger entry is damaged.
+constexpr uintmax_t kMaxEntryBytes = uintmax_t(1) << 30;
+
+std::string optionalNumber(const std::optional<double>& v) {
+  return v ? fmt::format("{:.17g}", *v) : "default";
+}
+
+}  // namespace
+
+std::optional<std::string> readOwnFileBytes(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) return std::nullopt;
+  const uintmax_t size = fs::file_size(path, ec);
+  if (ec || size > kMaxEntryBytes) return std::nullopt;
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in.good() && !in.eof()) return std::nullopt;
+  return bytes;
+}
+
+const std::string& programBuildId() {
+  static const std::string id = [] {
+    if (const std::optional<std::string> exe = readOwnFileBytes("/proc/self/exe"))
+      return "exe-sha256:" + sha256Hex(*exe);
+    return fmt::format("version:{} compiled:{} {}", PROXYVIS_VERSION, __DATE__, __TIME__);
+  }();
+  return id;
+}
+
+nlohmann::json proxyCacheSettings(const ProxyGenOptions& o) {
+  // Numbers as text with all their digits: the key must not depend on how JSON prints doubles.
+  return {
+      {"kind", proxyClassName(o.kind)},       {"method", o.method.empty() ? "default" : o.method},
+      {"alpha", optionalNumber(o.alpha)},     {"offset", optionalNumber(o.offset)},
+      {"ratio", optionalNumber(o.ratio)},     {"max_faces", o.max_faces},
+      {"erosion", optionalNumber(o.erosion)}, {"voxel", optionalNumber(o.voxel)},
+      {"fill_holes", o.fill_holes},           {"hard_budget", o.hard_budget},
+      {"seed", std::to_string(o.seed)},       {"hausdorff_samples", o.hausdorff_samples}};
+}
+
+std::string proxyCacheKey(const std::string& input_sha256, const nlohmann::json& settings) {
+  return sha256Hex(fmt::format("proxyvis proxy cache {}\ninput {}\nsettings {}\nbuild {}\n",
+                               kCacheFormat, input_sha256, settings.dump(), programBuildId()));
+}
+
+fs::path defaultProxyCacheDir() {
+  const char* xdg = std::getenv("XDG_CACHE_HOME");
+  // The XDG rule: only an absolute path counts.
+  if (xdg && *xdg && fs::path(xdg).is_absolute()) return fs::path(xdg) / "proxyvis" / "proxies";
+  const char* home = std::getenv("HOME");
+  if (home && *home) return fs::path(home) / ".cache" / "proxyvis" / "proxies";
+  return {};
+}
+
+ProxyCache::ProxyCache(fs::path dir) : dir_(std::move(dir)) {
+  std::error_code ec;
+  fs::create_directories(dir_, ec);
+  if (ec || !fs::is_directory(dir_))
+    throw WriteError(dir_.string(), "cannot use the proxy cache folder",
+                     ec ? ec.message() : "it is not a folder",
+                     "give another --cache DIR or --no-cache");
+}
+
+std::optional<CachedProxy> ProxyCache::find(const std::string& key, std::string* why) const {
+  const auto damaged = [&](const std::string& reason) -> std::optional<CachedProxy> {
+    if (why) *why = reason;
+    return std::nullopt;
+  };
+  const fs::path meta_path = dir_ / (key + ".json");
+  std::error_code ec;
+  if (!fs::exists(meta_path, ec)) return std::nullopt;
+  const std::optional<std::string> meta_text = readOwnFileBytes(meta_path);
+  if (!meta_text) return damaged("its report cannot be read");
+  const nlohmann::json meta = nlohmann::json::parse(*meta_text, nullptr, false);
+  if (meta.is_discarded() || !meta.is_object()) return damaged("its report is not JSON");
+  if (meta.value("format", 0) != kCacheFormat || meta.value("key", "") != key)
+    return damaged("its report belongs to another entry");
+  const auto report = meta.find("report");
+  if (report == meta.end() || !report->is_object()) return damaged("it has no report");
+  CachedProxy entry;
+  entry.report = *report;
+  if (entry.report.contains("skipped")) return entry;
+  const auto hash = meta.find("proxy_sha256");
+  if (hash == meta.end() || !hash->is_string()) return damaged("it records no proxy hash");
+  const std::optional<std::string> bytes = readOwnFileBytes(dir_ / (key + ".ply"));
+  if (!bytes) return damaged("its proxy file is missing or unreadable");
+  if (sha256Hex(*bytes) != hash->get<std::string>())
+    return damaged("its proxy file does not have the recorded SHA-256 (truncated or changed)");
+  entry.proxy_bytes = std::move(*bytes);
+  return entry;
+}
+
+void ProxyCache::store(const std::string& key, const CachedProxy& entry) const {
+  nlohmann::json meta = {{"format", kCacheFormat}, {"key", key}, {"report", entry.report}};
+  if (!entry.report.contains("skipped")) {
+    const fs::path ply = dir_ / (key + ".ply");
+    writeAtomically(
+        ply, [&](const fs::path& tmp) { writeFileBytes(tmp, entry.proxy_bytes, ply.string()); });
+    meta["proxy_sha256"] = sha256Hex(entry.proxy_bytes);
+  }
+  // Last: the entry exists only once the proxy file it vouches for is in place.
+  writeTextAtomically(dir_ / (key + ".json"), meta.dump(1) + "\n");
+}
+
+}  // namespace proxyvis

@@ -1,0 +1,69 @@
+#pragma once
+// proxy-gen's cache of generated proxies on disk (docs/proxies.md, "The proxy cache"). An entry
+// is keyed by the SHA-256 of the input mesh file's bytes and of every setting that changes the
+// output (ProxyGenOptions, the program's build), so a second run of the same command copies the
+// proxies instead of generating them again, and any change of input or setting misses.
+//
+// An entry is two files in the cache folder: "<key>.ply" (the proxy file exactly as written,
+// absent when the mesh gets no proxy) and "<key>.json" (the generator's report with its proof,
+// and the SHA-256 of the .ply). Both are written atomically (temporary + rename), the .json last,
+// so a killed run leaves at most a stale temporary and never an entry that is used: an entry
+// whose .json is missing, unreadable, or whose .ply does not have the recorded hash is a miss and
+// is written again.
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "proxies/pipeline/proxy_pipeline.h"
+
+namespace proxyvis {
+
+// A cached result: the report (with "skipped": why, for a mesh that gets no proxy) and the proxy
+// file's bytes (empty when skipped).
+struct CachedProxy {
+  nlohmann::json report;
+  std::string proxy_bytes;
+};
+
+// The bytes of a file this run wrote or keeps in its cache (not registered as an input, so the
+// run may replace it), or nullopt when it is missing, not a regular file, larger than 1 GiB or
+// unreadable.
+std::optional<std::string> readOwnFileBytes(const std::filesystem::path& path);
+
+// What identifies this program's build in cache keys: the SHA-256 of its own executable (any
+// rebuild with a changed generator misses), or the version and compile time when the executable
+// cannot be read. Computed once per process.
+const std::string& programBuildId();
+
+// The settings of `options` that change a generated proxy, as canonical JSON (the time budget is
+// left out: it can only make a run fail, and failures are not cached).
+nlohmann::json proxyCacheSettings(const ProxyGenOptions& options);
+
+// The entry key: 64 hex digits of SHA-256 over the input's hash, the settings and the build id.
+std::string proxyCacheKey(const std::string& input_sha256, const nlohmann::json& settings);
+
+// The default folder: $XDG_CACHE_HOME/proxyvis/proxies, else $HOME/.cache/proxyvis/proxies;
+// empty when neither variable is set.
+std::filesystem::path defaultProxyCacheDir();
+
+class ProxyCache {
+ public:
+  // Uses (and creates) `dir`. Throws WriteError naming it when it cannot be created or is not a
+  // folder.
+  explicit ProxyCache(std::filesystem::path dir);
+
+  const std::filesystem::path& dir() const { return dir_; }
+
+  // The entry for `key`, or nullopt when there is none or it is damaged (then `why`, if given,
+  // says what was wrong; an absent entry leaves it empty). Never throws for a bad entry.
+  std::optional<CachedProxy> find(const std::string& key, std::string* why = nullptr) const;
+
+  // Writes the entry for `key` (replacing a damaged one). Throws WriteError when it cannot.
+  void store(const std::string& key, const CachedProxy& entry) const;
+
+ private:
+  std::filesystem::path dir_;
+};
+
+}  // namespace proxyvis

@@ -1,0 +1,12 @@
+# proxy-gen on a small scene of bundled ecosys plants: make_proxy, the proxy cache (hit, misses on
+# a changed setting or input, damaged entries regenerated, --no-cache) and proxy-check's N
+# classified segments per prototype (proxy_gen_scene_cache.py says what each step checks).
+if(CMAKE_SCRIPT_MODE_FILE)
+  return()
+endif()
+find_package(Python3 REQUIRED COMPONENTS Interpreter)
+add_test(NAME app.proxy_gen_scene_cache
+  COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_LIST_DIR}/proxy_gen_scene_cache.py
+          $<TARGET_FILE_DIR:proxy-gen> ${PROXYVIS_DATA_DIR}
+          ${CMAKE_CURRENT_BINARY_DIR}/proxy_gen_scene_cache)
+set_tests_properties(app.proxy_gen_scene_cache PROPERTIES TIMEOUT 600)
