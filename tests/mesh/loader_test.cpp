@@ -137,7 +137,7 @@ TEST(DataReadme, EveryMeshMatchesItsTriangleAndVertexCounts) {
     EXPECT_EQ(mesh.numVertices(), readmeNumber(m[4].str())) << m[1];
     ++checked;
   }
-  EXPECT_EQ(checked, 21);  // every bundled mesh
+  EXPECT_EQ(checked, 65);  // every bundled mesh (21, and the 44 ecosys prototypes)
 }
 
 // Every file row of data/README.md: the bundled bytes are the ones recorded (copies keep the
@@ -155,7 +155,7 @@ TEST(DataReadme, EveryFileMatchesItsSizeAndSha256) {
     EXPECT_EQ(sha256OfFile(file), m[3].str()) << m[1];
     ++checked;
   }
-  EXPECT_EQ(checked, 22);  // 21 meshes and the Cornell box's .mtl
+  EXPECT_EQ(checked, 67);  // 65 meshes, the Cornell box's .mtl and the ecosys instance list
 }
 
 TEST(LoadMesh, ExtensionIsCaseInsensitive) {
