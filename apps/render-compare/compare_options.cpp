@@ -32,6 +32,11 @@ void addCompareOptions(CLI::App& app, CompareOptions& o) {
                  "Independent renders per table cell (standard error over them)")
       ->check(integerIn(1, kMaxSeeds))
       ->capture_default_str();
+  app.add_option("--repeats", o.repeats,
+                 "Times the equal-time schedule is run (each with new seeds): seeds x repeats "
+                 "runs per equal-time cell, and the efficiency's run-to-run spread over them")
+      ->check(integerIn(1, kMaxRepeats))
+      ->capture_default_str();
   addRenderFlags(app, o.render);
   addCommonOptions(app, o.common);
 }
@@ -59,6 +64,9 @@ void CompareOptions::resolve() {
   spp_list.erase(std::unique(spp_list.begin(), spp_list.end()), spp_list.end());
   if (spp_list.empty() && !(equal_time > 0))
     throw Error({}, "nothing to compare", "--spp is empty and --equal-time is 0");
+  if (repeats > 1 && !(equal_time > 0))
+    throw Error({}, "--repeats has nothing to repeat", "it repeats the equal-time table",
+                "give --equal-time a budget, or drop --repeats");
 }
 
 int CompareOptions::referenceSpp(int largest_spp_reached) const {

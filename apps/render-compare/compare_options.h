@@ -17,6 +17,8 @@ namespace proxyvis {
 // The largest --seeds: a typo fails at once instead of running for days (the other ranges are
 // render/render_options.h's).
 inline constexpr uint64_t kMaxSeeds = 1000;
+// The largest --repeats of the equal-time schedule.
+inline constexpr uint64_t kMaxRepeats = 100;
 
 struct CompareOptions {
   std::filesystem::path scene;
@@ -26,6 +28,7 @@ struct CompareOptions {
   double equal_time = 1.0;  // seconds per render; 0 = no equal-time table
   int reference_spp = 0;    // 0 = max(1024, 16 × the largest spp reached), a power of two
   int seeds = 3;
+  int repeats = 1;     // equal-time schedule repeats: seeds x repeats runs per equal-time cell
   RenderFlags render;  // image size, proxies, build, estimator settings (shared with `render`)
   CommonOptions common;
 

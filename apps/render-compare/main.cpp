@@ -10,6 +10,7 @@
 #include <fstream>
 #include <limits>
 
+#include "ceiling_phase.h"
 #include "compare_options.h"
 #include "metrics/html_report.h"
 #include "metrics/image_error.h"
@@ -114,6 +115,8 @@ Report makeReport(const CompareOptions& o, const RenderScene& scene, const Refer
   report.meta["spp"] = listText(o.spp_list);
   report.meta["equal_time_seconds"] = o.equal_time;
   report.meta["seeds"] = o.seeds;
+  report.meta["repeats"] = o.repeats;
+  report.meta["timing"] = interleavedTimingMeta(o);
   report.meta["seed"] = o.common.seed;
   report.meta["threads"] =
       tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
@@ -130,6 +133,7 @@ Report makeReport(const CompareOptions& o, const RenderScene& scene, const Refer
   report.meta["relmse_epsilon"] = kRelMseEpsilon;
   addProxyTrust(report, trust);
   for (const std::string& w : scene.warnings()) report.notes.push_back("Scene: " + w);
+  if (o.equal_time > 0) report.notes.push_back(interleavedTimingNote(o));
   if (!scene.usesProxies()) report.notes.push_back(std::string("Warning: ") + kNoProxiesNote + ".");
   // docs/design.md, costs point 2: the exact baseline should be the fastest exact configuration.
   const bool flat = scene.instancesFlattened() || desc.instances.empty();
@@ -178,16 +182,18 @@ int runCompare(CompareOptions& o) {
   // Cells in table order; the stems name their images.
   std::vector<CellResult> cells;
   std::vector<std::string> stems;
-  for (int spp : o.spp_list)
-    for (EstimatorKind kind : o.estimator_list) {
-      cells.push_back(runCell(*scene, o, kind, spp, 0, kEqualSppTable));
+  for (int spp : o.spp_list) {
+    for (CellResult& c : runEqualSppCells(*scene, o, spp)) cells.push_back(std::move(c));
+    for (EstimatorKind kind : o.estimator_list)
       stems.push_back(fmt::format("{}_{}", estimatorName(kind), spp));
-    }
-  if (o.equal_time > 0)
-    for (EstimatorKind kind : o.estimator_list) {
-      cells.push_back(runCell(*scene, o, kind, 0, o.equal_time, kEqualTimeTable));
+  }
+  if (o.equal_time > 0) {
+    for (CellResult& c : runEqualTimeCells(*scene, o, o.equal_time)) cells.push_back(std::move(c));
+    for (EstimatorKind kind : o.estimator_list)
       stems.push_back(fmt::format("{}_equal-time", estimatorName(kind)));
-    }
+  }
+  // The attainable gain, from this run's own measurements (docs/performance.md, the ceiling).
+  const ReportCeiling ceiling = runCeilingPhase(*scene, o, cells);
   int largest_spp = 0;
   for (const CellResult& c : cells) largest_spp = std::max(largest_spp, c.row.spp_max);
 
@@ -204,6 +210,7 @@ int runCompare(CompareOptions& o) {
   for (const CellResult& c : cells) report.rows.push_back(c.row);
   fillRelativeEfficiency(report.rows, kEqualSppTable);
   fillRelativeEfficiency(report.rows, kEqualTimeTable);
+  applyCeiling(report, ceiling);
   if (std::find(o.estimator_list.begin(), o.estimator_list.end(), EstimatorKind::kExact) ==
       o.estimator_list.end())
     report.notes.push_back(

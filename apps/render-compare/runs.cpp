@@ -35,57 +35,80 @@ ReportLearned toReportLearned(const LearnedSummary& l) {
 
 }  // namespace
 
-CellResult runCell(const RenderScene& scene, const CompareOptions& options, EstimatorKind kind,
-                   int spp, double time_budget, std::string_view table) {
-  std::vector<double> seconds, spp_reached, shading, visibility;
-  CellResult cell;
+RenderSettings runSettings(const CompareOptions& options, EstimatorKind kind, int spp,
+                           double time_budget, int run) {
+  RenderSettings settings;
+  settings.estimator = options.render.estimatorSetup(kind);
+  settings.spp = time_budget > 0 ? INT_MAX : spp;
+  settings.time_budget = time_budget;
+  settings.seed = hashKeys(options.common.seed, uint64_t(run));
+  settings.quiet = options.common.quiet;
+  return settings;
+}
+
+void addRun(CellResult& cell, RenderResult r, const RenderScene& scene,
+            const CompareOptions& options, EstimatorKind kind, std::string_view table, int run,
+            int runs) {
+  requireFinitePixels(r.radiance, scene.desc().path,
+                      fmt::format("the {} render (seed {})", estimatorName(kind), run + 1));
   ReportRow& row = cell.row;
-  for (int k = 0; k < options.seeds; ++k) {
-    RenderSettings settings;
-    settings.estimator = options.render.estimatorSetup(kind);
-    settings.spp = time_budget > 0 ? INT_MAX : spp;
-    settings.time_budget = time_budget;
-    // Seed k of every cell is the same stream key: estimators differ only in what they trace.
-    settings.seed = hashKeys(options.common.seed, uint64_t(k));
-    settings.quiet = options.common.quiet;
-    RenderResult r = render(scene, settings);
-    requireFinitePixels(r.radiance, scene.desc().path,
-                        fmt::format("the {} render (seed {})", estimatorName(kind), k + 1));
-    seconds.push_back(r.seconds);
-    spp_reached.push_back(r.spp);
-    shading.push_back(r.shading_seconds);
-    visibility.push_back(r.visibility_seconds);
-    row.rays.proxy += double(r.rays.proxy) / options.seeds;
-    row.rays.original += double(r.rays.original) / options.seeds;
-    row.rays.probe += double(r.rays.probe) / options.seeds;
-    if (!options.common.quiet)
-      std::fprintf(stderr, "render-compare: %-13s %-10s seed %d/%d: %5d spp %7.3f s\n",
-                   estimatorName(kind), std::string(table).c_str(), k + 1, options.seeds, r.spp,
-                   r.seconds);
-    cell.radiance_per_seed.push_back(r.radiance);
-    if (k == 0) {
-      row.proxy_class = proxyClassName(r.proxy_class);
-      if (kind == EstimatorKind::kRoulette) row.learned = toReportLearned(r.learned);
-      cell.first = std::move(r);
-      cell.first_seed = options.common.seed;
-    }
+  row.seconds_per_seed.push_back(r.seconds);
+  cell.spp_reached.push_back(r.spp);
+  cell.shading_seconds.push_back(r.shading_seconds);
+  cell.visibility_seconds.push_back(r.visibility_seconds);
+  cell.cpu_seconds.push_back(r.cpu_seconds);
+  row.rays.proxy += double(r.rays.proxy) / runs;
+  row.rays.original += double(r.rays.original) / runs;
+  row.rays.probe += double(r.rays.probe) / runs;
+  if (!options.common.quiet)
+    std::fprintf(stderr, "render-compare: %-13s %-10s seed %d/%d: %5d spp %7.3f s\n",
+                 estimatorName(kind), std::string(table).c_str(), run + 1, runs, r.spp, r.seconds);
+  cell.radiance_per_seed.push_back(r.radiance);
+  if (run == 0) {
+    row.proxy_class = proxyClassName(r.proxy_class);
+    if (kind == EstimatorKind::kRoulette) row.learned = toReportLearned(r.learned);
+    cell.first = std::move(r);
+    cell.first_seed = options.common.seed;
   }
+}
+
+void finishCell(CellResult& cell, EstimatorKind kind, std::string_view table, double time_budget,
+                int seeds, int repeats) {
+  ReportRow& row = cell.row;
   row.table = std::string(table);
   row.estimator = estimatorName(kind);
-  row.spp = summarizeSeeds(spp_reached).mean;
-  row.seconds = summarizeSeeds(seconds).mean;
+  row.spp = summarizeSeeds(cell.spp_reached).mean;
+  row.seconds = summarizeSeeds(row.seconds_per_seed).mean;
   row.pixels = double(cell.first.radiance.width) * cell.first.radiance.height;
-  row.seeds = options.seeds;
-  row.spp_max = int(*std::max_element(spp_reached.begin(), spp_reached.end()));
-  row.shading_seconds = summarizeSeeds(shading).mean;
-  row.visibility_seconds = summarizeSeeds(visibility).mean;
+  row.seeds = seeds;
+  row.repeats = repeats;
+  row.spp_max = int(*std::max_element(cell.spp_reached.begin(), cell.spp_reached.end()));
+  row.shading_seconds = summarizeSeeds(cell.shading_seconds).mean;
+  row.visibility_seconds = summarizeSeeds(cell.visibility_seconds).mean;
+  row.cpu_seconds = summarizeSeeds(cell.cpu_seconds).mean;
   if (time_budget > 0) {
-    // The last pass is fitted to the budget (renderer.cpp), but the first pass and the final
-    // bookkeeping still take what they take: the table's time is what was measured.
+    // The last pass is fitted to the budget (render_session.cpp), but the first pass and the
+    // final bookkeeping still take what they take: the table's time is what was measured.
     row.time_budget = time_budget;
     row.budget_overshoot_seconds = row.seconds - time_budget;
   }
-  return cell;
+}
+
+std::vector<CellResult> runEqualSppCells(const RenderScene& scene, const CompareOptions& options,
+                                         int spp) {
+  const std::vector<EstimatorKind>& kinds = options.estimator_list;
+  const size_t n = kinds.size();
+  std::vector<CellResult> cells(n);
+  for (int k = 0; k < options.seeds; ++k)
+    for (size_t turn = 0; turn < n; ++turn) {
+      // Seed k starts with estimator k mod n: no estimator always renders first (or last).
+      const size_t e = (turn + size_t(k)) % n;
+      addRun(cells[e], render(scene, runSettings(options, kinds[e], spp, 0, k)), scene, options,
+             kinds[e], kEqualSppTable, k, options.seeds);
+    }
+  for (size_t e = 0; e < n; ++e)
+    finishCell(cells[e], kinds[e], kEqualSppTable, 0, options.seeds, 1);
+  return cells;
 }
 
 void requireFinitePixels(const Image& image, const std::filesystem::path& scene,
@@ -115,6 +138,7 @@ void requireFiniteRows(const std::vector<ReportRow>& rows, const std::filesystem
 }
 
 void scoreCell(CellResult& cell, const Image& reference) {
+  // One MSE per run, in run order (ReportRow::mse_per_seed pairs with seconds_per_seed).
   std::vector<double> mse, relmse;
   for (const Image& image : cell.radiance_per_seed) {
     mse.push_back(meanSquaredError(image.pixels, reference.pixels));

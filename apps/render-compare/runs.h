@@ -1,6 +1,9 @@
 #pragma once
-// One table cell: an estimator rendered with K seeds at a sample count (equal-spp) or a time
-// budget (equal-time), scored against the reference.
+// The table cells: an estimator rendered with K seeds at a sample count (equal-spp) or a time
+// budget (equal-time, K seeds x R repeats), scored against the reference. The estimators of a
+// table take turns on the machine so that drift in its speed lands on all of them alike:
+// seed by seed for equal-spp (runs.cpp), slice by slice within each seed for equal-time
+// (runs_interleaved.cpp).
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -17,15 +20,39 @@ struct CellResult {
   ReportRow row;       // errors filled by scoreCell(), efficiency by the caller (needs exact's row)
   RenderResult first;  // the render of the first seed (images for the report)
   uint64_t first_seed = 0;               // its RenderSettings::seed (image metadata)
-  std::vector<Image> radiance_per_seed;  // kept until scoreCell()
+  std::vector<Image> radiance_per_seed;  // kept until scoreCell(); one per run
   std::vector<float> error_map;          // per-pixel squared error of the first seed
+  // Per run, summed up by finishCell().
+  std::vector<double> spp_reached, shading_seconds, visibility_seconds, cpu_seconds;
 };
 
-// Renders the cell with K seeds. spp > 0 and time_budget == 0 for equal-spp; time_budget > 0
-// (spp ignored) for equal-time. Rendering comes before scoring so that the reference can be
-// sized by the samples every cell actually reached.
-CellResult runCell(const RenderScene& scene, const CompareOptions& options, EstimatorKind kind,
-                   int spp, double time_budget, std::string_view table);
+// The settings of run `run` of a cell: run r * seeds + k is seed k of repeat r, and its stream
+// key is the same in every cell, so estimators differ only in what they trace.
+RenderSettings runSettings(const CompareOptions& options, EstimatorKind kind, int spp,
+                           double time_budget, int run);
+
+// Adds run `run` (of `runs`) to the cell; `table` only names it on stderr.
+void addRun(CellResult& cell, RenderResult r, const RenderScene& scene,
+            const CompareOptions& options, EstimatorKind kind, std::string_view table, int run,
+            int runs);
+
+// The row's means over the runs (after every addRun()). time_budget > 0 for equal-time.
+void finishCell(CellResult& cell, EstimatorKind kind, std::string_view table, double time_budget,
+                int seeds, int repeats);
+
+// The equal-spp cells of one sample count, one per estimator in options.estimator_list order.
+// Seed by seed, every estimator renders once, in an order that rotates with the seed.
+std::vector<CellResult> runEqualSppCells(const RenderScene& scene, const CompareOptions& options,
+                                         int spp);
+
+// The equal-time cells, one per estimator in options.estimator_list order, interleaved
+// (runs_interleaved.cpp): per run, a warm-up of each estimator, then round-robin slices.
+std::vector<CellResult> runEqualTimeCells(const RenderScene& scene, const CompareOptions& options,
+                                          double time_budget);
+
+// How the equal-time renders were timed: a report note, and the same facts for the JSON meta.
+std::string interleavedTimingNote(const CompareOptions& options);
+nlohmann::json interleavedTimingMeta(const CompareOptions& options);
 
 // Throws Error naming `scene` if `image` has an inf or NaN pixel: every MSE and efficiency would
 // then be inf or NaN, and a table of those says nothing. `what` names the render.
@@ -35,7 +62,7 @@ void requireFinitePixels(const Image& image, const std::filesystem::path& scene,
 // Throws Error naming `scene` if a row's MSE, relMSE or efficiency is not finite.
 void requireFiniteRows(const std::vector<ReportRow>& rows, const std::filesystem::path& scene);
 
-// MSE, relMSE and their standard errors over the seeds; frees the per-seed images.
+// MSE, relMSE and their standard errors over the runs; frees the per-run images.
 void scoreCell(CellResult& cell, const Image& reference);
 
 }  // namespace proxyvis

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <regex>
 
+#include "metrics/efficiency_spread.h"
 #include "metrics/image_error.h"
 #include "metrics/report_labels.h"
 
@@ -160,19 +161,18 @@ std::string htmlTable(const std::vector<ReportRow>& rows, std::string_view table
   std::string out =
       "<div class=\"scroll\"><table class=\"rows\"><tr><th>estimator</th><th>samples per "
       "pixel</th><th>time (s)</th><th>MSE</th><th>± s.e.</th><th>relMSE</th><th>± s.e.</th>"
-      "<th>efficiency vs exact</th><th>rays/px proxy</th><th>rays/px original</th>"
-      "<th>rays/px probe</th><th>seeds</th></tr>\n";
+      "<th>efficiency vs exact</th><th>of ceiling</th><th>rays/px proxy</th>"
+      "<th>rays/px original</th><th>rays/px probe</th><th>seeds</th></tr>\n";
   for (const ReportRow& r : rows) {
     if (r.table != table) continue;
     double px = r.pixels > 0 ? r.pixels : 1;
     out += fmt::format(
         "<tr><td>{}</td><td>{:.1f}</td><td>{:.3f}</td><td>{:.3e}</td><td>{:.1e}</td>"
-        "<td>{:.3e}</td><td>{:.1e}</td><td{}>{}</td><td>{:.1f}</td><td>{:.1f}</td>"
+        "<td>{:.3e}</td><td>{:.1e}</td><td{}>{}</td><td>{}</td><td>{:.1f}</td><td>{:.1f}</td>"
         "<td>{:.1f}</td><td>{}</td></tr>\n",
         escapeHtml(r.estimator), r.spp, r.seconds, r.mse, r.mse_stderr, r.relmse, r.relmse_stderr,
-        r.efficiency == best && best > 0 ? " class=\"best\"" : "",
-        r.efficiency > 0 ? fmt::format("{:.2f}×", r.efficiency) : "n/a", r.rays.proxy / px,
-        r.rays.original / px, r.rays.probe / px, r.seeds);
+        r.efficiency == best && best > 0 ? " class=\"best\"" : "", efficiencyText(r),
+        ofCeilingText(r), r.rays.proxy / px, r.rays.original / px, r.rays.probe / px, r.seeds);
   }
   return out + "</table></div>\n";
 }
@@ -239,8 +239,9 @@ std::string reportToHtml(const Report& report, const HtmlReportLayout& layout) {
   out += fmt::format(
       "<p class=\"desc\">MSE over pixels and RGB in linear radiance; relMSE = "
       "mean((I−I<sub>ref</sub>)²/(I<sub>ref</sub>²+ε)), ε = <span class=\"num\">{:g}</span>; "
-      "efficiency = 1/(MSE·time) relative to <code>exact</code> of the same table (bold: best); "
-      "± is the standard error over seeds.</p>\n",
+      "efficiency = 1/(MSE·time) relative to <code>exact</code> of the same table (bold: best), "
+      "[lowest–highest, s.e.] of the same ratio run by run against exact's run with the same "
+      "seed; ± is the standard error over seeds.</p>\n",
       kRelMseEpsilon);
   for (std::string_view table : {kEqualTimeTable, kEqualSppTable}) {
     bool any = std::any_of(report.rows.begin(), report.rows.end(),
@@ -249,6 +250,7 @@ std::string reportToHtml(const Report& report, const HtmlReportLayout& layout) {
     out += fmt::format("<h2>{}</h2>\n", table == kEqualTimeTable ? "Equal time" : "Equal samples");
     out += htmlTable(report.rows, table);
   }
+  if (report.ceiling) out += ceilingHtml(*report.ceiling);
   for (const LogLogPlot& plot : layout.plots) out += "<div>" + logLogPlotSvg(plot) + "</div>\n";
   for (const HtmlGallery& g : layout.galleries) out += gallery(g);
   out += filesHtml(layout.files);

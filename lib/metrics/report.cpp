@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "metrics/efficiency.h"
+#include "metrics/efficiency_spread.h"
 #include "metrics/image_error.h"
 
 namespace proxyvis {
@@ -57,6 +58,11 @@ nlohmann::json learnedToJson(const ReportLearned& l) {
 
 }  // namespace
 
+std::string ofCeilingText(const ReportRow& r) {
+  return r.ceiling > 0 && r.efficiency > 0 ? fmt::format("{:.0f} %", 100 * r.efficiency / r.ceiling)
+                                           : "n/a";
+}
+
 void fillRelativeEfficiency(std::vector<ReportRow>& rows, std::string_view table,
                             std::string_view baseline) {
   std::vector<ReportRow> copy = rows;  // baselines are read from the unmodified rows
@@ -64,6 +70,7 @@ void fillRelativeEfficiency(std::vector<ReportRow>& rows, std::string_view table
     if (r.table != table) continue;
     const ReportRow* b = findBaseline(copy, table, baseline, r.spp);
     r.efficiency = b ? relativeEfficiency(r.mse, r.seconds, b->mse, b->seconds) : 0;
+    if (b) fillEfficiencySpread(r, *b);
   }
 }
 
@@ -95,18 +102,24 @@ nlohmann::json rowToJson(const ReportRow& r) {
     j["time_budget"] = r.time_budget;
     j["budget_overshoot_seconds"] = r.budget_overshoot_seconds;
   }
+  addEfficiencySpreadKeys(j, r);
   if (r.learned) j["learned"] = learnedToJson(*r.learned);
+  j["ceiling"] = r.ceiling > 0 ? nlohmann::json(r.ceiling) : nlohmann::json();
+  j["of_ceiling"] = r.ceiling > 0 && r.efficiency > 0 ? nlohmann::json(r.efficiency / r.ceiling)
+                                                      : nlohmann::json();
   return j;
 }
 
 nlohmann::json reportToJson(const Report& report) {
   nlohmann::json rows = nlohmann::json::array();
   for (const ReportRow& r : report.rows) rows.push_back(rowToJson(r));
+  nlohmann::json meta = report.meta;
+  if (report.ceiling) meta["ceiling"] = ceilingToJson(*report.ceiling);
   return {{"title", report.title},
           {"scene_name", report.scene_name},
           {"relmse_epsilon", kRelMseEpsilon},
           {"efficiency_definition", "1/(MSE*seconds) relative to exact"},
-          {"meta", report.meta},
+          {"meta", meta},
           {"notes", report.notes},
           {"rows", rows}};
 }
@@ -126,16 +139,16 @@ std::string reportToCsv(const std::vector<ReportRow>& rows) {
 std::string markdownTable(const std::vector<ReportRow>& rows, std::string_view table) {
   std::string out =
       "| estimator | spp | time (s) | MSE ± s.e. | relMSE ± s.e. | efficiency vs exact | "
-      "rays/px proxy | rays/px original | rays/px probe |\n"
-      "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+      "of ceiling | rays/px proxy | rays/px original | rays/px probe |\n"
+      "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const ReportRow& r : rows) {
     if (!table.empty() && r.table != table) continue;
     double px = r.pixels > 0 ? r.pixels : 1;
-    out += fmt::format("| {} | {:.1f} | {:.3f} | {} | {} | {} | {:.1f} | {:.1f} | {:.1f} |\n",
-                       r.estimator, r.spp, r.seconds, formatValueWithError(r.mse, r.mse_stderr),
-                       formatValueWithError(r.relmse, r.relmse_stderr),
-                       r.efficiency > 0 ? fmt::format("{:.2f}×", r.efficiency) : "n/a",
-                       r.rays.proxy / px, r.rays.original / px, r.rays.probe / px);
+    out +=
+        fmt::format("| {} | {:.1f} | {:.3f} | {} | {} | {} | {} | {:.1f} | {:.1f} | {:.1f} |\n",
+                    r.estimator, r.spp, r.seconds, formatValueWithError(r.mse, r.mse_stderr),
+                    formatValueWithError(r.relmse, r.relmse_stderr), efficiencyText(r),
+                    ofCeilingText(r), r.rays.proxy / px, r.rays.original / px, r.rays.probe / px);
   }
   return out;
 }
@@ -147,8 +160,9 @@ std::string reportToMarkdown(const Report& report) {
   if (!report.notes.empty()) out += "\n";
   out += fmt::format(
       "MSE over pixels and RGB in linear radiance; relMSE = mean((I−I_ref)²/(I_ref²+ε)), "
-      "ε = {:g}; efficiency = 1/(MSE·time) relative to `exact` of the same table; ± is the "
-      "standard error over seeds.\n",
+      "ε = {:g}; efficiency = 1/(MSE·time) relative to `exact` of the same table, "
+      "[lowest–highest, s.e.] of the same ratio run by run against exact's run with the same seed; "
+      "± is the standard error over seeds.\n",
       kRelMseEpsilon);
   for (std::string_view table : {kEqualSppTable, kEqualTimeTable}) {
     bool any = false;
@@ -156,6 +170,7 @@ std::string reportToMarkdown(const Report& report) {
     if (!any) continue;
     out += "\n## " + tableTitle(table) + "\n\n" + markdownTable(report.rows, table);
   }
+  if (report.ceiling) out += ceilingMarkdown(*report.ceiling);
   return out;
 }
 

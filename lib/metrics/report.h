@@ -9,6 +9,8 @@
 #include <string_view>
 #include <vector>
 
+#include "metrics/ceiling_report.h"
+
 namespace proxyvis {
 
 inline constexpr std::string_view kEqualSppTable = "equal-spp";
@@ -49,8 +51,16 @@ struct ReportRow {
   double time_budget = 0;         // equal-time budget per render; 0 (not written) for equal-spp
   double budget_overshoot_seconds = 0;  // seconds - time_budget (written with time_budget)
   std::string proxy_class;              // the class the estimators relied on ("outside", ...)
-  std::vector<double> mse_per_seed;
+  std::vector<double> mse_per_seed;     // one per run: seed k of repeat r at r * seeds + k
+  // Run-to-run spread (metrics/efficiency_spread.h): the seconds of each run (same order), the
+  // efficiency of each run against the baseline's run of the same seed and repeat.
+  std::vector<double> seconds_per_seed, efficiency_per_seed;
+  double cpu_seconds = 0;  // process CPU time per render (mean over runs)
+  int repeats = 1;         // equal-time schedule repeats (--repeats): seeds x repeats runs
   std::optional<ReportLearned> learned;  // roulette rows only
+  // The scene's oracle ceiling (metrics/ceiling_report.h), the same on every row; 0 = unknown.
+  // JSON: `ceiling` and `of_ceiling` = efficiency / ceiling (null when either is unknown).
+  double ceiling = 0;
 };
 
 struct Report {
@@ -59,6 +69,7 @@ struct Report {
   nlohmann::json meta = nlohmann::json::object();  // scene, settings, reference, baseline...
   std::vector<ReportRow> rows;
   std::vector<std::string> notes;  // plain-text remarks (warnings, what is missing)
+  std::optional<ReportCeiling> ceiling;  // JSON meta.ceiling; its own Markdown and HTML section
 };
 
 // Fills ReportRow::efficiency for every row of `table`: relative to the row of `baseline` with
@@ -66,6 +77,9 @@ struct Report {
 // without a baseline get 0, written as "n/a" (tables), an empty field (CSV) and null (JSON).
 void fillRelativeEfficiency(std::vector<ReportRow>& rows, std::string_view table,
                             std::string_view baseline = "exact");
+
+// The row's efficiency as a percentage of its ceiling ("87 %"), "n/a" when either is unknown.
+std::string ofCeilingText(const ReportRow& row);
 
 nlohmann::json rowToJson(const ReportRow& row);
 // {"title", "scene_name", "relmse_epsilon", "meta": {...}, "notes": [...], "rows": [...]}.

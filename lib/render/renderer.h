@@ -1,6 +1,6 @@
 #pragma once
 // Direct-illumination renderer. lib/render owns this file; render-compare (apps/) and the
-// benches call render() and read RenderResult.
+// benches call render() (or run a RenderSession) and read RenderResult.
 //
 // Per pixel: one primary ray (its jitter keyed on the pixel only, so every estimator, seed and the
 // reference shade the same points and MSE measures visibility estimation alone), then `spp`
@@ -51,6 +51,7 @@ struct RenderResult {
   int spp = 0;       // light samples per pixel actually taken
   int passes = 0;
   double seconds = 0;             // wall time of the whole render (after scene loading)
+  double cpu_seconds = 0;         // process CPU time (all threads) over the same intervals
   double shading_seconds = 0;     // primary rays + light sampling (primary_seconds included)
   double primary_seconds = 0;     // primary rays alone
   double visibility_seconds = 0;  // estimator calls (shadow rays, probes) and accumulation
@@ -66,6 +67,7 @@ struct RenderResult {
 EstimatorSetup estimatorSetupFor(const RenderScene& scene, const RenderSettings& settings);
 
 // Renders with makeEstimator(estimatorSetupFor(scene, settings)). Throws Error for bad settings.
+// A RenderSession (render_session.h) run to its end: the same render in resumable slices.
 RenderResult render(const RenderScene& scene, const RenderSettings& settings);
 // Renders with a caller-made estimator (which must accept estimatorSetupFor(...).num_regions
 // regions); settings.estimator is then only used for its probe count.

@@ -1,6 +1,6 @@
 #pragma once
-// The steps of render() shared with passSegments(): shading points from primary rays, and the
-// light samples of one pass.
+// The steps of render() (RenderSession) shared with passSegments(): settings checks, shading
+// points from primary rays, and the light samples of one pass.
 #include <vector>
 
 #include "render/render_scene.h"
@@ -51,6 +51,9 @@ void prepareSamples(const RenderScene& scene, const ShadingPoint& sp, uint64_t s
 // zero (the light is behind the surface).
 bool makeSegment(const RenderScene& scene, const ShadingPoint& sp, const Vec3f& light_point,
                  Segment& out);
+
+// Throws Error for settings no render can run with (tile size, nothing to render, budget).
+void validateRenderSettings(const RenderSettings& settings);
 
 // Under a time budget, the samples per pixel of the next pass when passes hold several (estimators
 // with probes): the first pass is whole (nothing is measured yet; a smaller one would pay the

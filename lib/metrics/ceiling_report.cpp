@@ -1,0 +1,91 @@
+#include "metrics/ceiling_report.h"
+
+#include <fmt/format.h>
+
+#include "metrics/log_plot.h"
+
+namespace proxyvis {
+
+namespace {
+
+constexpr const char* kColumns[] = {
+    "light", "segments", "P(V'=0)", "P(MH')", "P(HM')",           "V(1-V)", "c_p|0",
+    "c_p|1", "c_o|0",    "c_o|1",   "c_s",    "roulette regions", "ceiling"};
+
+// The cells of one table line, formatted (costs in ns).
+std::vector<std::string> cells(const ReportCeilingLight& l) {
+  return {l.light,
+          fmt::format("{:.0f}", l.segments),
+          fmt::format("{:.3f}", l.p_blocked),
+          fmt::format("{:.4f}", l.p_mh),
+          fmt::format("{:.4f}", l.p_hm),
+          fmt::format("{:.4f}", l.visibility_var),
+          fmt::format("{:.1f}", l.cost_proxy[0]),
+          fmt::format("{:.1f}", l.cost_proxy[1]),
+          fmt::format("{:.1f}", l.cost_original[0]),
+          fmt::format("{:.1f}", l.cost_original[1]),
+          fmt::format("{:.1f}", l.cost_shading),
+          fmt::format("{} of {}", l.regions_roulette, l.regions),
+          fmt::format("{:.3f}×", l.ceiling)};
+}
+
+std::string measuredText(const ReportCeiling& c) {
+  return fmt::format(
+      "Measured on {} light samples per pixel traced against proxy and original in {:.2f} s "
+      "({:.1f} % of the renders' time); costs in ns per ray, c_s in ns per sample.",
+      c.passes, c.seconds, 100 * c.run_share);
+}
+
+}  // namespace
+
+nlohmann::json ceilingToJson(const ReportCeiling& c) {
+  nlohmann::json lights = nlohmann::json::array();
+  for (const ReportCeilingLight& l : c.lights)
+    lights.push_back({{"light", l.light},
+                      {"segments", l.segments},
+                      {"p_proxy_blocked", l.p_blocked},
+                      {"p_mh", l.p_mh},
+                      {"p_hm", l.p_hm},
+                      {"var_exact", l.visibility_var},
+                      {"cost_proxy", {l.cost_proxy[0], l.cost_proxy[1]}},
+                      {"cost_original", {l.cost_original[0], l.cost_original[1]}},
+                      {"cost_per_sample", l.cost_shading},
+                      {"regions", l.regions},
+                      {"regions_roulette", l.regions_roulette},
+                      {"ceiling", l.ceiling}});
+  return {{"value", c.value},     {"explanation", c.explanation},
+          {"model", c.model},     {"passes", c.passes},
+          {"seconds", c.seconds}, {"run_share", c.run_share},
+          {"cost_unit", "ns"},    {"lights", lights}};
+}
+
+std::string ceilingMarkdown(const ReportCeiling& c) {
+  std::string out = fmt::format("\n## Ceiling: {:.3f}× exact\n\n{}\n\n", c.value, c.explanation);
+  std::string header = "|", rule = "|";
+  for (const char* col : kColumns) header += fmt::format(" {} |", col), rule += "---|";
+  out += header + "\n" + rule + "\n";
+  for (const ReportCeilingLight& l : c.lights) {
+    out += "|";
+    for (const std::string& cell : cells(l)) out += " " + cell + " |";
+    out += "\n";
+  }
+  return out + "\n" + measuredText(c) + " " + c.model + "\n";
+}
+
+std::string ceilingHtml(const ReportCeiling& c) {
+  std::string out = fmt::format(
+      "<h2>Ceiling: <span class=\"num\">{:.3f}×</span> exact</h2>\n<p>{}</p>\n"
+      "<div class=\"scroll\"><table class=\"ceiling\"><tr>",
+      c.value, escapeHtml(c.explanation));
+  for (const char* col : kColumns) out += "<th>" + escapeHtml(col) + "</th>";
+  out += "</tr>\n";
+  for (const ReportCeilingLight& l : c.lights) {
+    out += "<tr>";
+    for (const std::string& cell : cells(l)) out += "<td>" + escapeHtml(cell) + "</td>";
+    out += "</tr>\n";
+  }
+  return out + "</table></div>\n<p class=\"desc\">" + escapeHtml(measuredText(c) + " " + c.model) +
+         "</p>\n";
+}
+
+}  // namespace proxyvis
