@@ -52,17 +52,11 @@ std::vector<std::string> studyArgs(const CLI::App& app, const CompareOptions& o)
     }
     const std::string name = "--" + opt->get_lnames().front();
     if (name == "--plan" || name == "--help" || name == "--version") continue;
-    if (opt->get_type_size_max() == 0) {  // a flag
-      for (size_t i = 0; i < opt->count(); ++i) args.push_back(name);
-      continue;
-    }
-    for (const std::string& value : opt->results()) {
-      args.push_back(name);
-      if (name == "--out" || (name == "--json" && value != "-"))
-        args.push_back(absoluteText(value));
-      else
-        args.push_back(value);
-    }
+    // One "--name=value" per value given: flags read back their "true" this way too.
+    for (const std::string& value : opt->results())
+      args.push_back(name + "=" +
+                     (name == "--out" || (name == "--json" && value != "-") ? absoluteText(value)
+                                                                            : value));
   }
   return args;
 }
