@@ -81,6 +81,8 @@ ReportCeiling runCeilingPhase(const RenderScene& scene, const CompareOptions& o,
   c.passes = m.passes;
   c.seconds = clock.seconds();
   c.run_share = renders_seconds > 0 ? c.seconds / renders_seconds : 0;
+  const double pixels = double(scene.camera().width()) * scene.camera().height();
+  c.exact_mse_1spp = m.passes > 0 ? result.scene.var_exact / m.passes / pixels : 0;
   for (size_t i = 0; i < result.lights.size(); ++i)
     c.lights.push_back(toReport(std::to_string(i), result.lights[i]));
   c.lights.push_back(toReport("all", result.scene));

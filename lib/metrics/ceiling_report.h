@@ -29,6 +29,10 @@ struct ReportCeiling {
   int passes = 0;           // light samples per pixel traced by the measurement
   double seconds = 0;       // its wall time
   double run_share = 0;     // its time over the renders' time
+  // The model's MSE of exact at 1 sample per pixel (mean over pixels and RGB of Var[f V]): an
+  // exact row at N spp should be near it / N (plus the reference's own variance), a check that
+  // the variances are in the MSE's units.
+  double exact_mse_1spp = 0;
   std::vector<ReportCeilingLight> lights;
 };
 

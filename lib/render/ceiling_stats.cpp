@@ -22,7 +22,6 @@ namespace {
 struct SampleRecord {
   Vec3f weight{0, 0, 0};
   uint32_t light = 0;
-  bool valid = false;  // the pixel has a shading point
   bool segment = false;
   bool visible = false;
 };
@@ -71,6 +70,7 @@ CeilingMeasurement measureCeilingStats(const RenderScene& scene, const RenderSet
   const uint32_t num_lights = uint32_t(scene.lights().numLights());
   CeilingMeasurement out;
   out.num_lights = num_lights;
+  if (num_lights == 0) return out;  // nothing lit: no segments, no regions
   out.regions.resize(size_t(tiling.count()) * num_lights * 2);
   for (size_t r = 0; r < out.regions.size(); ++r)
     out.regions[r].light = uint32_t(r / 2 % num_lights);
@@ -96,7 +96,6 @@ CeilingMeasurement measureCeilingStats(const RenderScene& scene, const RenderSet
         if (!sp.valid) return;
         PreparedSample ps;
         prepareSamples(scene, sp, settings.seed, pixel, pass, 1, &ps);
-        r.valid = true;
         r.light = ps.light;
         r.weight = ps.weight;
         if (!(ps.weight.x > 0 || ps.weight.y > 0 || ps.weight.z > 0)) return;

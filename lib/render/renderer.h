@@ -50,7 +50,7 @@ struct RenderResult {
   Image cost;        // 3 channels: proxy, original, probe rays per pixel (totals)
   int spp = 0;       // light samples per pixel actually taken
   int passes = 0;
-  double seconds = 0;             // wall time of the whole render (after scene loading)
+  double seconds = 0;             // wall time on the render's own clock (after scene loading)
   double cpu_seconds = 0;         // process CPU time (all threads) over the same intervals
   double shading_seconds = 0;     // primary rays + light sampling (primary_seconds included)
   double primary_seconds = 0;     // primary rays alone

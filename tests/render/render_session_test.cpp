@@ -162,7 +162,8 @@ TEST(RenderSession, ClockCountsOnlyItsOwnSlices) {
   EXPECT_GE(session.seconds(), settings.time_budget);
   EXPECT_LT(wall.seconds() - session.seconds(), 0.03 * rounds + 0.5);
   EXPECT_GE(wall.seconds() - session.seconds(), 0.03 * rounds);  // the sleeps are not counted
-  EXPECT_GE(rounds, 5);  // 0.3 s in slices of 0.02 s (fewer only if passes take over 0.06 s)
+  // 0.3 s in slices of 0.02 s: fewer than 3 only if slices stalled for 0.1 s each.
+  EXPECT_GE(rounds, 3);
   EXPECT_GT(session.cpuSeconds(), cpu_after_start);
   const RenderResult r = session.result();
   EXPECT_EQ(r.seconds, session.seconds());
@@ -181,19 +182,21 @@ TEST(RenderSession, InterleavedTurnsRotateUntilEachSpentItsOwnBudget) {
   const auto scene = loadRenderScene(b.write(dir), test::quiet());
   RenderSettings settings;
   settings.spp = 0;
-  settings.time_budget = 0.12;
+  settings.time_budget = 0.3;
   settings.quiet = true;
   std::vector<std::unique_ptr<RenderSession>> owned;
   std::vector<RenderSession*> sessions;
+  std::vector<double> construction;  // on each clock before the schedule
   for (int i = 0; i < 3; ++i) {
     settings.seed = uint64_t(i);
     owned.push_back(std::make_unique<RenderSession>(*scene, settings));
     sessions.push_back(owned.back().get());
+    construction.push_back(sessions.back()->seconds());
   }
   const Stopwatch wall;
   const std::vector<size_t> turns = runInterleaved(sessions, 0.01, 1);
   const double elapsed = wall.seconds();
-  // The first three rounds (about 0.03 s of each 0.12 s budget: nobody is done yet) start at
+  // The first three rounds (about 0.03 s of each 0.3 s budget: nobody is done yet) start at
   // session 1, 2, 0 and give every session one turn each.
   ASSERT_GE(turns.size(), 9u);
   const std::vector<size_t> first_rounds(turns.begin(), turns.begin() + 9);
@@ -203,13 +206,14 @@ TEST(RenderSession, InterleavedTurnsRotateUntilEachSpentItsOwnBudget) {
     SCOPED_TRACE(i);
     EXPECT_TRUE(sessions[i]->finished());
     EXPECT_GE(sessions[i]->seconds(), settings.time_budget);
-    EXPECT_LT(sessions[i]->seconds(), settings.time_budget + 0.2);  // past it by part of a pass
+    EXPECT_LT(sessions[i]->seconds(), settings.time_budget + 0.25);  // past it by part of a pass
     EXPECT_GE(std::count(turns.begin(), turns.end(), i), 3);
-    on_clocks += sessions[i]->seconds();
+    on_clocks += sessions[i]->seconds() - construction[i];
   }
-  // Each clock ran only in its own turns: together about the wall time of the whole schedule.
-  EXPECT_LT(on_clocks, elapsed + 3 * 0.05);  // + the construction each clock also holds
-  EXPECT_GT(on_clocks, 0.9 * elapsed);
+  // Each clock ran only in its own turns, and the turns do not overlap: their sum is the wall
+  // time of the schedule, less the moments between turns.
+  EXPECT_LE(on_clocks, elapsed);
+  EXPECT_GT(on_clocks, 0.8 * elapsed);
 }
 
 }  // namespace
