@@ -118,7 +118,7 @@ RenderResult renderFromJson(const nlohmann::json& j) {
   return r;
 }
 
-// The inverse of ceilingToJson (metrics/ceiling_report.h).
+// The inverse of ceilingToJson (metrics/ceiling_report.h); readUnitResult checks the round trip.
 ReportCeiling ceilingFromJson(const nlohmann::json& j) {
   ReportCeiling c;
   c.value = j.at("value").get<double>();
@@ -127,6 +127,7 @@ ReportCeiling ceilingFromJson(const nlohmann::json& j) {
   c.passes = j.at("passes").get<int>();
   c.seconds = j.at("seconds").get<double>();
   c.run_share = j.at("run_share").get<double>();
+  c.exact_mse_1spp = j.at("exact_mse_1spp").get<double>();
   for (const nlohmann::json& l : j.at("lights")) {
     ReportCeilingLight x;
     x.light = l.at("light").get<std::string>();
@@ -294,7 +295,12 @@ UnitResult readUnitResult(const fs::path& dir, const StudyPlan& plan, size_t uni
       r.cost = file.images[3 * i + 2];
       result.renders.push_back(std::move(r));
     }
-    if (h.contains("ceiling")) result.ceiling = ceilingFromJson(h.at("ceiling"));
+    if (h.contains("ceiling")) {
+      result.ceiling = ceilingFromJson(h.at("ceiling"));
+      // A field added to ReportCeiling but not read back here would vanish from sharded reports.
+      PV_CHECK_MSG(ceilingToJson(*result.ceiling) == h.at("ceiling"),
+                   "ceilingFromJson() does not read back every field of ceilingToJson()");
+    }
   } catch (const nlohmann::json::exception& e) {
     throw Error(path.string(), "not a complete render-compare unit result",
                 std::string("its header is not what a unit writes: ") + e.what(),
