@@ -49,8 +49,7 @@ ReportCeilingLight toReport(const std::string& name, const CeilingSummary& s) {
 }  // namespace
 
 ReportCeiling runCeilingPhase(const RenderScene& scene, const CompareOptions& o,
-                              const std::vector<CellResult>& cells,
-                              double planned_seconds) {
+                              const std::vector<CellResult>& cells, double planned_seconds) {
   const Stopwatch clock;
   double renders_seconds = 0;
   std::vector<const RenderResult*> exact;

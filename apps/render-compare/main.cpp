@@ -28,6 +28,7 @@
 #include "util/error.h"
 #include "util/output_path.h"
 #include "util/output_set.h"
+#include "util/progress.h"
 #include "util/staged_folder.h"
 
 namespace proxyvis {
@@ -161,10 +162,10 @@ int reportStudy(const CompareOptions& o, const SceneDesc& desc, const StudyPlan&
   const ReportCeiling ceiling = studyCeiling(plan, results, cells);
   double reference_seconds = 0;
   const std::vector<const Image*> partials = referencePartials(plan, results, reference_seconds);
-  Reference ref = cached_reference ? std::move(*cached_reference)
-                                   : finishReference(desc, facts.instances_flattened, partials,
-                                                     plan.reference_per_partial,
-                                                     reference_seconds, dir);
+  Reference ref = cached_reference
+                      ? std::move(*cached_reference)
+                      : finishReference(desc, facts.instances_flattened, partials,
+                                        plan.reference_per_partial, reference_seconds, dir);
   if (!o.common.quiet)
     std::fprintf(stderr,
                  "render-compare: reference %s (exact, %d spp in %d partial renders, %.1f s, "
@@ -279,17 +280,23 @@ int runCompare(CompareOptions& o, const CLI::App& app, const fs::path& plan_dir)
   const SceneFacts facts = sceneFacts(scene, loaded.trust);
   StudyPlan plan = newStudyPlan(app, o, desc);
   std::vector<UnitResult> results;
-  for (size_t k = 0; k < plan.units.size(); ++k)
+  for (size_t k = 0; k < plan.units.size(); ++k)  // each render draws its own progress bar
     results.push_back(runUnit(scene, facts, o, plan, k));
   // The reference is sized by the samples every cell actually reached (equal-time renders may
   // reach far more than --spp); a cached one with as many is reused.
   const int reference_spp = o.referenceSpp(largestSppReached(plan, results));
-  std::optional<Reference> cached = loadCachedReference(desc, scene.instancesFlattened(), o.out,
-                                                        reference_spp, folder.path());
+  std::optional<Reference> cached =
+      loadCachedReference(desc, scene.instancesFlattened(), o.out, reference_spp, folder.path());
   const size_t first_reference = plan.units.size();
   planReference(plan, reference_spp, cached ? cached->spp : 0);
-  for (size_t k = first_reference; k < plan.units.size(); ++k)
+  // The reference's partial renders are quiet: one bar for all of them.
+  Progress reference_progress(fmt::format("reference ({} spp)", plan.reference_spp),
+                              uint64_t(plan.units.size() - first_reference), o.common.quiet);
+  for (size_t k = first_reference; k < plan.units.size(); ++k) {
     results.push_back(runUnit(scene, facts, o, plan, k));
+    reference_progress.update();
+  }
+  reference_progress.done();
   return reportStudy(o, desc, plan, results, folder, std::move(cached));
 }
 

@@ -50,13 +50,14 @@ std::vector<std::string> studyArgs(const CLI::App& app, const CompareOptions& o)
       args.push_back(absoluteText(o.scene.string()));
       continue;
     }
+    PV_CHECK_MSG(!opt->get_lnames().empty(), "every render-compare option has a long name");
     const std::string name = "--" + opt->get_lnames().front();
     if (name == "--plan" || name == "--help" || name == "--version") continue;
     // One "--name=value" per value given: flags read back their "true" this way too.
     for (const std::string& value : opt->results())
-      args.push_back(name + "=" +
-                     (name == "--out" || (name == "--json" && value != "-") ? absoluteText(value)
-                                                                            : value));
+      args.push_back(
+          name + "=" +
+          (name == "--out" || (name == "--json" && value != "-") ? absoluteText(value) : value));
   }
   return args;
 }

@@ -6,7 +6,6 @@
 
 #include "util/atomic_write.h"
 #include "util/error.h"
-#include "util/fnv1a.h"
 #include "util/input_file.h"
 
 namespace proxyvis {
@@ -18,6 +17,20 @@ namespace {
 static_assert(std::endian::native == std::endian::little, "unit files are little-endian");
 
 constexpr std::string_view kMagic = "PVUNIT1\n";
+
+// FNV-1a over 8-byte words (then the last bytes one by one): the checksum of the file, eight
+// times faster than byte by byte on the hundreds of megabytes a merge reads.
+uint64_t checksum(std::string_view bytes) {
+  uint64_t h = 0xcbf29ce484222325ULL;
+  size_t i = 0;
+  for (; i + 8 <= bytes.size(); i += 8) {
+    uint64_t word = 0;
+    std::memcpy(&word, bytes.data() + i, 8);
+    h = (h ^ word) * 0x100000001b3ULL;
+  }
+  for (; i < bytes.size(); ++i) h = (h ^ uint8_t(bytes[i])) * 0x100000001b3ULL;
+  return h;
+}
 
 void appendU64(std::string& out, uint64_t v) {
   out.append(reinterpret_cast<const char*>(&v), sizeof v);
@@ -52,7 +65,7 @@ void writeUnitFile(const fs::path& path, UnitFile file) {
   bytes += header;
   for (const Image& im : file.images)
     bytes.append(reinterpret_cast<const char*>(im.pixels.data()), im.pixels.size() * sizeof(float));
-  appendU64(bytes, fnv1a(bytes));
+  appendU64(bytes, checksum(bytes));
   writeTextAtomically(path, bytes);
 }
 
@@ -62,7 +75,7 @@ UnitFile readUnitFile(const fs::path& path) {
   if (all.size() < kMagic.size() + 16 || all.substr(0, kMagic.size()) != kMagic)
     notAUnit(path, "it does not start with the unit file's signature");
   const size_t body = all.size() - 8;
-  if (fnv1a(all.substr(0, body)) != readU64(all, body))
+  if (checksum(all.substr(0, body)) != readU64(all, body))
     notAUnit(path, "its checksum does not match its contents (truncated or altered)");
   const uint64_t header_size = readU64(all, kMagic.size());
   size_t at = kMagic.size() + 8;

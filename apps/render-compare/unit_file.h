@@ -5,7 +5,7 @@
 //
 // Layout: "PVUNIT1\n", the header's length (8 bytes, little-endian), the header (JSON text), each
 // image's floats in the order of the header's "images" list ({"width", "height", "channels"}),
-// then the FNV-1a 64 hash of everything before it (8 bytes).
+// then a checksum of everything before it (8 bytes: FNV-1a 64 over 8-byte words).
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <vector>
