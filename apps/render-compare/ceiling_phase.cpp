@@ -49,7 +49,7 @@ ReportCeilingLight toReport(const std::string& name, const CeilingSummary& s) {
 }  // namespace
 
 ReportCeiling runCeilingPhase(const RenderScene& scene, const CompareOptions& o,
-                              const std::vector<CellResult>& cells) {
+                              const std::vector<CellResult>& cells, double planned_seconds) {
   const Stopwatch clock;
   double renders_seconds = 0;
   std::vector<const RenderResult*> exact;
@@ -57,6 +57,7 @@ ReportCeiling runCeilingPhase(const RenderScene& scene, const CompareOptions& o,
     renders_seconds += c.row.seconds * c.row.seeds;
     if (c.row.estimator == estimatorName(EstimatorKind::kExact)) exact.push_back(&c.first);
   }
+  if (planned_seconds >= 0) renders_seconds = planned_seconds;
   RenderSettings settings;
   settings.estimator = o.render.estimatorSetup(EstimatorKind::kExact);
   settings.seed = hashKeys(o.common.seed, uint64_t(0));  // the segments of every cell's seed 1

@@ -18,8 +18,10 @@ inline constexpr double kCeilingTimeShare = 0.05;
 
 // Measures and computes the ceiling. `cells` are the rendered cells (their exact renders give
 // c_s; without one, a short exact render is made). Prints one line on stderr unless quiet.
+// renders_seconds >= 0 replaces the cells' render time in the time cap (a work unit, plan.h,
+// runs before the cells are known).
 ReportCeiling runCeilingPhase(const RenderScene& scene, const CompareOptions& options,
-                              const std::vector<CellResult>& cells);
+                              const std::vector<CellResult>& cells, double renders_seconds = -1);
 
 // Puts the ceiling in the report and on every row (rows' `ceiling`, hence `of_ceiling`).
 void applyCeiling(Report& report, const ReportCeiling& ceiling);

@@ -22,11 +22,13 @@
 #include "render/render_scene.h"
 #include "runs.h"
 #include "scene/scene_desc.h"
+#include "study.h"
 #include "util/app_main.h"
 #include "util/atomic_write.h"
 #include "util/error.h"
 #include "util/output_path.h"
 #include "util/output_set.h"
+#include "util/progress.h"
 #include "util/staged_folder.h"
 
 namespace proxyvis {
@@ -86,26 +88,8 @@ void addOvershootNote(Report& report, double budget) {
         who, budget + worst, budget, 100 * worst / budget));
 }
 
-// Each proxy's class status (class_trust.h): a note per proxy whose claim was not taken as is, and
-// every proxy in the JSON meta.
-void addProxyTrust(Report& report, const std::vector<ProxyTrust>& trust) {
-  nlohmann::json list = nlohmann::json::array();
-  for (const ProxyTrust& t : trust) {
-    list.push_back({{"mesh", t.mesh},
-                    {"proxy", t.proxy.filename().string()},
-                    {"claimed", t.claimed ? proxyClassName(*t.claimed) : "none"},
-                    {"class", proxyClassName(t.trust.trusted)},
-                    {"class_status", classStatusName(t.trust.status)},
-                    {"reason", t.trust.reason}});
-    if (t.trust.status == ClassStatus::kReVerified || t.trust.status == ClassStatus::kDowngraded)
-      report.notes.push_back("Proxy class " + describeProxyTrust(t));
-  }
-  report.meta["proxy_classes"] = list;
-}
-
-Report makeReport(const CompareOptions& o, const RenderScene& scene, const Reference& ref,
-                  const std::vector<ProxyTrust>& trust) {
-  const SceneDesc& desc = scene.desc();
+Report makeReport(const CompareOptions& o, const SceneDesc& desc, const SceneFacts& scene,
+                  const Reference& ref) {
   Report report;
   report.title = "render-compare: visibility estimators compared";
   report.scene_name = desc.displayName();
@@ -120,10 +104,10 @@ Report makeReport(const CompareOptions& o, const RenderScene& scene, const Refer
   report.meta["seed"] = o.common.seed;
   report.meta["threads"] =
       tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
-  report.meta["proxy_class"] = proxyClassName(scene.proxyClass());
-  report.meta["uses_proxies"] = scene.usesProxies();
-  report.meta["original_triangles"] = scene.originalTriangles();
-  report.meta["proxy_triangles"] = scene.proxyTriangles();
+  report.meta["proxy_class"] = proxyClassName(scene.proxy_class);
+  report.meta["uses_proxies"] = scene.uses_proxies;
+  report.meta["original_triangles"] = scene.original_triangles;
+  report.meta["proxy_triangles"] = scene.proxy_triangles;
   report.meta["reference_spp"] = ref.spp;
   report.meta["reference_partials"] = ref.partials;
   report.meta["reference_seconds"] = ref.seconds;
@@ -131,15 +115,18 @@ Report makeReport(const CompareOptions& o, const RenderScene& scene, const Refer
   report.meta["reference_file"] = ref.file.filename().string();
   report.meta["reference_cached"] = ref.cached;
   report.meta["relmse_epsilon"] = kRelMseEpsilon;
-  addProxyTrust(report, trust);
-  for (const std::string& w : scene.warnings()) report.notes.push_back("Scene: " + w);
+  // Each proxy's class status (class_trust.h): a note per proxy whose claim was not taken as is,
+  // and every proxy in the JSON meta.
+  for (const std::string& note : scene.trust_notes) report.notes.push_back(note);
+  report.meta["proxy_classes"] = scene.proxy_classes;
+  for (const std::string& w : scene.warnings) report.notes.push_back("Scene: " + w);
   if (o.equal_time > 0) report.notes.push_back(interleavedTimingNote(o));
-  if (!scene.usesProxies()) report.notes.push_back(std::string("Warning: ") + kNoProxiesNote + ".");
+  if (!scene.uses_proxies) report.notes.push_back(std::string("Warning: ") + kNoProxiesNote + ".");
   // The exact baseline should be the fastest exact configuration that fits in memory: say which.
-  const BuildChoice& build = scene.buildChoice();
-  report.meta["build"] = build.name();
-  report.meta["build_reason"] = build.reason;
-  report.notes.push_back("Exact baseline: " + build.description() + ": " + build.reason + ".");
+  report.meta["build"] = scene.build;
+  report.meta["build_reason"] = scene.build_reason;
+  report.notes.push_back("Exact baseline: " + scene.build_description + ": " + scene.build_reason +
+                         ".");
   report.notes.push_back(
       o.render.fixed_costs
           ? "roulette uses the fixed costs of --roulette-costs: bit-reproducible."
@@ -149,47 +136,28 @@ Report makeReport(const CompareOptions& o, const RenderScene& scene, const Refer
   return report;
 }
 
-int runCompare(CompareOptions& o) {
-  checkOutputs({o.scene.string()},
-               {{"--out", o.out.string(), /*is_folder=*/true}, {"--json", o.common.json_path}});
-  o.resolve();
-  SceneDesc desc = loadSceneDesc(o.scene);
-  o.render.applyTo(desc);
-  // The report folder is written under a temporary name and swapped in at the end: a rerun
-  // leaves nothing of the previous report, a failed or killed one leaves it intact. Staged
-  // before any rendering, so an unwritable --out fails in a second (exit 3).
-  StagedFolder folder(o.out, "render-compare", "report.json");
+// The report from the study's unit results (shared by the single-machine run and --merge, so
+// that the two cannot drift): cells assembled in unit order, scored against the reference, the
+// tables, images and HTML written to `folder`, which is committed.
+int reportStudy(const CompareOptions& o, const SceneDesc& desc, const StudyPlan& plan,
+                std::vector<UnitResult>& results, StagedFolder& folder,
+                std::optional<Reference> cached_reference) {
   const fs::path& dir = folder.path();
-
-  // A claimed class the proxy file no longer matches is proven again or dropped before any
-  // estimator relies on it; a downgrade is always said on stderr (the tables would hide the bias).
-  TrustedRenderScene loaded =
-      loadTrustedRenderScene(desc, o.render.sceneOptions(o.common.quiet), "render-compare");
-  const std::vector<ProxyTrust>& trust = loaded.trust;
-  const std::unique_ptr<RenderScene>& scene = loaded.scene;
-  if (!scene->usesProxies() && !o.common.quiet)
+  const SceneFacts& facts = results.front().facts;
+  if (!facts.uses_proxies && !o.common.quiet)
     std::fprintf(stderr, "render-compare: warning: %s: %s\n", desc.path.filename().string().c_str(),
                  kNoProxiesNote);
-
-  // Cells in table order; the stems name their images.
-  std::vector<CellResult> cells;
-  std::vector<std::string> stems;
-  for (int spp : o.spp_list) {
-    for (CellResult& c : runEqualSppCells(*scene, o, spp)) cells.push_back(std::move(c));
-    for (EstimatorKind kind : o.estimator_list)
-      stems.push_back(fmt::format("{}_{}", estimatorName(kind), spp));
-  }
-  if (o.equal_time > 0) {
-    for (CellResult& c : runEqualTimeCells(*scene, o, o.equal_time)) cells.push_back(std::move(c));
-    for (EstimatorKind kind : o.estimator_list)
-      stems.push_back(fmt::format("{}_equal-time", estimatorName(kind)));
-  }
+  StudyCells study = assembleCells(o, plan, results, desc.path);
+  std::vector<CellResult>& cells = study.cells;
+  const std::vector<std::string>& stems = study.stems;
   // The attainable gain, from this run's own measurements (docs/performance.md, the ceiling).
-  const ReportCeiling ceiling = runCeilingPhase(*scene, o, cells);
-  int largest_spp = 0;
-  for (const CellResult& c : cells) largest_spp = std::max(largest_spp, c.row.spp_max);
-
-  Reference ref = loadOrRenderReference(*scene, o, o.referenceSpp(largest_spp), dir);
+  const ReportCeiling ceiling = studyCeiling(plan, results, cells);
+  double reference_seconds = 0;
+  const std::vector<const Image*> partials = referencePartials(plan, results, reference_seconds);
+  Reference ref = cached_reference
+                      ? std::move(*cached_reference)
+                      : finishReference(desc, facts.instances_flattened, partials,
+                                        plan.reference_per_partial, reference_seconds, dir);
   if (!o.common.quiet)
     std::fprintf(stderr,
                  "render-compare: reference %s (exact, %d spp in %d partial renders, %.1f s, "
@@ -198,7 +166,7 @@ int runCompare(CompareOptions& o) {
                  ref.variance_of_mean, ref.cached ? " [cached: rendered by an earlier run]" : "");
   for (CellResult& c : cells) scoreCell(c, ref.radiance);
 
-  Report report = makeReport(o, *scene, ref, trust);
+  Report report = makeReport(o, desc, facts, ref);
   for (const CellResult& c : cells) report.rows.push_back(c.row);
   fillRelativeEfficiency(report.rows, kEqualSppTable);
   fillRelativeEfficiency(report.rows, kEqualTimeTable);
@@ -283,10 +251,88 @@ int runCompare(CompareOptions& o) {
   return kExitOk;
 }
 
+// The single-machine run: the study's plan with every unit run in process, then the merge.
+int runCompare(CompareOptions& o, const CLI::App& app, const fs::path& plan_dir) {
+  checkOutputs({o.scene.string()},
+               {{"--out", o.out.string(), /*is_folder=*/true}, {"--json", o.common.json_path}});
+  o.resolve();
+  SceneDesc desc = loadSceneDesc(o.scene);
+  o.render.applyTo(desc);
+  if (!plan_dir.empty()) return writeStudyPlan(app, o, desc, plan_dir);
+  // The report folder is written under a temporary name and swapped in at the end: a rerun
+  // leaves nothing of the previous report, a failed or killed one leaves it intact. Staged
+  // before any rendering, so an unwritable --out fails in a second (exit 3).
+  StagedFolder folder(o.out, "render-compare", "report.json");
+
+  // A claimed class the proxy file no longer matches is proven again or dropped before any
+  // estimator relies on it; a downgrade is always said on stderr (the tables would hide the bias).
+  TrustedRenderScene loaded =
+      loadTrustedRenderScene(desc, o.render.sceneOptions(o.common.quiet), "render-compare");
+  const RenderScene& scene = *loaded.scene;
+  const SceneFacts facts = sceneFacts(scene, loaded.trust);
+  StudyPlan plan = newStudyPlan(app, o, desc);
+  std::vector<UnitResult> results;
+  for (size_t k = 0; k < plan.units.size(); ++k)  // each render draws its own progress bar
+    results.push_back(runUnit(scene, facts, o, plan, k));
+  // The reference is sized by the samples every cell actually reached (equal-time renders may
+  // reach far more than --spp); a cached one with as many is reused.
+  const int reference_spp = o.referenceSpp(largestSppReached(plan, results));
+  std::optional<Reference> cached =
+      loadCachedReference(desc, scene.instancesFlattened(), o.out, reference_spp, folder.path());
+  const size_t first_reference = plan.units.size();
+  planReference(plan, reference_spp, cached ? cached->spp : 0);
+  // The reference's partial renders are quiet: one bar for all of them.
+  Progress reference_progress(fmt::format("reference ({} spp)", plan.reference_spp),
+                              uint64_t(plan.units.size() - first_reference), o.common.quiet);
+  for (size_t k = first_reference; k < plan.units.size(); ++k) {
+    results.push_back(runUnit(scene, facts, o, plan, k));
+    reference_progress.update();
+  }
+  reference_progress.done();
+  return reportStudy(o, desc, plan, results, folder, std::move(cached));
+}
+
+// `render-compare --merge DIR`: the report of a plan folder whose units have all run.
+int mergeStudy(const fs::path& dir) {
+  MergeInputs in = readMergeInputs(dir);
+  StagedFolder folder(in.options.out, "render-compare", "report.json");
+  return reportStudy(in.options, in.desc, in.plan, in.results, folder, std::nullopt);
+}
+
+// `render-compare --run-unit DIR K` and `--merge DIR`: their own small command lines.
+std::optional<int> runStudyCommand(int argc, char** argv) {
+  if (argc < 2) return std::nullopt;
+  const std::string mode = argv[1];
+  if (mode != "--run-unit" && mode != "--merge") return std::nullopt;
+  CLI::App app{mode == "--run-unit"
+                   ? "render-compare --run-unit DIR K: render unit K of the plan in DIR "
+                     "(docs/slurm.md) and write units/K.result, then units/K.done"
+                   : "render-compare --merge DIR: combine the units of the plan in DIR into the "
+                     "report one machine would write to its --out",
+               "render-compare"};
+  fs::path dir;
+  size_t unit = 0;
+  bool flag = false;
+  CommonOptions common;
+  app.add_flag(mode, flag, "This mode")->required();
+  app.add_option("dir", dir, "The plan folder")->required();
+  if (mode == "--run-unit")
+    app.add_option("unit", unit, "The unit index")->required()->check(integerIn(0, 999999));
+  app.add_flag("--quiet", common.quiet, "No progress or notes on stderr");
+  // Under Slurm a unit uses only the CPUs it was given.
+  if (const char* cpus = std::getenv("SLURM_CPUS_PER_TASK"))
+    if (const std::optional<double> n = parseNumber(cpus); n && *n >= 1 && *n <= 4096)
+      common.threads = int(*n);
+  return runApp(app, argc, argv, common, [&] {
+    return mode == "--run-unit" ? runUnitCommand(dir, unit, common.quiet) : mergeStudy(dir);
+  });
+}
+
 }  // namespace
 }  // namespace proxyvis
 
 int main(int argc, char** argv) {
+  if (const std::optional<int> status = proxyvis::runStudyCommand(argc, argv)) return *status;
   CLI::App app{
       "render-compare: render a scene with each visibility estimator at equal samples and at "
       "equal time against a converged exact reference; write MSE tables, images and an HTML "
@@ -294,6 +340,11 @@ int main(int argc, char** argv) {
       "render-compare"};
   proxyvis::CompareOptions options;
   proxyvis::addCompareOptions(app, options);
+  std::filesystem::path plan_dir;
+  app.add_option("--plan", plan_dir,
+                 "Write the study as independent work units to this folder (plan.json) instead "
+                 "of running it: run them with scripts/slurm/submit.sh, which merges them into "
+                 "--out (docs/slurm.md). Also: --run-unit DIR K, --merge DIR");
   return proxyvis::runApp(app, argc, argv, options.common,
-                          [&] { return proxyvis::runCompare(options); });
+                          [&] { return proxyvis::runCompare(options, app, plan_dir); });
 }

@@ -13,9 +13,7 @@
 #include "util/error.h"
 #include "util/fnv1a.h"
 #include "util/input_file.h"
-#include "util/progress.h"
 #include "util/rng.h"
-#include "util/stopwatch.h"
 
 namespace proxyvis {
 
@@ -23,22 +21,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Partial renders averaged into the reference: enough for a stable variance estimate (the
-// relative s.e. of s² is sqrt(2/(R−1)) per pixel, far less once averaged over the image).
-constexpr int kPartials = 16;
 // Reference seeds do not depend on --seed, so one cached reference serves every seed.
 constexpr uint64_t kReferenceSeed = 0x7265666572656e63ULL;  // "referenc"
 // Bump when the reference's meaning changes (renderer conventions, partial scheme).
 constexpr int kCacheVersion = 1;
-
-// The build is part of the key: flattened and instanced tracing round differently, and a
-// reference of one build would show the other's renders a small bias.
-std::string cacheKey(const SceneDesc& desc, bool flattened) {
-  std::string text =
-      fmt::format("v{}|{}|{}x{}|{}{}", kCacheVersion, sceneHash(desc), desc.camera.width,
-                  desc.camera.height, kPartials, flattened ? "|flat" : "");
-  return fmt::format("{:016x}", fnv1a(text));
-}
 
 bool loadCached(Reference& ref, const fs::path& json_file, int width, int height, int min_spp) {
   std::error_code ec;
@@ -72,6 +58,15 @@ bool loadCached(Reference& ref, const fs::path& json_file, int width, int height
 
 }  // namespace
 
+// The build is part of the key: flattened and instanced tracing round differently, and a
+// reference of one build would show the other's renders a small bias.
+std::string referenceKey(const SceneDesc& desc, bool flattened) {
+  std::string text =
+      fmt::format("v{}|{}|{}x{}|{}{}", kCacheVersion, sceneHash(desc), desc.camera.width,
+                  desc.camera.height, kReferencePartials, flattened ? "|flat" : "");
+  return fmt::format("{:016x}", fnv1a(text));
+}
+
 std::vector<ImageAttribute> referenceAttributes(const SceneDesc& scene, const Reference& ref,
                                                 const std::string& content) {
   // The seed of the first partial render; partial r uses hashKeys(seed, r).
@@ -82,47 +77,48 @@ std::vector<ImageAttribute> referenceAttributes(const SceneDesc& scene, const Re
   return renderAttributes(scene, meta);
 }
 
-Reference loadOrRenderReference(const RenderScene& scene, const CompareOptions& options, int spp,
-                                const fs::path& write_dir) {
-  const SceneDesc& desc = scene.desc();
+std::optional<Reference> loadCachedReference(const SceneDesc& desc, bool flattened,
+                                             const fs::path& out, int min_spp,
+                                             const fs::path& write_dir) {
   Reference ref;
-  ref.partials = std::min(kPartials, spp);
-  const int per_partial = (spp + ref.partials - 1) / ref.partials;
-  ref.key = cacheKey(desc, scene.instancesFlattened());
+  ref.key = referenceKey(desc, flattened);
   const std::string exr_name = "reference-" + ref.key + ".exr";
   const std::string json_name = "reference-" + ref.key + ".json";
-  ref.file = options.out / exr_name;
-  if (loadCached(ref, options.out / json_name, desc.camera.width, desc.camera.height, spp)) {
-    ref.file = write_dir / exr_name;
-    for (const std::string& name : {exr_name, json_name}) {
-      std::error_code ec;
-      fs::copy_file(options.out / name, write_dir / name, fs::copy_options::overwrite_existing, ec);
-      if (ec)
-        throw WriteError((write_dir / name).string(), "cannot copy the cached reference",
-                         ec.message());
-    }
-    return ref;
-  }
+  ref.file = out / exr_name;
+  if (!loadCached(ref, out / json_name, desc.camera.width, desc.camera.height, min_spp))
+    return std::nullopt;
   ref.file = write_dir / exr_name;
-  const fs::path json_file = write_dir / json_name;
-  ref.spp = per_partial * ref.partials;
-
-  ImageVarianceAccumulator acc;
-  Stopwatch watch;
-  Progress progress(fmt::format("reference ({} spp)", ref.spp), uint64_t(ref.partials),
-                    options.common.quiet);
-  for (int r = 0; r < ref.partials; ++r) {
-    RenderSettings settings;
-    settings.estimator.kind = EstimatorKind::kExact;
-    settings.spp = per_partial;
-    settings.seed = hashKeys(kReferenceSeed, uint64_t(r));
-    settings.quiet = true;
-    RenderResult result = render(scene, settings);
-    acc.add(result.radiance.pixels);
-    progress.update();
+  for (const std::string& name : {exr_name, json_name}) {
+    std::error_code ec;
+    fs::copy_file(out / name, write_dir / name, fs::copy_options::overwrite_existing, ec);
+    if (ec)
+      throw WriteError((write_dir / name).string(), "cannot copy the cached reference",
+                       ec.message());
   }
-  progress.done();
-  ref.seconds = watch.seconds();
+  return ref;
+}
+
+RenderSettings referencePartialSettings(int partial, int per_partial) {
+  RenderSettings settings;
+  settings.estimator.kind = EstimatorKind::kExact;
+  settings.spp = per_partial;
+  settings.seed = hashKeys(kReferenceSeed, uint64_t(partial));
+  settings.quiet = true;
+  return settings;
+}
+
+Reference finishReference(const SceneDesc& desc, bool flattened,
+                          const std::vector<const Image*>& partials, int per_partial,
+                          double seconds, const fs::path& write_dir) {
+  Reference ref;
+  ref.key = referenceKey(desc, flattened);
+  ref.partials = int(partials.size());
+  ref.spp = per_partial * ref.partials;
+  ref.file = write_dir / ("reference-" + ref.key + ".exr");
+  const fs::path json_file = write_dir / ("reference-" + ref.key + ".json");
+  ImageVarianceAccumulator acc;
+  for (const Image* p : partials) acc.add(p->pixels);
+  ref.seconds = seconds;
   ref.variance_of_mean = acc.meanVarianceOfMean();
   ref.radiance = Image{desc.camera.width, desc.camera.height, 3, acc.mean()};
   requireFinitePixels(ref.radiance, desc.path, "the exact reference");

@@ -46,10 +46,10 @@ RenderSettings runSettings(const CompareOptions& options, EstimatorKind kind, in
   return settings;
 }
 
-void addRun(CellResult& cell, RenderResult r, const RenderScene& scene,
+void addRun(CellResult& cell, RenderResult r, const std::filesystem::path& scene,
             const CompareOptions& options, EstimatorKind kind, std::string_view table, int run,
             int runs) {
-  requireFinitePixels(r.radiance, scene.desc().path,
+  requireFinitePixels(r.radiance, scene,
                       fmt::format("the {} render (seed {})", estimatorName(kind), run + 1));
   ReportRow& row = cell.row;
   row.seconds_per_seed.push_back(r.seconds);
@@ -92,23 +92,6 @@ void finishCell(CellResult& cell, EstimatorKind kind, std::string_view table, do
     row.time_budget = time_budget;
     row.budget_overshoot_seconds = row.seconds - time_budget;
   }
-}
-
-std::vector<CellResult> runEqualSppCells(const RenderScene& scene, const CompareOptions& options,
-                                         int spp) {
-  const std::vector<EstimatorKind>& kinds = options.estimator_list;
-  const size_t n = kinds.size();
-  std::vector<CellResult> cells(n);
-  for (int k = 0; k < options.seeds; ++k)
-    for (size_t turn = 0; turn < n; ++turn) {
-      // Seed k starts with estimator k mod n: no estimator always renders first (or last).
-      const size_t e = (turn + size_t(k)) % n;
-      addRun(cells[e], render(scene, runSettings(options, kinds[e], spp, 0, k)), scene, options,
-             kinds[e], kEqualSppTable, k, options.seeds);
-    }
-  for (size_t e = 0; e < n; ++e)
-    finishCell(cells[e], kinds[e], kEqualSppTable, 0, options.seeds, 1);
-  return cells;
 }
 
 void requireFinitePixels(const Image& image, const std::filesystem::path& scene,

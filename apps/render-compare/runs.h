@@ -31,8 +31,8 @@ struct CellResult {
 RenderSettings runSettings(const CompareOptions& options, EstimatorKind kind, int spp,
                            double time_budget, int run);
 
-// Adds run `run` (of `runs`) to the cell; `table` only names it on stderr.
-void addRun(CellResult& cell, RenderResult r, const RenderScene& scene,
+// Adds run `run` (of `runs`) to the cell; `table` only names it on stderr, `scene` in errors.
+void addRun(CellResult& cell, RenderResult r, const std::filesystem::path& scene,
             const CompareOptions& options, EstimatorKind kind, std::string_view table, int run,
             int runs);
 
@@ -40,15 +40,11 @@ void addRun(CellResult& cell, RenderResult r, const RenderScene& scene,
 void finishCell(CellResult& cell, EstimatorKind kind, std::string_view table, double time_budget,
                 int seeds, int repeats);
 
-// The equal-spp cells of one sample count, one per estimator in options.estimator_list order.
-// Seed by seed, every estimator renders once, in an order that rotates with the seed.
-std::vector<CellResult> runEqualSppCells(const RenderScene& scene, const CompareOptions& options,
-                                         int spp);
-
-// The equal-time cells, one per estimator in options.estimator_list order, interleaved
-// (runs_interleaved.cpp): per run, a warm-up of each estimator, then round-robin slices.
-std::vector<CellResult> runEqualTimeCells(const RenderScene& scene, const CompareOptions& options,
-                                          double time_budget);
+// Run `run` of the equal-time cells: one render per estimator in options.estimator_list order,
+// interleaved (runs_interleaved.cpp): a warm-up of each estimator, then round-robin slices. The
+// equal-spp renders are one render() each, the estimators alternating seed by seed (plan.cpp).
+std::vector<RenderResult> runEqualTimeRun(const RenderScene& scene, const CompareOptions& options,
+                                          double time_budget, int run);
 
 // How the equal-time renders were timed: a report note, and the same facts for the JSON meta.
 std::string interleavedTimingNote(const CompareOptions& options);

@@ -36,38 +36,36 @@ size_t turnEstimator(size_t turn, int run, size_t n) {
 
 }  // namespace
 
-std::vector<CellResult> runEqualTimeCells(const RenderScene& scene, const CompareOptions& options,
-                                          double time_budget) {
+std::vector<RenderResult> runEqualTimeRun(const RenderScene& scene, const CompareOptions& options,
+                                          double time_budget, int run) {
   const std::vector<EstimatorKind>& kinds = options.estimator_list;
   const size_t n = kinds.size();
-  const int runs = options.seeds * options.repeats;
-  std::vector<CellResult> cells(n);
-  for (int run = 0; run < runs; ++run) {
-    std::vector<RenderSettings> settings;
-    for (EstimatorKind kind : kinds) {
-      settings.push_back(runSettings(options, kind, 0, time_budget, run));
-      settings.back().quiet = true;  // sessions take turns: one bar each would flicker
-    }
-    for (size_t turn = 0; turn < n; ++turn) {
-      const size_t e = turnEstimator(turn, run, n);
-      RenderSession warmup(scene, settings[e]);
-      warmup.runFor(warmupSeconds(time_budget));
-    }
-    // Created in turn order too: the primary rays are on each session's own clock.
-    std::vector<std::unique_ptr<RenderSession>> sessions(n);
-    for (size_t turn = 0; turn < n; ++turn) {
-      const size_t e = turnEstimator(turn, run, n);
-      sessions[e] = std::make_unique<RenderSession>(scene, settings[e]);
-    }
-    std::vector<RenderSession*> order;
-    for (const auto& session : sessions) order.push_back(session.get());
-    runInterleaved(order, sliceSeconds(time_budget), size_t(run) % n);
-    for (size_t e = 0; e < n; ++e)
-      addRun(cells[e], sessions[e]->result(), scene, options, kinds[e], kEqualTimeTable, run, runs);
+  std::vector<RenderSettings> settings;
+  for (EstimatorKind kind : kinds) {
+    settings.push_back(runSettings(options, kind, 0, time_budget, run));
+    settings.back().quiet = true;  // sessions take turns: one bar each would flicker
   }
-  for (size_t e = 0; e < n; ++e)
-    finishCell(cells[e], kinds[e], kEqualTimeTable, time_budget, options.seeds, options.repeats);
-  return cells;
+  for (size_t turn = 0; turn < n; ++turn) {
+    const size_t e = turnEstimator(turn, run, n);
+    RenderSession warmup(scene, settings[e]);
+    warmup.runFor(warmupSeconds(time_budget));
+  }
+  // Created in turn order too: the primary rays are on each session's own clock.
+  std::vector<std::unique_ptr<RenderSession>> sessions(n);
+  for (size_t turn = 0; turn < n; ++turn) {
+    const size_t e = turnEstimator(turn, run, n);
+    sessions[e] = std::make_unique<RenderSession>(scene, settings[e]);
+  }
+  std::vector<RenderSession*> order;
+  for (const auto& session : sessions) order.push_back(session.get());
+  runInterleaved(order, sliceSeconds(time_budget), size_t(run) % n);
+  std::vector<RenderResult> results;
+  for (size_t e = 0; e < n; ++e) {
+    results.push_back(sessions[e]->result());
+    requireFinitePixels(results.back().radiance, scene.desc().path,
+                        fmt::format("the {} render (seed {})", estimatorName(kinds[e]), run + 1));
+  }
+  return results;
 }
 
 std::string interleavedTimingNote(const CompareOptions& o) {

@@ -172,8 +172,7 @@ std::string htmlTable(const std::vector<ReportRow>& rows, std::string_view table
         "<td>{:.1f}</td><td>{}</td></tr>\n",
         escapeHtml(r.estimator), r.spp, r.seconds, r.mse, r.mse_stderr, r.relmse, r.relmse_stderr,
         r.efficiency == best && best > 0 ? " class=\"best\"" : "", efficiencyText(r),
-        ofCeilingText(r),
-        r.rays.proxy / px, r.rays.original / px, r.rays.probe / px, r.seeds);
+        ofCeilingText(r), r.rays.proxy / px, r.rays.original / px, r.rays.probe / px, r.seeds);
   }
   return out + "</table></div>\n";
 }
