@@ -22,6 +22,7 @@ def example_lines(readme: str) -> list:
     text = open(readme, encoding="utf-8").read()
     section = text.split("## Using the programs", 1)[1]
     block = re.search(r"```sh\n(.*?)```", section, re.S).group(1)
+    block = re.sub(r"\\\n\s*", "", block)  # a command continued over lines with a backslash
     return [line.strip() for line in block.splitlines() if line.strip().startswith("build/bin/")]
 
 
@@ -43,7 +44,7 @@ def main() -> int:
     os.symlink(os.path.abspath(a.bin_dir), os.path.join(a.work_dir, "build", "bin"))
     ran = 0
     for line in lines:
-        args = shlex.split(line)
+        args = shlex.split(line, comments=True)
         program = os.path.basename(args[0])
         if program in a.skip:
             print(f"skipped: {line}")
