@@ -34,7 +34,8 @@ void addRenderFlags(CLI::App& app, RenderFlags& f) {
       ->capture_default_str();
   app.add_option("--build", f.build,
                  "Instances as Embree instances, flattened into one BVH, or auto (flat when the "
-                 "flattened scene's estimated memory fits --memory-budget)")
+                 "flattened scene has at most 4 M triangles and its estimated memory fits "
+                 "--memory-budget)")
       ->check(CLI::IsMember({"auto", "flat", "instanced"}))
       ->capture_default_str();
   app.add_option("--memory-budget", f.memory_budget_gib,

@@ -83,15 +83,23 @@ BuildChoice chooseBuild(InstanceBuild mode, bool has_instances, uint64_t flat_tr
     return c;
   }
   c.budget_bytes = budget_bytes < 0 ? defaultMemoryBudgetBytes() : budget_bytes;
-  c.flat = c.estimated_bytes <= c.budget_bytes;
-  c.reason = c.flat ? fmt::format(
-                          "--build auto: flattened tracing is expected faster and its ~{} fit the "
-                          "memory budget of {} (--memory-budget)",
-                          gigabytes(c.estimated_bytes), gibibytes(c.budget_bytes))
-                    : fmt::format(
-                          "--build auto: flattening would need ~{}, over the memory budget of {} "
-                          "(--memory-budget)",
-                          gigabytes(c.estimated_bytes), gibibytes(c.budget_bytes));
+  const bool fits = c.estimated_bytes <= c.budget_bytes;
+  const bool pays = flat_triangles <= kAutoFlattenMaxTriangles;
+  c.flat = fits && pays;
+  if (c.flat)
+    c.reason = fmt::format(
+        "--build auto: flattened tracing is expected faster at this size and its ~{} fit the "
+        "memory budget of {} (--memory-budget)",
+        gigabytes(c.estimated_bytes), gibibytes(c.budget_bytes));
+  else if (!fits)
+    c.reason = fmt::format(
+        "--build auto: flattening would need ~{}, over the memory budget of {} (--memory-budget)",
+        gigabytes(c.estimated_bytes), gibibytes(c.budget_bytes));
+  else
+    c.reason = fmt::format(
+        "--build auto: above {} flattened triangles a flattened BVH was measured no faster than "
+        "instances and takes far longer to build (--build flat forces it)",
+        millions(kAutoFlattenMaxTriangles));
   return c;
 }
 

@@ -17,6 +17,11 @@ enum class InstanceBuild { kInstanced, kFlat, kAuto };
 // (bench_scene_trace, Embree 3.13.5): 156 on ecosys (12.3 M triangles; 113 once built), 182 on
 // foliage (1 M; 113 once built). The larger, rounded up: the estimate must not undershoot.
 inline constexpr double kFlatBytesPerTriangle = 185;
+// `auto` flattens only scenes up to this many flattened triangles: flattening paid on foliage
+// (1 M triangles: instanced exact was 0.93x the flattened one) but not on ecosys (12.3 M: 905 vs
+// 864 ns CPU per shadow ray flattened vs instanced, and 21 s to build instead of 0.9 s;
+// bench_scene_trace, 2 threads), whose flattened BVH no longer fits any cache.
+inline constexpr uint64_t kAutoFlattenMaxTriangles = 4'000'000;
 // The default budget: the smaller of this and half the memory the process may use.
 inline constexpr double kMaxDefaultBudgetBytes = 4.0 * (1ull << 30);
 

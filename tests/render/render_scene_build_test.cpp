@@ -10,7 +10,7 @@ namespace proxyvis {
 namespace {
 
 TEST(RenderSceneBuild, AutoFlattensExactlyWhenTheEstimateFitsTheBudget) {
-  const uint64_t tris = 12'341'851;           // ecosys, expanded
+  const uint64_t tris = 1'034'000;            // about foliage, expanded
   const double bytes = 185.0 * double(tris);  // the measured bytes per flattened triangle
   const BuildChoice fits = chooseBuild(InstanceBuild::kAuto, true, tris, bytes);
   EXPECT_TRUE(fits.flat);
@@ -21,8 +21,19 @@ TEST(RenderSceneBuild, AutoFlattensExactlyWhenTheEstimateFitsTheBudget) {
   EXPECT_FALSE(over.flat);
   EXPECT_STREQ(over.name(), "instanced");
   EXPECT_NE(over.reason.find("over the memory budget"), std::string::npos) << over.reason;
-  EXPECT_NE(over.description().find("12.3 M triangles"), std::string::npos) << over.description();
-  EXPECT_NE(over.description().find("~2.3 GB est."), std::string::npos) << over.description();
+  EXPECT_NE(over.description().find("1.0 M triangles"), std::string::npos) << over.description();
+  EXPECT_NE(over.description().find("~0.2 GB est."), std::string::npos) << over.description();
+}
+
+TEST(RenderSceneBuild, AutoKeepsLargeScenesInstancedEvenWhenTheyFit) {
+  // ecosys, expanded: fits a large budget, but was measured no faster flattened.
+  const uint64_t tris = 12'341'851;
+  const BuildChoice c = chooseBuild(InstanceBuild::kAuto, true, tris, 1e12);
+  EXPECT_FALSE(c.flat);
+  EXPECT_NE(c.reason.find("no faster"), std::string::npos) << c.reason;
+  EXPECT_NE(c.description().find("12.3 M triangles"), std::string::npos) << c.description();
+  EXPECT_TRUE(chooseBuild(InstanceBuild::kAuto, true, kAutoFlattenMaxTriangles, 1e12).flat);
+  EXPECT_FALSE(chooseBuild(InstanceBuild::kAuto, true, kAutoFlattenMaxTriangles + 1, 1e12).flat);
   // A tiny budget: instanced; a zero budget too.
   EXPECT_FALSE(chooseBuild(InstanceBuild::kAuto, true, 1000, 1024).flat);
   EXPECT_FALSE(chooseBuild(InstanceBuild::kAuto, true, 1, 0).flat);
