@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "render/image_io.h"
-#include "scene/scene_desc.h"
 #include "render/renderer.h"
+#include "scene/scene_desc.h"
 
 namespace proxyvis {
 

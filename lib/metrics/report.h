@@ -68,7 +68,7 @@ struct Report {
   std::string scene_name;  // the scene's name: the page's heading (the title when empty)
   nlohmann::json meta = nlohmann::json::object();  // scene, settings, reference, baseline...
   std::vector<ReportRow> rows;
-  std::vector<std::string> notes;  // plain-text remarks (warnings, what is missing)
+  std::vector<std::string> notes;        // plain-text remarks (warnings, what is missing)
   std::optional<ReportCeiling> ceiling;  // JSON meta.ceiling; its own Markdown and HTML section
 };
 
