@@ -64,7 +64,9 @@ void writeUnitFile(const fs::path& path, UnitFile file) {
   appendU64(bytes, header.size());
   bytes += header;
   for (const Image& im : file.images)
-    bytes.append(reinterpret_cast<const char*>(im.pixels.data()), im.pixels.size() * sizeof(float));
+    if (!im.pixels.empty())
+      bytes.append(reinterpret_cast<const char*>(im.pixels.data()),
+                   im.pixels.size() * sizeof(float));
   appendU64(bytes, checksum(bytes));
   writeTextAtomically(path, bytes);
 }
@@ -94,7 +96,8 @@ UnitFile readUnitFile(const fs::path& path) {
       const uint64_t n = uint64_t(im.width) * uint64_t(im.height) * uint64_t(im.channels);
       if (n > (body - at) / sizeof(float)) notAUnit(path, "an image runs past the end");
       im.pixels.resize(n);
-      std::memcpy(im.pixels.data(), all.data() + at, n * sizeof(float));
+      if (n > 0)  // an empty image has no buffer: memcpy must not get its null pointer
+        std::memcpy(im.pixels.data(), all.data() + at, n * sizeof(float));
       at += n * sizeof(float);
       file.images.push_back(std::move(im));
     }
