@@ -18,6 +18,24 @@ AreaLightDesc quad(Vec3f c, Vec3f u, Vec3f v, float L) {
   return l;
 }
 
+// 200,000 one-sample estimates of the irradiance at x (normal n) from the sampler's lights (red
+// channel), with stream (seed, stream).
+RunningStats irradianceSamples(const LightSampler& sampler, const Vec3d& x, const Vec3d& n,
+                               uint64_t seed, uint64_t stream) {
+  RunningStats stats;
+  Rng rng(seed, stream);
+  for (int i = 0; i < 200000; ++i) {
+    const LightSample s =
+        sampler.sample(rng.uniformFloat(), rng.uniformFloat(), rng.uniformFloat());
+    const Vec3d w = Vec3d(s.point) - x;
+    const double d2 = dot(w, w), d = std::sqrt(d2);
+    const double cos_x = std::max(0.0, dot(n, w) / d);
+    const double cos_y = std::abs(dot(Vec3d(s.normal), w)) / d;
+    stats.add(double(s.radiance.x) * cos_x * cos_y / d2 / s.pdf_area);
+  }
+  return stats;
+}
+
 TEST(LightSampler, IrradianceMatchesLambertsFormula) {
   const AreaLightDesc light = quad({-1, 3, -2}, {3, 0, 0}, {0, 0.5f, 2}, 5.0f);  // tilted quad
   const LightSampler sampler({light});
@@ -29,17 +47,7 @@ TEST(LightSampler, IrradianceMatchesLambertsFormula) {
   const Vec3d ns[] = {{0, 1, 0}, normalize(Vec3d(-0.3, 1, 0.1)), normalize(Vec3d(0.5, 1, 0.5))};
   const double z = sidakZ(1e-3, 3);
   for (int k = 0; k < 3; ++k) {
-    RunningStats stats;
-    Rng rng(7, uint64_t(k));
-    for (int i = 0; i < 200000; ++i) {
-      const LightSample s =
-          sampler.sample(rng.uniformFloat(), rng.uniformFloat(), rng.uniformFloat());
-      const Vec3d w = Vec3d(s.point) - xs[k];
-      const double d2 = dot(w, w), d = std::sqrt(d2);
-      const double cos_x = std::max(0.0, dot(ns[k], w) / d);
-      const double cos_y = std::abs(dot(Vec3d(s.normal), w)) / d;
-      stats.add(double(s.radiance.x) * cos_x * cos_y / d2 / s.pdf_area);
-    }
+    const RunningStats stats = irradianceSamples(sampler, xs[k], ns[k], 7, uint64_t(k));
     const double ref = test::polygonIrradiance(xs[k], ns[k], poly, 5.0);
     EXPECT_NEAR(stats.mean(), ref, z * stats.standardError()) << "point " << k << " seed 7";
     EXPECT_GT(ref, 0.1);
@@ -145,17 +153,7 @@ TEST(LightSampler, IrradianceFromSunAndSkyMatchesTheClosedForm) {
   const Vec3d ns[] = {{0, 1, 0}, normalize(Vec3d(0.3, 1, 0.2))};
   const double z = sidakZ(1e-3, 2);
   for (int k = 0; k < 2; ++k) {
-    RunningStats stats;
-    Rng rng(13, uint64_t(k));
-    for (int i = 0; i < 200000; ++i) {
-      const LightSample s =
-          sampler.sample(rng.uniformFloat(), rng.uniformFloat(), rng.uniformFloat());
-      const Vec3d w = Vec3d(s.point) - xs[k];
-      const double d2 = dot(w, w), d = std::sqrt(d2);
-      const double cos_x = std::max(0.0, dot(ns[k], w) / d);
-      const double cos_y = std::abs(dot(Vec3d(s.normal), w)) / d;
-      stats.add(double(s.radiance.x) * cos_x * cos_y / d2 / s.pdf_area);
-    }
+    const RunningStats stats = irradianceSamples(sampler, xs[k], ns[k], 13, uint64_t(k));
     const double sun_ref = test::polygonIrradiance(xs[k], ns[k], sun_poly, Ls);
     const double sky_ref = test::polygonIrradiance(xs[k], ns[k], sky_poly, Lk);
     EXPECT_GT(sun_ref, 0.1 * sky_ref);  // both lights matter
