@@ -74,10 +74,9 @@ CeilingMeasurement measureCeilingStats(const RenderScene& scene, const RenderSet
   out.regions.resize(size_t(tiling.count()) * num_lights * 2);
   for (size_t r = 0; r < out.regions.size(); ++r)
     out.regions[r].light = uint32_t(r / 2 % num_lights);
-  // The renderer's region of a sample (renderer.h): (tile x lights + light) x 2 + self.
+  // The renderer's own learning region of a sample.
   auto regionOf = [&](int tile, uint32_t light, uint32_t object) -> CeilingRegionStats& {
-    const size_t self = scene.objects()[object].proxy >= 0 ? 1 : 0;
-    return out.regions[(size_t(tile) * num_lights + light) * 2 + self];
+    return out.regions[learningRegion(scene, object, uint32_t(tile), light)];
   };
 
   const std::vector<ShadingPoint> points = shadingPoints(scene, tiling);

@@ -62,15 +62,6 @@ struct Scratch {
   std::vector<double> estimates;
 };
 
-// The learning region of a query: screen tile x light x whether the shading point's own object
-// uses a proxy. Points on such an object trace their own original in both V and V' (the
-// self-shadowing rule), so their proxy rays cost more and they must not share a cost model with
-// the points beside them (the ground under the dragon).
-uint32_t regionOf(const RenderScene& scene, const ShadingPoint& sp, uint32_t tile, uint32_t light) {
-  const uint32_t self = scene.objects()[sp.object].proxy >= 0 ? 1u : 0u;
-  return (tile * uint32_t(scene.lights().numLights()) + light) * 2u + self;
-}
-
 // Phase B for one pixel: groups its samples by light (one query per learning region), asks the
 // estimator, accumulates.
 void estimatePixel(const RenderScene& scene, VisibilityEstimator& estimator, const ShadingPoint& sp,
@@ -87,7 +78,7 @@ void estimatePixel(const RenderScene& scene, VisibilityEstimator& estimator, con
     ShadingPointQuery query;
     query.segments = std::span<const Segment>(&ps.segment, 1);
     query.tracer = &tracer;
-    query.region = regionOf(scene, sp, tile, ps.light);
+    query.region = learningRegion(scene, sp.object, tile, ps.light);
     query.point = pixel * num_lights + ps.light;
     double v = 0;
     RayCounts counts;
@@ -133,7 +124,7 @@ void estimatePixel(const RenderScene& scene, VisibilityEstimator& estimator, con
     ShadingPointQuery query;
     query.segments = scratch.segments;
     query.tracer = &tracer;
-    query.region = regionOf(scene, sp, tile, light);
+    query.region = learningRegion(scene, sp.object, tile, light);
     query.point = pixel * num_lights + light;
     query.probes = scratch.probes;
     estimator.estimate(query, rng, scratch.estimates, counts);

@@ -52,6 +52,16 @@ void prepareSamples(const RenderScene& scene, const ShadingPoint& sp, uint64_t s
 bool makeSegment(const RenderScene& scene, const ShadingPoint& sp, const Vec3f& light_point,
                  Segment& out);
 
+// The learning region of a query: screen tile x light x whether the shading point's own object
+// uses a proxy. Points on such an object trace their own original in both V and V' (the
+// self-shadowing rule), so their proxy rays cost more and they must not share a cost model with
+// the points beside them (the ground under the dragon).
+inline uint32_t learningRegion(const RenderScene& scene, uint32_t object, uint32_t tile,
+                               uint32_t light) {
+  const uint32_t self = scene.objects()[object].proxy >= 0 ? 1u : 0u;
+  return (tile * uint32_t(scene.lights().numLights()) + light) * 2u + self;
+}
+
 // Throws Error for settings no render can run with (tile size, nothing to render, budget).
 void validateRenderSettings(const RenderSettings& settings);
 
