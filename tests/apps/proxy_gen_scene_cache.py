@@ -7,7 +7,7 @@ proxy_gen_scene_cache.py BIN_DIR DATA_DIR WORK_DIR
 Checks, each against facts fixed here (not produced by the code under test):
 - a mesh with "make_proxy": false and a 2-face ground get no proxy, the plants get verified
   outside proxies listed in out/scene.json;
-- a second run takes every proxy from the cache, is faster, and writes the same bytes;
+- a second run takes every proxy from the cache (nothing generated) and writes the same bytes;
 - a changed setting (--alpha, --seed) and a changed input file miss; --no-cache reads nothing;
 - a truncated or changed cache entry is generated again (a note says so) and the output is the
   same as before; a stale temporary in the cache is no entry;
@@ -133,9 +133,10 @@ def main() -> None:
         fail("the text report does not say cached")
     if hashes(work / "out1") != hashes(work / "out2"):
         fail(f"outputs differ:\n{hashes(work / 'out1')}\n{hashes(work / 'out2')}")
-    if not t2 < t1:
-        fail(f"the cached run took {t2:.2f} s, the first {t1:.2f} s")
-    print(f"first run {t1:.2f} s, cached run {t2:.2f} s")
+    # Counted, not timed: wall time on a shared machine says nothing (a timed check failed in CI).
+    if r2["cache"]["generated"] != 0 or r2["cache"]["cached"] != 3:
+        fail(f"second run cache summary: {r2['cache']}")
+    print(f"first run {t1:.2f} s, cached run {t2:.2f} s (informative only)")
 
     # A changed setting misses (every plant), and so does another seed.
     r3, _, _ = gen(scene, work / "out3", cache, "--alpha", "0.12")

@@ -160,8 +160,9 @@ TEST(RenderSession, ClockCountsOnlyItsOwnSlices) {
   }
   EXPECT_NEAR(session.seconds(), slices, 1e-9);
   EXPECT_GE(session.seconds(), settings.time_budget);
-  EXPECT_LT(wall.seconds() - session.seconds(), 0.03 * rounds + 0.5);
-  EXPECT_GE(wall.seconds() - session.seconds(), 0.03 * rounds);  // the sleeps are not counted
+  // The sleeps are not counted. The upper bound is loose: a loaded machine stretches every sleep.
+  EXPECT_GE(wall.seconds() - session.seconds(), 0.03 * rounds);
+  EXPECT_LT(wall.seconds() - session.seconds(), 3 * 0.03 * rounds + 2.0);
   // 0.3 s in slices of 0.02 s: fewer than 3 only if slices stalled for 0.1 s each.
   EXPECT_GE(rounds, 3);
   EXPECT_GT(session.cpuSeconds(), cpu_after_start);
@@ -206,14 +207,15 @@ TEST(RenderSession, InterleavedTurnsRotateUntilEachSpentItsOwnBudget) {
     SCOPED_TRACE(i);
     EXPECT_TRUE(sessions[i]->finished());
     EXPECT_GE(sessions[i]->seconds(), settings.time_budget);
-    EXPECT_LT(sessions[i]->seconds(), settings.time_budget + 0.25);  // past it by part of a pass
+    // Past it by part of a pass; loose because a loaded machine can stall one pass.
+    EXPECT_LT(sessions[i]->seconds(), settings.time_budget + 1.0);
     EXPECT_GE(std::count(turns.begin(), turns.end(), i), 3);
     on_clocks += sessions[i]->seconds() - construction[i];
   }
   // Each clock ran only in its own turns, and the turns do not overlap: their sum is the wall
   // time of the schedule, less the moments between turns.
   EXPECT_LE(on_clocks, elapsed);
-  EXPECT_GT(on_clocks, 0.8 * elapsed);
+  EXPECT_GT(on_clocks, 0.5 * elapsed);
 }
 
 }  // namespace
