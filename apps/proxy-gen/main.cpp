@@ -5,9 +5,9 @@
 #include <tbb/parallel_for.h>
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <map>
 #include <memory>
 
 #include "mesh/io/mesh_io.h"
@@ -17,6 +17,9 @@
 #include "proxies/pipeline/written_class.h"
 #include "scene/scene_desc.h"
 #include "scene_mesh.h"
+#include "scene_outputs.h"
+#include "shard.h"
+#include "shard_manifest.h"
 #include "stage_progress.h"
 #include "summary_text.h"
 #include "util/app_main.h"
@@ -45,6 +48,9 @@ struct Args {
   bool progress = false;  // the bar also when stderr is not a terminal
   std::string cache_dir;  // scene mode: the proxy cache (empty = the default folder)
   bool no_cache = false;
+  std::string shard;                      // --shard i/n (scene mode)
+  std::vector<std::string> merge_shards;  // --merge-shards DIR... (scene mode)
+  std::string done_file;                  // --done FILE: a plan unit's marker
 };
 
 ProxyGenOptions toOptions(const Args& a, const CommonOptions& common) {
@@ -67,25 +73,6 @@ ProxyGenOptions toOptions(const Args& a, const CommonOptions& common) {
   return o;
 }
 
-// A proxy written with another class than the kind asked for (e.g. general for --fill-holes:
-// the guarantee would hold only for the hole-filled mesh) gets one note line on stderr.
-void noteWrittenClass(const json& report, const std::string& file) {
-  const auto reason = report.find("class_reason");
-  if (reason == report.end()) return;
-  std::fprintf(stderr, "proxy-gen: note: %s: written as class %s, not %s: %s\n", file.c_str(),
-               report.value("class", "general").c_str(), report.value("kind", "").c_str(),
-               reason->get<std::string>().c_str());
-}
-
-// The JSON goes to --json, put in place after the files staged in `outputs` that it describes;
-// the human summary to stdout, or to stderr when stdout carries JSON.
-void emit(const json& report, const std::string& summary, const CommonOptions& common,
-          OutputSet& outputs) {
-  if (!common.json_path.empty()) outputs.addText(common.json_path, report.dump(2) + "\n");
-  outputs.commit();
-  printHumanReport(common, summary);
-}
-
 // Loading is proxy-gen's own stage: it goes into the report's seconds (and their total, which
 // then covers everything but writing).
 void addLoadSeconds(json& report, double load_seconds) {
@@ -95,6 +82,9 @@ void addLoadSeconds(json& report, double load_seconds) {
 }
 
 int runMesh(const Args& a, const CommonOptions& common) {
+  if (!a.shard.empty() || !a.merge_shards.empty())
+    throw Error(a.input, "--shard and --merge-shards split a scene",
+                "a single mesh is one unit of work", "give a scene (.json)");
   if (a.output.empty())
     throw Error("", "no output file", "a mesh input needs -o OUTPUT", "add -o proxy.ply");
   if (!isSupportedMeshExtension(a.output))
@@ -142,12 +132,70 @@ std::unique_ptr<ProxyCache> openCache(const Args& a) {
   }
 }
 
+// The proxy cache folder a scene run asks for (null with --no-cache or without a default).
+std::optional<std::string> cacheDirSetting(const Args& a) {
+  if (a.no_cache) return std::nullopt;
+  if (!a.cache_dir.empty()) return a.cache_dir;
+  const fs::path dir = defaultProxyCacheDir();
+  if (dir.empty()) return std::nullopt;
+  return dir.string();
+}
+
+// Generates (or takes from the cache) the proxies of the meshes `selected`; never throws for a
+// mesh: its failure is its outcome.
+std::vector<MeshOutcome> generateSceneProxies(const SceneDesc& scene,
+                                              const std::vector<bool>& selected,
+                                              const std::vector<fs::path>& proxy_files,
+                                              const ProxyGenOptions& base, const ProxyCache* cache,
+                                              const Args& a, const CommonOptions& common) {
+  const size_t n = scene.meshes.size();
+  std::vector<MeshOutcome> outcomes(n);
+  Progress progress("proxy-gen", size_t(std::count(selected.begin(), selected.end(), true)),
+                    common.quiet, a.progress);
+  tbb::parallel_for(size_t(0), n, [&](size_t i) {
+    if (!selected[i]) return;
+    const SceneMeshDesc& mesh = scene.meshes[i];
+    MeshOutcome& m = outcomes[i];
+    try {
+      ProxyGenOptions o = base;
+      // Per-mesh stream from the mesh's place in the scene (not in a shard): the same proxy at
+      // any thread count and in any shard.
+      o.seed = hashKeys(common.seed, i);
+      SceneMeshProxy p = proxyForSceneMesh(mesh, o, proxy_files[i], cache);
+      m.report = std::move(p.report);
+      m.ref = std::move(p.ref);
+      m.skipped = std::move(p.skipped);
+      m.cache_note = std::move(p.cache_note);
+    } catch (const Error& e) {
+      m.error = e.what();
+      m.code = e.exitCode();
+    } catch (const std::bad_alloc&) {
+      m.error = fmt::format("{}: out of memory; the mesh is too large for this machine",
+                            mesh.file.string());
+      m.code = kExitBadInput;
+    } catch (const std::exception& e) {
+      // A failure inside CGAL or OpenMesh the checks did not foresee: this mesh fails, the rest
+      // of the scene goes on.
+      m.error = fmt::format("{}: {}", mesh.file.string(), e.what());
+      m.code = kExitBadInput;
+    }
+    if (!m.error.empty()) m.report = {{"name", mesh.name}, {"error", m.error}};
+    progress.update();
+    progress.setLabel(mesh.name);  // the mesh finished last (one line each in a log)
+  });
+  progress.done();
+  return outcomes;
+}
+
 int runScene(const Args& a, const CommonOptions& common) {
   if (a.out_dir.empty())
     throw Error(a.input, "no output directory", "a scene input needs --out-dir DIR",
                 "add --out-dir out/");
-  SceneDesc scene = loadSceneDesc(a.input);  // registers the scene and its instance list
   const ProxyGenOptions base = toOptions(a, common);
+  if (!a.merge_shards.empty())
+    return mergeShards({a.input, a.out_dir, a.kind, base, cacheDirSetting(a), a.merge_shards},
+                       common);
+  SceneDesc scene = loadSceneDesc(a.input);  // registers the scene and its instance list
   const size_t n = scene.meshes.size();
   // File names from mesh names that cannot leave --out-dir; and before any work, no output may
   // replace an input (the scene, a mesh it references, its instance list).
@@ -157,15 +205,21 @@ int runScene(const Args& a, const CommonOptions& common) {
     inputs.push_back(mesh.file.string());
   }
   const std::vector<std::string> stems = proxyFileStems(names);
+  const std::optional<ShardSpec> shard = a.shard.empty() ? std::nullopt : parseShardSpec(a.shard);
+  std::vector<bool> selected(n, true);
   std::vector<fs::path> proxy_files;
   std::vector<OutputFlag> planned;
-  for (const std::string& stem : stems) {
-    proxy_files.push_back(fs::path(a.out_dir) / fmt::format("{}.{}.ply", stem, a.kind));
-    planned.push_back({"--out-dir", proxy_files.back().string()});
+  for (size_t i = 0; i < n; ++i) {
+    proxy_files.push_back(proxyFilePath(a.out_dir, stems[i], a.kind));
+    if (shard) selected[i] = shardOfMesh(names[i], shard->count) == shard->index;
+    if (selected[i]) planned.push_back({"--out-dir", proxy_files.back().string()});
   }
   const fs::path scene_out = fs::path(a.out_dir) / "scene.json";
+  const fs::path manifest_out = fs::path(a.out_dir) / kShardManifestName;
   planned.push_back({"--out-dir", scene_out.string()});
+  if (shard) planned.push_back({"--out-dir", manifest_out.string()});
   planned.push_back({"--json", common.json_path});
+  planned.push_back({"--done", a.done_file});
   checkOutputs(inputs, planned);
   // Before any folder is made: an unusable --cache fails the run with nothing written.
   const std::unique_ptr<ProxyCache> cache = openCache(a);
@@ -173,85 +227,29 @@ int runScene(const Args& a, const CommonOptions& common) {
   fs::create_directories(a.out_dir, ec);
   if (ec) throw WriteError(a.out_dir, "cannot create the output directory", ec.message());
 
-  std::vector<json> reports(n);
-  std::vector<std::optional<ProxyRef>> refs(n);
-  std::vector<std::string> errors(n), skipped(n), cache_notes(n);
-  std::vector<int> codes(n, kExitOk);
-  Progress progress("proxy-gen", n, common.quiet, a.progress);
-  tbb::parallel_for(size_t(0), n, [&](size_t i) {
-    const SceneMeshDesc& mesh = scene.meshes[i];
-    try {
-      ProxyGenOptions o = base;
-      o.seed = hashKeys(common.seed, i);  // per-mesh stream: same result at any thread count
-      SceneMeshProxy p = proxyForSceneMesh(mesh, o, proxy_files[i], cache.get());
-      reports[i] = std::move(p.report);
-      refs[i] = std::move(p.ref);
-      skipped[i] = std::move(p.skipped);
-      cache_notes[i] = std::move(p.cache_note);
-    } catch (const Error& e) {
-      errors[i] = e.what();
-      codes[i] = e.exitCode();
-    } catch (const std::bad_alloc&) {
-      errors[i] = fmt::format("{}: out of memory; the mesh is too large for this machine",
-                              mesh.file.string());
-      codes[i] = kExitBadInput;
-    } catch (const std::exception& e) {
-      // A failure inside CGAL or OpenMesh the checks did not foresee: this mesh fails, the rest
-      // of the scene goes on.
-      errors[i] = fmt::format("{}: {}", mesh.file.string(), e.what());
-      codes[i] = kExitBadInput;
-    }
-    if (!errors[i].empty()) reports[i] = {{"name", mesh.name}, {"error", errors[i]}};
-    progress.update();
-    progress.setLabel(mesh.name);  // the mesh finished last (one line each in a log)
-  });
-  progress.done();
-
-  int code = kExitOk;
-  std::string summary;
-  std::map<std::string, size_t> cache_counts{{"cached", 0}, {"generated", 0}};
-  for (size_t i = 0; i < n; ++i) {
-    if (!errors[i].empty()) {
-      // The failure goes to stderr like any error (one line per failed mesh); the scene is
-      // still written, without a proxy for this mesh, and the exit code reports it.
-      std::fprintf(stderr, "proxy-gen: error: %s\n", errors[i].c_str());
-      summary += fmt::format("== {}: FAILED: {}\n", scene.meshes[i].name, errors[i]);
-      code = std::max(code, codes[i]);
-      continue;
-    }
-    if (!cache_notes[i].empty())
-      std::fprintf(stderr, "proxy-gen: note: %s: %s\n", scene.meshes[i].file.c_str(),
-                   cache_notes[i].c_str());
-    const std::string state = reports[i].value("cache", "off");
-    if (state != "off") ++cache_counts[state];
-    const std::string from = state == "off" ? "" : fmt::format(" ({})", state);
-    if (!skipped[i].empty()) {
-      summary += fmt::format("== {}: no proxy ({}){}\n", scene.meshes[i].name, skipped[i], from);
-      continue;
-    }
-    noteWrittenClass(reports[i], scene.meshes[i].file.string());
-    summary += fmt::format("== {}{}\n{}", scene.meshes[i].name, from, proxySummaryText(reports[i]));
-    auto& proxies = scene.meshes[i].proxies;
-    std::erase_if(proxies, [&](const ProxyRef& p) { return p.kind == a.kind; });
-    proxies.push_back(*refs[i]);
-  }
-  saveSceneDesc(scene, scene_out);
-  summary += fmt::format("scene with proxies: {}\n", scene_out.string());
-  json cache_report = nullptr;
-  if (cache) {
-    cache_report = {{"dir", cache->dir().string()},
-                    {"cached", cache_counts["cached"]},
-                    {"generated", cache_counts["generated"]}};
-    summary += fmt::format("proxy cache: {} ({} cached, {} generated)\n", cache->dir().string(),
-                           cache_counts["cached"], cache_counts["generated"]);
-  }
+  const std::vector<MeshOutcome> outcomes =
+      generateSceneProxies(scene, selected, proxy_files, base, cache.get(), a, common);
+  const std::optional<std::string> cache_dir =
+      cache ? std::optional<std::string>(cache->dir().string()) : std::nullopt;
+  const SceneRunInfo info{a.input, a.kind, scene_out, cache_dir};
+  SceneResult result = finishScene(scene, outcomes, selected, info);
   OutputSet outputs(MissingFolders::kCreate);
-  emit({{"scene", a.input},
-        {"scene_out", scene_out.string()},
-        {"cache", cache_report},
-        {"meshes", reports}},
-       summary, common, outputs);
-  return code;
+  // A shard's manifest is what the merge reads: it records the shard, the scene's content hash,
+  // the settings and the build, and each of its meshes' outcome with its proxy file's hash.
+  if (shard)
+    outputs.addText(manifest_out,
+                    shardManifest(*shard, scene, shardSettings(base, cacheDirSetting(a)), outcomes,
+                                  selected, proxy_files)
+                            .dump(1) +
+                        "\n");
+  emit(result.report, result.summary, common, outputs);
+  // A plan unit's marker, last: it exists only when every output above is in place.
+  if (!a.done_file.empty() && result.code == kExitOk) {
+    OutputSet done(MissingFolders::kCreate);
+    done.addText(a.done_file, fmt::format("shard {}\n", a.shard));
+    done.commit();
+  }
+  return result.code;
 }
 
 }  // namespace
@@ -333,6 +331,22 @@ int main(int argc, char** argv) {
   app.add_flag("--no-cache", a.no_cache,
                "Scene input: generate every proxy, neither read nor write the cache")
       ->excludes(cache_opt);
+  auto* shard_opt =
+      app.add_option("--shard", a.shard,
+                     "Scene input: generate only the proxies of shard i of n (0 <= i < n): the "
+                     "meshes whose FNV-1a 64 hash of their name, mod n, is i; --out-dir then also "
+                     "gets shard.json for --merge-shards (docs/proxy_gen_shards.md)")
+          ->check(shardSpecValidator());
+  app.add_option("--merge-shards", a.merge_shards,
+                 "Scene input: merge the --out-dir folders of shards 0..n-1 (run with the same "
+                 "settings, which this run must repeat) into --out-dir: the files of one whole "
+                 "run, byte for byte")
+      ->expected(1, -1)
+      ->excludes(shard_opt);
+  app.add_option("--done", a.done_file,
+                 "With --shard: write this file after every output is in place and the shard "
+                 "succeeded (a plan unit's marker)")
+      ->needs(shard_opt);
   addCommonOptions(app, common);
   app.add_flag("--progress", a.progress,
                "Show the progress bar (stages of one mesh, meshes of a scene) on stderr even when "

@@ -67,16 +67,27 @@ Generated generate(const std::string& bytes, const fs::path& file, ProxyGenOptio
   return g;
 }
 
-// The proxy file and its sidecar as saveMesh writes them, from bytes saveMesh wrote before.
-void writeProxyBytes(const std::string& bytes, const fs::path& out) {
-  OutputSet outputs;
+}  // namespace
+
+void stageProxyBytes(OutputSet& outputs, const std::string& bytes, const fs::path& out) {
   outputs.add(out, [&](const fs::path& tmp) { writeFileBytes(tmp, bytes, out.string()); });
-  const fs::path sidecar = detail::sidecarPathOf(out);
-  outputs.addText(sidecar, detail::sidecarLine(out, bytes));
-  outputs.commit();
+  outputs.addText(detail::sidecarPathOf(out), detail::sidecarLine(out, bytes));
 }
 
-}  // namespace
+ProxyRef proxyRefFor(const json& report, ProxyClass kind, const fs::path& out,
+                     const std::string& proxy_bytes) {
+  ProxyRef ref;
+  ref.kind = proxyClassName(kind);
+  ref.method = report.value("method", "");
+  ref.file = fs::absolute(out);
+  // The class the report writes (general when proven only for a stand-in of the input); the
+  // hash says which file content it was proven for: the bytes written.
+  if (const std::optional<ProxyClass> c = writtenClass(report)) {
+    ref.verified_class = c;
+    ref.sha256 = sha256Hex(proxy_bytes);
+  }
+  return ref;
+}
 
 SceneMeshProxy proxyForSceneMesh(const SceneMeshDesc& mesh, const ProxyGenOptions& options,
                                  const fs::path& out, const ProxyCache* cache) {
@@ -123,7 +134,9 @@ SceneMeshProxy proxyForSceneMesh(const SceneMeshDesc& mesh, const ProxyGenOption
       }
     }
   } else if (!entry->report.contains("skipped")) {
-    writeProxyBytes(entry->proxy_bytes, out);
+    OutputSet outputs;
+    stageProxyBytes(outputs, entry->proxy_bytes, out);
+    outputs.commit();
   }
   result.report = std::move(entry->report);
   result.report["name"] = mesh.name;
@@ -136,17 +149,7 @@ SceneMeshProxy proxyForSceneMesh(const SceneMeshDesc& mesh, const ProxyGenOption
     return result;
   }
   result.report["output"] = out.string();
-  ProxyRef ref;
-  ref.kind = proxyClassName(options.kind);
-  ref.method = result.report.value("method", "");
-  ref.file = fs::absolute(out);
-  // The class the report writes (general when proven only for a stand-in of the input); the
-  // hash says which file content it was proven for: the bytes just written.
-  if (const std::optional<ProxyClass> c = writtenClass(result.report)) {
-    ref.verified_class = c;
-    ref.sha256 = sha256Hex(entry->proxy_bytes);
-  }
-  result.ref = ref;
+  result.ref = proxyRefFor(result.report, options.kind, out, entry->proxy_bytes);
   return result;
 }
 

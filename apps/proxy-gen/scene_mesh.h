@@ -9,6 +9,7 @@
 #include "proxies/pipeline/proxy_cache.h"
 #include "proxies/pipeline/proxy_pipeline.h"
 #include "scene/scene_desc.h"
+#include "util/output_set.h"
 
 namespace proxyvis {
 
@@ -36,5 +37,14 @@ struct SceneMeshProxy {
 // faces is skipped. Throws what generateProxy and loadMesh throw.
 SceneMeshProxy proxyForSceneMesh(const SceneMeshDesc& mesh, const ProxyGenOptions& options,
                                  const std::filesystem::path& out, const ProxyCache* cache);
+
+// Stages the proxy file `out` with `bytes` and its .sha256 sidecar, as saveMesh writes them.
+void stageProxyBytes(OutputSet& outputs, const std::string& bytes,
+                     const std::filesystem::path& out);
+
+// The scene's entry for the proxy in file `out` (content `proxy_bytes`) whose generator report
+// is `report`: its class as written, with the file's hash when the class was proven.
+ProxyRef proxyRefFor(const nlohmann::json& report, ProxyClass kind,
+                     const std::filesystem::path& out, const std::string& proxy_bytes);
 
 }  // namespace proxyvis

@@ -1,0 +1,62 @@
+#pragma once
+// What proxy-gen writes at the end of a scene run, from each mesh's outcome: the scene with its
+// proxies, the summary and the JSON report. A whole run, a shard and the merge of shards all end
+// here, so the merge of shards writes exactly what the whole run writes.
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scene/scene_desc.h"
+#include "util/app_main.h"
+#include "util/error.h"
+#include "util/output_set.h"
+
+namespace proxyvis {
+
+// One mesh of the scene after its work: a proxy (ref), no proxy (skipped: why) or a failure
+// (error, code).
+struct MeshOutcome {
+  nlohmann::json report;
+  std::optional<ProxyRef> ref;
+  std::string skipped;
+  std::string cache_note;
+  std::string error;
+  int code = kExitOk;
+};
+
+// Where the proxy of the mesh with file stem `stem` goes: DIR/<stem>.<kind>.ply.
+std::filesystem::path proxyFilePath(const std::string& out_dir, const std::string& stem,
+                                    const std::string& kind);
+
+// A proxy written with another class than the kind asked for (e.g. general for --fill-holes:
+// the guarantee would hold only for the hole-filled mesh) gets one note line on stderr.
+void noteWrittenClass(const nlohmann::json& report, const std::string& file);
+
+// The JSON goes to --json, put in place after the files staged in `outputs` that it describes;
+// the human summary to stdout, or to stderr when stdout carries JSON.
+void emit(const nlohmann::json& report, const std::string& summary, const CommonOptions& common,
+          OutputSet& outputs);
+
+struct SceneRunInfo {
+  std::string input;  // the scene as named on the command line
+  std::string kind;   // --kind
+  std::filesystem::path scene_out;
+  std::optional<std::string> cache_dir;  // the proxy cache used, if any
+};
+
+struct SceneResult {
+  int code = kExitOk;
+  nlohmann::json report;
+  std::string summary;
+};
+
+// Prints each mesh's error and notes on stderr, writes `scene` with the new proxies to
+// info.scene_out (entries of meshes that failed or got none keep the scene's own proxies) and
+// returns the report, the summary and the exit code (the worst mesh's). `outcomes` holds one
+// entry per mesh of `scene`; entries of meshes not worked on are left out when `only` says so.
+SceneResult finishScene(SceneDesc scene, const std::vector<MeshOutcome>& outcomes,
+                        const std::vector<bool>& only, const SceneRunInfo& info);
+
+}  // namespace proxyvis

@@ -1,0 +1,221 @@
+#include "shard_manifest.h"
+
+#include <fmt/core.h>
+
+#include <map>
+
+#include "output_paths.h"
+#include "proxies/pipeline/proxy_cache.h"
+#include "scene_mesh.h"
+#include "util/input_file.h"
+#include "util/output_path.h"
+#include "util/sha256.h"
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace proxyvis {
+
+namespace {
+
+constexpr int kManifestFormat = 1;
+
+std::vector<std::string> meshStems(const SceneDesc& scene) {
+  std::vector<std::string> names;
+  for (const SceneMeshDesc& mesh : scene.meshes) names.push_back(mesh.name);
+  return proxyFileStems(names);
+}
+
+// A manifest's key `key` of type `T`, or an Error naming the manifest.
+template <typename T>
+T field(const json& j, const char* key, const fs::path& manifest) {
+  const auto it = j.find(key);
+  try {
+    if (it != j.end()) return it->get<T>();
+  } catch (const json::exception&) {
+  }
+  throw Error(manifest.string(), fmt::format("not a proxy-gen shard manifest: bad or no '{}'", key),
+              "it is damaged or was not written by proxy-gen --shard", "run that shard again");
+}
+
+// One shard's manifest, read and checked against the merge's own scene, settings and build.
+struct Shard {
+  fs::path dir, manifest_path;
+  json manifest;
+};
+
+Shard readShard(const std::string& dir, const std::string& scene_hash, const json& settings) {
+  Shard s;
+  s.dir = dir;
+  s.manifest_path = fs::path(dir) / kShardManifestName;
+  const std::string text = readTextFile(s.manifest_path);
+  s.manifest = json::parse(text, nullptr, false);
+  const std::string file = s.manifest_path.string();
+  if (s.manifest.is_discarded() || !s.manifest.is_object())
+    throw Error(file, "not a proxy-gen shard manifest: not JSON", "it is truncated or damaged",
+                "run that shard again");
+  if (field<int>(s.manifest, "proxy_gen_shard", s.manifest_path) != kManifestFormat)
+    throw Error(file, "a shard manifest of another format", "written by another proxy-gen version",
+                "run the shards again with this build");
+  if (field<std::string>(s.manifest, "build", s.manifest_path) != programBuildId())
+    throw Error(file, "a shard of another build",
+                "it was made by another proxy-gen executable, whose proxies may differ",
+                "run the shards and the merge with one build");
+  if (field<std::string>(s.manifest, "scene_hash", s.manifest_path) != scene_hash)
+    throw Error(file, "a shard of another scene",
+                "its scene's content hash differs from this scene's (the scene or a file it "
+                "references changed, or it is another scene)",
+                "merge shards of this very scene, or run them again");
+  if (field<json>(s.manifest, "settings", s.manifest_path) != settings)
+    throw Error(file, "a shard made with other settings",
+                fmt::format("it recorded {}, the merge has {}", s.manifest["settings"].dump(),
+                            settings.dump()),
+                "give the merge the shards' --kind, sizes, budget, --seed and cache flags");
+  return s;
+}
+
+}  // namespace
+
+json shardSettings(const ProxyGenOptions& base, const std::optional<std::string>& cache_dir) {
+  json s = proxyCacheSettings(base);
+  s["cache"] = cache_dir ? json(*cache_dir) : json(nullptr);
+  return s;
+}
+
+json shardManifest(const ShardSpec& shard, const SceneDesc& scene, const json& settings,
+                   const std::vector<MeshOutcome>& outcomes, const std::vector<bool>& selected,
+                   const std::vector<fs::path>& proxy_files) {
+  json meshes = json::array();
+  for (size_t i = 0; i < outcomes.size(); ++i) {
+    if (!selected[i]) continue;
+    const MeshOutcome& m = outcomes[i];
+    json entry = {{"index", i},           {"name", scene.meshes[i].name}, {"report", m.report},
+                  {"skipped", m.skipped}, {"cache_note", m.cache_note},   {"error", m.error},
+                  {"code", m.code}};
+    if (m.ref) {
+      entry["proxy_file"] = proxy_files[i].filename().string();
+      entry["proxy_sha256"] = sha256OfOwnFile(proxy_files[i]);
+    }
+    meshes.push_back(std::move(entry));
+  }
+  return {{"proxy_gen_shard", kManifestFormat},
+          {"shard", shard.index},
+          {"shards", shard.count},
+          {"scene_hash", sceneHash(scene)},
+          {"settings", settings},
+          {"build", programBuildId()},
+          {"meshes", meshes}};
+}
+
+int mergeShards(const MergeRequest& r, const CommonOptions& common) {
+  const SceneDesc scene = loadSceneDesc(r.scene);
+  const size_t n_meshes = scene.meshes.size();
+  const std::vector<std::string> stems = meshStems(scene);
+  // Before anything is read or written: no output may replace an input (the scene, its files,
+  // any file of a shard).
+  std::vector<std::string> inputs{r.scene, scene.instances_file.string()};
+  for (const SceneMeshDesc& mesh : scene.meshes) inputs.push_back(mesh.file.string());
+  for (const std::string& dir : r.shard_dirs) {
+    inputs.push_back((fs::path(dir) / kShardManifestName).string());
+    inputs.push_back((fs::path(dir) / "scene.json").string());
+    for (const std::string& stem : stems) {
+      const fs::path p = proxyFilePath(dir, stem, r.kind);
+      inputs.push_back(p.string());
+      inputs.push_back(p.string() + ".sha256");
+    }
+  }
+  std::vector<fs::path> proxy_files;
+  std::vector<OutputFlag> planned;
+  for (const std::string& stem : stems) {
+    proxy_files.push_back(proxyFilePath(r.out_dir, stem, r.kind));
+    planned.push_back({"--out-dir", proxy_files.back().string()});
+  }
+  const fs::path scene_out = fs::path(r.out_dir) / "scene.json";
+  planned.push_back({"--out-dir", scene_out.string()});
+  planned.push_back({"--json", common.json_path});
+  checkOutputs(inputs, planned);
+
+  const std::string scene_hash = sceneHash(scene);
+  const json settings = shardSettings(r.base, r.cache_dir);
+  std::vector<Shard> shards;
+  std::map<uint64_t, size_t> by_index;  // shard index -> position in `shards`
+  uint64_t count = 0;
+  for (const std::string& dir : r.shard_dirs) {
+    Shard s = readShard(dir, scene_hash, settings);
+    const std::string file = s.manifest_path.string();
+    const auto i = field<uint64_t>(s.manifest, "shard", s.manifest_path);
+    const auto n = field<uint64_t>(s.manifest, "shards", s.manifest_path);
+    if (n < 1 || n > kMaxShards || i >= n)
+      throw Error(file, "not a proxy-gen shard manifest: bad shard numbers", "it is damaged",
+                  "run that shard again");
+    if (count == 0) count = n;
+    if (n != count)
+      throw Error(file, fmt::format("shard {}/{} of another split", i, n),
+                  fmt::format("{} is a shard of {}", shards.front().manifest_path.string(), count),
+                  "merge the shards of one --shard i/n split");
+    if (const auto seen = by_index.find(i); seen != by_index.end())
+      throw Error(file, fmt::format("shard {}/{} given twice", i, n),
+                  fmt::format("{} is the same shard", shards[seen->second].manifest_path.string()),
+                  "give each shard's folder once");
+    by_index[i] = shards.size();
+    shards.push_back(std::move(s));
+  }
+  for (uint64_t i = 0; i < count; ++i)
+    if (!by_index.count(i))
+      throw Error(r.scene, fmt::format("shard {}/{} is missing from the merge", i, count),
+                  fmt::format("{} of {} shard folders were given", shards.size(), count),
+                  "give the folder of every shard 0..n-1");
+
+  // Each mesh from the one shard it belongs to; its proxy file as that shard recorded it.
+  std::vector<MeshOutcome> outcomes(n_meshes);
+  std::vector<bool> seen(n_meshes, false);
+  OutputSet proxies(MissingFolders::kCreate);
+  for (const Shard& s : shards) {
+    const std::string file = s.manifest_path.string();
+    const uint64_t shard_index = s.manifest["shard"].get<uint64_t>();
+    for (const json& entry : field<json>(s.manifest, "meshes", s.manifest_path)) {
+      const auto i = field<size_t>(entry, "index", s.manifest_path);
+      const auto name = field<std::string>(entry, "name", s.manifest_path);
+      if (i >= n_meshes || scene.meshes[i].name != name ||
+          shardOfMesh(name, count) != shard_index || seen[i])
+        throw Error(file, fmt::format("mesh '{}' does not belong to this shard", name),
+                    "the manifest does not match the scene's split", "run that shard again");
+      seen[i] = true;
+      MeshOutcome& m = outcomes[i];
+      m.report = field<json>(entry, "report", s.manifest_path);
+      m.skipped = field<std::string>(entry, "skipped", s.manifest_path);
+      m.cache_note = field<std::string>(entry, "cache_note", s.manifest_path);
+      m.error = field<std::string>(entry, "error", s.manifest_path);
+      m.code = field<int>(entry, "code", s.manifest_path);
+      if (!entry.contains("proxy_file")) continue;
+      const fs::path from = s.dir / field<std::string>(entry, "proxy_file", s.manifest_path);
+      if (from.filename() != proxy_files[i].filename())
+        throw Error(file, fmt::format("mesh '{}' names another proxy file", name),
+                    "the manifest is damaged", "run that shard again");
+      const std::string bytes = readTextFile(from);
+      if (sha256Hex(bytes) != field<std::string>(entry, "proxy_sha256", s.manifest_path))
+        throw Error(from.string(), "not the proxy its shard wrote",
+                    "its SHA-256 differs from the one in the shard's manifest (truncated or "
+                    "changed since)",
+                    fmt::format("run shard {} again", shard_index));
+      m.report["output"] = proxy_files[i].string();
+      m.ref = proxyRefFor(m.report, *parseProxyClass(r.kind), proxy_files[i], bytes);
+      stageProxyBytes(proxies, bytes, proxy_files[i]);
+    }
+  }
+  for (size_t i = 0; i < n_meshes; ++i)
+    if (!seen[i])
+      throw Error(shards[by_index[shardOfMesh(scene.meshes[i].name, count)]].manifest_path.string(),
+                  fmt::format("mesh '{}' is missing from its shard", scene.meshes[i].name),
+                  "the manifest does not match the scene's split", "run that shard again");
+
+  // The proxies first, then the scene that lists them and the report: as the whole run.
+  proxies.commit();
+  const SceneRunInfo info{r.scene, r.kind, scene_out, r.cache_dir};
+  SceneResult result = finishScene(scene, outcomes, std::vector<bool>(n_meshes, true), info);
+  OutputSet outputs(MissingFolders::kCreate);
+  emit(result.report, result.summary, common, outputs);
+  return result.code;
+}
+
+}  // namespace proxyvis

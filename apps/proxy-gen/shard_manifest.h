@@ -1,0 +1,53 @@
+#pragma once
+// The record a proxy-gen shard leaves beside its proxies (DIR/shard.json), and the merge of
+// shards into the output of one whole run (docs/proxy_gen_shards.md).
+//
+// A shard's manifest names the shard (i of n), the scene's content hash, every setting that
+// changes the output, the build, and for each of its meshes the outcome: the report, why it got
+// no proxy or why it failed, and the proxy file's name and SHA-256. The merge trusts nothing
+// else: the shards' scene.json and reports are for people.
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "proxies/pipeline/proxy_pipeline.h"
+#include "scene/scene_desc.h"
+#include "scene_outputs.h"
+#include "shard.h"
+#include "util/app_main.h"
+
+namespace proxyvis {
+
+inline constexpr const char* kShardManifestName = "shard.json";
+
+// Every setting that changes what a scene run writes: the generator's (proxyCacheSettings, with
+// the base seed) and the proxy cache folder (null = none), which the report names.
+nlohmann::json shardSettings(const ProxyGenOptions& base,
+                             const std::optional<std::string>& cache_dir);
+
+// The manifest of shard `shard` over `scene`: `selected[i]` says which meshes are its own;
+// `proxy_files[i]` is where mesh i's proxy was written (only read for meshes with a proxy).
+nlohmann::json shardManifest(const ShardSpec& shard, const SceneDesc& scene,
+                             const nlohmann::json& settings,
+                             const std::vector<MeshOutcome>& outcomes,
+                             const std::vector<bool>& selected,
+                             const std::vector<std::filesystem::path>& proxy_files);
+
+struct MergeRequest {
+  std::string scene;    // SCENE as named on the command line
+  std::string out_dir;  // --out-dir: where the whole run would write
+  std::string kind;
+  ProxyGenOptions base;  // the settings given to the merge, which must be the shards'
+  std::optional<std::string> cache_dir;
+  std::vector<std::string> shard_dirs;
+};
+
+// Checks that `request.shard_dirs` hold shards 0..n-1 of one split of this scene, each exactly
+// once, made with these settings by this build, with intact files; then writes DIR/<mesh>.<kind>
+// .ply (with sidecars), DIR/scene.json and the report exactly as the whole run would, and returns
+// its exit code. Throws Error naming the offending file (nothing written) otherwise.
+int mergeShards(const MergeRequest& request, const CommonOptions& common);
+
+}  // namespace proxyvis

@@ -1,0 +1,13 @@
+# proxy-gen --shard i/n and --merge-shards on a small scene of bundled ecosys plants: the split is
+# FNV-1a of the mesh name; shards of n = 1, 3 and more than the meshes, run shuffled and merged,
+# equal the whole run byte for byte; a --plan of 3 shards run by submit.sh --local too
+# (proxy_gen_shards.py says what each step checks).
+if(CMAKE_SCRIPT_MODE_FILE)
+  return()
+endif()
+find_package(Python3 REQUIRED COMPONENTS Interpreter)
+add_test(NAME app.proxy_gen_shards
+  COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_LIST_DIR}/proxy_gen_shards.py
+          $<TARGET_FILE_DIR:proxy-gen> ${PROXYVIS_DATA_DIR}
+          ${CMAKE_CURRENT_BINARY_DIR}/proxy_gen_shards ${CMAKE_SOURCE_DIR}/scripts/slurm/submit.sh)
+set_tests_properties(app.proxy_gen_shards PROPERTIES TIMEOUT 600)

@@ -1,0 +1,163 @@
+#!/usr/bin/env python3
+"""proxy-gen SCENE --shard i/n and --merge-shards on a small scene of bundled ecosys plants.
+
+proxy_gen_shards.py BIN_DIR DATA_DIR WORK_DIR [SUBMIT_SH]
+
+Checks, each against facts fixed here (not produced by the code under test):
+- the split is FNV-1a 64 of the mesh name mod n, computed here independently: each shard's
+  manifest lists exactly those meshes and its folder holds only their proxies;
+- for n in {1, 3, 9 (more shards than meshes)}, shards run in a shuffled order and merged give
+  the whole run's files byte for byte (every proxy and sidecar, scene.json) and its report
+  except the timing keys ("seconds");
+- a mesh with "make_proxy": false and a 2-face ground are skipped in their shard as in the run;
+- with SUBMIT_SH: --plan DIR --shards 3 run by submit.sh --local --jobs 2 gives the same files.
+"""
+import hashlib
+import json
+import pathlib
+import random
+import shutil
+import subprocess
+import sys
+
+PLANTS = {"flower": "YELLOWFLOWER2.drc", "grass": "GRASS9.drc", "flower2": "YELLOWFLOWER7.drc",
+          "bush": "BUSH13.drc", "nettle": "URTICADIOICA9.drc", "grass3": "GRASS3.drc"}
+SETTINGS = ["--kind", "outside", "--no-cache", "--seed", "7"]
+
+
+def fail(msg: str) -> None:
+    print(f"FAIL: {msg}")
+    sys.exit(1)
+
+
+def run(args, expect=0):
+    p = subprocess.run([str(a) for a in args], capture_output=True, text=True, timeout=900)
+    if p.returncode != expect:
+        fail(f"{' '.join(map(str, args))}: exit {p.returncode}, expected {expect}\n"
+             f"stdout:\n{p.stdout}\nstderr:\n{p.stderr}")
+    return p
+
+
+def fnv1a64(text: str) -> int:
+    h = 0xcbf29ce484222325
+    for b in text.encode():
+        h = ((h ^ b) * 0x100000001b3) & 0xFFFFFFFFFFFFFFFF
+    return h
+
+
+def files(folder: pathlib.Path) -> dict:
+    return {f.name: f.read_bytes() for f in sorted(folder.iterdir()) if f.is_file()}
+
+
+def without_timing(report):
+    if isinstance(report, dict):
+        return {k: without_timing(v) for k, v in report.items() if k != "seconds"}
+    if isinstance(report, list):
+        return [without_timing(v) for v in report]
+    return report
+
+
+def write_scene(work: pathlib.Path) -> pathlib.Path:
+    meshes = work / "meshes"
+    meshes.mkdir()
+    for name, file in PLANTS.items():
+        shutil.copyfile(DATA / "ecosys" / file, meshes / f"{name}.drc")
+    (meshes / "ground.obj").write_text(
+        "v -4 -4 0\nv 8 -4 0\nv 8 4 0\nv -4 4 0\nf 1 2 3\nf 1 3 4\n")
+    (work / "plants.instances.txt").write_text(
+        "".join(f"{name} {k * 1.5} {k * 0.3} 0\n" for k, name in enumerate(PLANTS)))
+    scene = {
+        "camera": {"eye": [1.2, -5, 1.6], "look_at": [1.2, 0.5, 0.3], "up": [0, 0, 1],
+                   "fov_deg": 45, "resolution": [64, 48]},
+        "lights": [{"type": "quad", "corner": [-2, -1, 6], "edge_u": [6, 0, 0],
+                    "edge_v": [0, 3, 0], "radiance": [5, 5, 5]}],
+        "meshes": [{"name": "ground", "file": "meshes/ground.obj"}] + [
+            {"name": name, "file": f"meshes/{name}.drc", "place": False,
+             **({"make_proxy": False} if name == "flower2" else {})} for name in PLANTS],
+        "instances": {"file": "plants.instances.txt"},
+    }
+    path = work / "scene.json"
+    path.write_text(json.dumps(scene, indent=1))
+    return path
+
+
+def gen(scene, out, *extra, expect=0):
+    return run([BIN / "proxy-gen", scene, *SETTINGS, "--out-dir", out, "-q", "--threads", "2",
+                "--json", str(out) + ".json", *extra], expect)
+
+
+def compare(single: pathlib.Path, out: pathlib.Path, label: str) -> None:
+    a, b = files(single), files(out)
+    if sorted(a) != sorted(b):
+        fail(f"{label}: files {sorted(b)}, the whole run wrote {sorted(a)}")
+    for name in a:
+        if a[name] != b[name]:
+            fail(f"{label}: {name} differs from the whole run's")
+    ra = without_timing(json.loads(pathlib.Path(str(single) + ".json").read_text()))
+    rb = without_timing(json.loads(pathlib.Path(str(out) + ".json").read_text()))
+    if ra != rb:
+        fail(f"{label}: the report differs from the whole run's:\n{json.dumps(rb)[:2000]}\n"
+             f"vs\n{json.dumps(ra)[:2000]}")
+
+
+def main() -> None:
+    global BIN, DATA
+    BIN, DATA, work = (pathlib.Path(a) for a in sys.argv[1:4])
+    submit = sys.argv[4] if len(sys.argv) > 4 else None
+    shutil.rmtree(work, ignore_errors=True)
+    work.mkdir(parents=True)
+    scene = write_scene(work)
+    names = ["ground", *PLANTS]
+    out = work / "out"
+    gen(scene, out)
+    single = work / "single"
+    out.rename(single)
+    pathlib.Path(str(out) + ".json").rename(str(single) + ".json")
+    report = json.loads(pathlib.Path(str(single) + ".json").read_text())
+    got = {m["name"]: ("skipped" in m, "error" in m) for m in report["meshes"]}
+    want = {n: (n in ("ground", "flower2"), False) for n in names}
+    if got != want:
+        fail(f"whole run: (skipped, failed) per mesh {got}, expected {want}")
+
+    rng = random.Random(11)
+    for n in (1, 3, 9):
+        order = list(range(n))
+        rng.shuffle(order)
+        dirs = {}
+        for i in order:
+            d = work / f"shards{n}" / f"s{i}"
+            gen(scene, d, "--shard", f"{i}/{n}")
+            mine = {name for name in names if fnv1a64(name) % n == i}
+            manifest = json.loads((d / "shard.json").read_text())
+            listed = {m["name"] for m in manifest["meshes"]}
+            if listed != mine:
+                fail(f"shard {i}/{n}: lists {sorted(listed)}, FNV-1a says {sorted(mine)}")
+            plys = {f.name.split(".")[0] for f in d.glob("*.ply")}
+            if not plys <= mine - {"ground", "flower2"}:
+                fail(f"shard {i}/{n}: wrote proxies of {sorted(plys)}, its meshes are {mine}")
+            dirs[i] = d
+        given = [dirs[i] for i in reversed(order)]  # not in shard order either
+        shutil.rmtree(out, ignore_errors=True)
+        run([BIN / "proxy-gen", scene, *SETTINGS, "--out-dir", out, "-q",
+             "--json", str(out) + ".json", "--merge-shards", *given])
+        compare(single, out, f"{n} shards")
+        print(f"{n} shards (run in order {order}) merged == whole run")
+
+    if submit:
+        plan = work / "plan"
+        shutil.rmtree(out, ignore_errors=True)
+        run([BIN / "proxy-gen", scene, *SETTINGS, "--out-dir", out, "--json", str(out) + ".json",
+             "--threads", "1", "--plan", plan, "--shards", "3"])
+        if out.exists():
+            fail("--plan generated proxies; it must only write the plan")
+        run(["bash", submit, plan, "--local", "--jobs", "2"])
+        for k in range(3):
+            if not (plan / "units" / f"{k}.done").is_file():
+                fail(f"plan: units/{k}.done missing after submit.sh --local")
+        compare(single, out, "plan of 3 shards via submit.sh --local")
+        print("plan of 3 shards via submit.sh --local --jobs 2 == whole run")
+    print("PASS")
+
+
+if __name__ == "__main__":
+    main()
