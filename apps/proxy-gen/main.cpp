@@ -20,6 +20,7 @@
 #include "scene_outputs.h"
 #include "shard.h"
 #include "shard_manifest.h"
+#include "shard_plan.h"
 #include "stage_progress.h"
 #include "summary_text.h"
 #include "util/app_main.h"
@@ -51,6 +52,8 @@ struct Args {
   std::string shard;                      // --shard i/n (scene mode)
   std::vector<std::string> merge_shards;  // --merge-shards DIR... (scene mode)
   std::string done_file;                  // --done FILE: a plan unit's marker
+  std::string plan_dir;                   // --plan DIR: write the shards as a plan's units
+  uint64_t plan_shards = 0;               // --shards N of the plan
 };
 
 ProxyGenOptions toOptions(const Args& a, const CommonOptions& common) {
@@ -82,8 +85,8 @@ void addLoadSeconds(json& report, double load_seconds) {
 }
 
 int runMesh(const Args& a, const CommonOptions& common) {
-  if (!a.shard.empty() || !a.merge_shards.empty())
-    throw Error(a.input, "--shard and --merge-shards split a scene",
+  if (!a.shard.empty() || !a.merge_shards.empty() || !a.plan_dir.empty())
+    throw Error(a.input, "--shard, --merge-shards and --plan split a scene",
                 "a single mesh is one unit of work", "give a scene (.json)");
   if (a.output.empty())
     throw Error("", "no output file", "a mesh input needs -o OUTPUT", "add -o proxy.ply");
@@ -187,10 +190,27 @@ std::vector<MeshOutcome> generateSceneProxies(const SceneDesc& scene,
   return outcomes;
 }
 
-int runScene(const Args& a, const CommonOptions& common) {
+// --plan DIR --shards N: checks the scene and the outputs as the run would, writes the plan.
+int writePlan(const Args& a, const CommonOptions& common, const CLI::App& app) {
+  const SceneDesc scene = loadSceneDesc(a.input);
+  std::vector<std::string> inputs{a.input, scene.instances_file.string()};
+  for (const SceneMeshDesc& mesh : scene.meshes) inputs.push_back(mesh.file.string());
+  const fs::path plan_file = fs::path(a.plan_dir) / "plan.json";
+  checkOutputs(inputs, {{"--plan", plan_file.string()},
+                        {"--out-dir", (fs::path(a.out_dir) / "scene.json").string()},
+                        {"--json", common.json_path}});
+  writeShardPlan(a.plan_dir, a.plan_shards, planFlags(app), a.out_dir, common.json_path);
+  printHumanReport(common, fmt::format("plan of {} shards: {} (run: scripts/slurm/submit.sh {})\n",
+                                       a.plan_shards, plan_file.string(), a.plan_dir));
+  return kExitOk;
+}
+
+int runScene(const Args& a, const CommonOptions& common, const CLI::App& app) {
   if (a.out_dir.empty())
     throw Error(a.input, "no output directory", "a scene input needs --out-dir DIR",
                 "add --out-dir out/");
+  toOptions(a, common);  // the settings are checked before a plan is written
+  if (!a.plan_dir.empty()) return writePlan(a, common, app);
   const ProxyGenOptions base = toOptions(a, common);
   if (!a.merge_shards.empty())
     return mergeShards({a.input, a.out_dir, a.kind, base, cacheDirSetting(a), a.merge_shards},
@@ -343,17 +363,30 @@ int main(int argc, char** argv) {
                  "run, byte for byte")
       ->expected(1, -1)
       ->excludes(shard_opt);
+  auto* plan_opt =
+      app.add_option("--plan", a.plan_dir,
+                     "Scene input: write DIR/plan.json, the run as --shards N units "
+                     "for scripts/slurm/submit.sh, and generate nothing (docs/slurm.md)");
+  auto* shards_opt =
+      app.add_option("--shards", a.plan_shards, "With --plan: the number of shards (units)")
+          ->check(integerIn(1, kMaxPlanShards));
+  plan_opt->needs(shards_opt)->excludes(shard_opt);
+  shards_opt->needs(plan_opt);
   app.add_option("--done", a.done_file,
                  "With --shard: write this file after every output is in place and the shard "
                  "succeeded (a plan unit's marker)")
       ->needs(shard_opt);
   addCommonOptions(app, common);
+  // Under Slurm a shard uses only the CPUs it was given.
+  app.parse_complete_callback([&] {
+    if (!a.shard.empty()) limitThreadsToSlurm(common.threads);
+  });
   app.add_flag("--progress", a.progress,
                "Show the progress bar (stages of one mesh, meshes of a scene) on stderr even when "
                "it is not a terminal (one line per stage); without it, only on a terminal")
       ->excludes("--quiet");
   return runApp(app, argc, argv, common, [&] {
     checkOutputs({a.input}, {{"-o", a.output}, {"--json", common.json_path}});
-    return lowerExtension(a.input) == ".json" ? runScene(a, common) : runMesh(a, common);
+    return lowerExtension(a.input) == ".json" ? runScene(a, common, app) : runMesh(a, common);
   });
 }

@@ -1,0 +1,84 @@
+#include "shard_plan.h"
+
+#include <fmt/core.h>
+
+#include <cstdlib>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "util/app_main.h"
+#include "util/atomic_write.h"
+#include "util/error.h"
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace proxyvis {
+
+namespace {
+
+std::string absoluteText(const std::string& path) {
+  return fs::absolute(path).lexically_normal().string();
+}
+
+}  // namespace
+
+std::vector<std::string> planFlags(const CLI::App& app) {
+  static const std::set<std::string> left_out{"--plan", "--shards", "--out-dir",
+                                              "--json", "--help",   "--version"};
+  std::vector<std::string> flags;
+  for (const CLI::Option* opt : app.get_options()) {
+    if (opt->count() == 0) continue;
+    if (opt->get_positional()) {
+      flags.push_back(absoluteText(opt->results().front()));
+      continue;
+    }
+    if (opt->get_lnames().empty()) continue;
+    const std::string name = "--" + opt->get_lnames().front();
+    if (left_out.count(name)) continue;
+    // One "--name=value" per value given: flags read back their "true" this way too.
+    for (const std::string& value : opt->results())
+      flags.push_back(name + "=" + (name == "--cache" ? absoluteText(value) : value));
+  }
+  return flags;
+}
+
+void writeShardPlan(const fs::path& dir, uint64_t shards, const std::vector<std::string>& flags,
+                    const std::string& out_dir, const std::string& json_path) {
+  std::error_code ec;
+  fs::create_directories(dir / "units", ec);
+  if (ec) throw WriteError(dir.string(), "cannot create the plan folder", ec.message());
+  for (const auto& entry : fs::directory_iterator(dir / "units", ec))
+    if (entry.path().extension() == ".done")
+      throw Error(dir.string(), "the plan folder already holds finished units",
+                  "a new plan would mix them with units of another run",
+                  "choose another folder or empty its units/");
+  const std::string program = fs::canonical("/proc/self/exe").string();
+  json run_unit = json::array({program});
+  for (const std::string& f : flags) run_unit.push_back(f);
+  run_unit.insert(run_unit.end(),
+                  {"--shard", fmt::format("{{unit}}/{}", shards), "--out-dir",
+                   "{plan_dir}/units/{unit}.shard", "--done", "{plan_dir}/units/{unit}.done"});
+  json merge = json::array({program});
+  for (const std::string& f : flags) merge.push_back(f);
+  merge.push_back("--out-dir=" + absoluteText(out_dir));
+  if (!json_path.empty())
+    merge.push_back("--json=" + (json_path == "-" ? json_path : absoluteText(json_path)));
+  merge.push_back("--merge-shards");
+  for (uint64_t k = 0; k < shards; ++k)
+    merge.push_back(fmt::format("{{plan_dir}}/units/{}.shard", k));
+  const json plan = {{"version", 1},    {"name", "proxy-gen"},
+                     {"units", shards}, {"run_unit", run_unit},
+                     {"merge", merge},  {"proxy_gen", {{"shards", shards}, {"flags", flags}}}};
+  writeTextAtomically(dir / "plan.json", plan.dump(2) + "\n");
+}
+
+void limitThreadsToSlurm(int& threads) {
+  const char* cpus = std::getenv("SLURM_CPUS_PER_TASK");
+  if (!cpus) return;
+  const std::optional<double> n = parseNumber(cpus);
+  if (!n || *n < 1 || *n > 4096) return;
+  if (threads <= 0 || threads > int(*n)) threads = int(*n);
+}
+
+}  // namespace proxyvis
