@@ -169,7 +169,7 @@ int mergeShards(const MergeRequest& r, const CommonOptions& common) {
   // Each mesh from the one shard it belongs to; its proxy file as that shard recorded it.
   std::vector<MeshOutcome> outcomes(n_meshes);
   std::vector<bool> seen(n_meshes, false);
-  OutputSet proxies(MissingFolders::kCreate);
+  std::vector<std::optional<std::string>> proxy_bytes(n_meshes);
   for (const Shard& s : shards) {
     const std::string file = s.manifest_path.string();
     const uint64_t shard_index = s.manifest["shard"].get<uint64_t>();
@@ -192,7 +192,7 @@ int mergeShards(const MergeRequest& r, const CommonOptions& common) {
       if (from.filename() != proxy_files[i].filename())
         throw Error(file, fmt::format("mesh '{}' names another proxy file", name),
                     "the manifest is damaged", "run that shard again");
-      const std::string bytes = readTextFile(from);
+      std::string bytes = readTextFile(from);
       if (sha256Hex(bytes) != field<std::string>(entry, "proxy_sha256", s.manifest_path))
         throw Error(from.string(), "not the proxy its shard wrote",
                     "its SHA-256 differs from the one in the shard's manifest (truncated or "
@@ -200,7 +200,7 @@ int mergeShards(const MergeRequest& r, const CommonOptions& common) {
                     fmt::format("run shard {} again", shard_index));
       m.report["output"] = proxy_files[i].string();
       m.ref = proxyRefFor(m.report, *parseProxyClass(r.kind), proxy_files[i], bytes);
-      stageProxyBytes(proxies, bytes, proxy_files[i]);
+      proxy_bytes[i] = std::move(bytes);
     }
   }
   for (size_t i = 0; i < n_meshes; ++i)
@@ -209,7 +209,11 @@ int mergeShards(const MergeRequest& r, const CommonOptions& common) {
                   fmt::format("mesh '{}' is missing from its shard", scene.meshes[i].name),
                   "the manifest does not match the scene's split", "run that shard again");
 
-  // The proxies first, then the scene that lists them and the report: as the whole run.
+  // Only now, with every input checked, is anything staged (the output folder included): the
+  // proxies first, then the scene that lists them and the report, as the whole run.
+  OutputSet proxies(MissingFolders::kCreate);
+  for (size_t i = 0; i < n_meshes; ++i)
+    if (proxy_bytes[i]) stageProxyBytes(proxies, *proxy_bytes[i], proxy_files[i]);
   proxies.commit();
   const SceneRunInfo info{r.scene, r.kind, scene_out, r.cache_dir};
   SceneResult result = finishScene(scene, outcomes, std::vector<bool>(n_meshes, true), info);
