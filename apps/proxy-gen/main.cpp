@@ -135,15 +135,6 @@ std::unique_ptr<ProxyCache> openCache(const Args& a) {
   }
 }
 
-// The proxy cache folder a scene run asks for (null with --no-cache or without a default).
-std::optional<std::string> cacheDirSetting(const Args& a) {
-  if (a.no_cache) return std::nullopt;
-  if (!a.cache_dir.empty()) return a.cache_dir;
-  const fs::path dir = defaultProxyCacheDir();
-  if (dir.empty()) return std::nullopt;
-  return dir.string();
-}
-
 // Generates (or takes from the cache) the proxies of the meshes `selected`; never throws for a
 // mesh: its failure is its outcome.
 std::vector<MeshOutcome> generateSceneProxies(const SceneDesc& scene,
@@ -190,6 +181,15 @@ std::vector<MeshOutcome> generateSceneProxies(const SceneDesc& scene,
   return outcomes;
 }
 
+// The proxy cache folder a scene run asks for (null with --no-cache or without a default).
+std::optional<std::string> cacheDirSetting(const Args& a) {
+  if (a.no_cache) return std::nullopt;
+  if (!a.cache_dir.empty()) return a.cache_dir;
+  const fs::path dir = defaultProxyCacheDir();
+  if (dir.empty()) return std::nullopt;
+  return dir.string();
+}
+
 // --plan DIR --shards N: checks the scene and the outputs as the run would, writes the plan.
 int writePlan(const Args& a, const CommonOptions& common, const CLI::App& app) {
   const SceneDesc scene = loadSceneDesc(a.input);
@@ -199,7 +199,12 @@ int writePlan(const Args& a, const CommonOptions& common, const CLI::App& app) {
   checkOutputs(inputs, {{"--plan", plan_file.string()},
                         {"--out-dir", (fs::path(a.out_dir) / "scene.json").string()},
                         {"--json", common.json_path}});
-  writeShardPlan(a.plan_dir, a.plan_shards, planFlags(app), a.out_dir, common.json_path);
+  std::vector<std::string> flags = planFlags(app);
+  // The default cache folder of this machine for every unit and the merge: nodes with another
+  // HOME would otherwise each use (and report) their own.
+  if (const std::optional<std::string> cache = cacheDirSetting(a); cache && a.cache_dir.empty())
+    flags.push_back("--cache=" + fs::absolute(*cache).lexically_normal().string());
+  writeShardPlan(a.plan_dir, a.plan_shards, flags, a.out_dir, common.json_path);
   printHumanReport(common, fmt::format("plan of {} shards: {} (run: scripts/slurm/submit.sh {})\n",
                                        a.plan_shards, plan_file.string(), a.plan_dir));
   return kExitOk;
