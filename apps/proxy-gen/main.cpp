@@ -362,12 +362,13 @@ int main(int argc, char** argv) {
                      "meshes whose FNV-1a 64 hash of their name, mod n, is i; --out-dir then also "
                      "gets shard.json for --merge-shards (docs/proxy_gen_shards.md)")
           ->check(shardSpecValidator());
-  app.add_option("--merge-shards", a.merge_shards,
-                 "Scene input: merge the --out-dir folders of shards 0..n-1 (run with the same "
-                 "settings, which this run must repeat) into --out-dir: the files of one whole "
-                 "run, byte for byte")
-      ->expected(1, -1)
-      ->excludes(shard_opt);
+  auto* merge_opt =
+      app.add_option("--merge-shards", a.merge_shards,
+                     "Scene input: merge the --out-dir folders of shards 0..n-1 (run with the same "
+                     "settings, which this run must repeat) into --out-dir: the files of one whole "
+                     "run, byte for byte")
+          ->expected(1, -1)
+          ->excludes(shard_opt);
   auto* plan_opt =
       app.add_option("--plan", a.plan_dir,
                      "Scene input: write DIR/plan.json, the run as --shards N units "
@@ -375,7 +376,7 @@ int main(int argc, char** argv) {
   auto* shards_opt =
       app.add_option("--shards", a.plan_shards, "With --plan: the number of shards (units)")
           ->check(integerIn(1, kMaxPlanShards));
-  plan_opt->needs(shards_opt)->excludes(shard_opt);
+  plan_opt->needs(shards_opt)->excludes(shard_opt)->excludes(merge_opt);
   shards_opt->needs(plan_opt);
   app.add_option("--done", a.done_file,
                  "With --shard: write this file after every output is in place and the shard "
