@@ -10,7 +10,11 @@ Checks, each against facts fixed here (not produced by the code under test):
   the whole run's files byte for byte (every proxy and sidecar, scene.json) and its report
   except the timing keys ("seconds");
 - a mesh with "make_proxy": false and a 2-face ground are skipped in their shard as in the run;
-- with SUBMIT_SH: --plan DIR --shards 3 run by submit.sh --local --jobs 2 gives the same files.
+- with the proxy cache (a fresh folder for the whole run and again for the shards), 2 shards
+  merged give the whole run's files and report, its cache counts included;
+- with SUBMIT_SH: --plan DIR --shards 3 run by submit.sh --local --jobs 2 gives the same files;
+  after one unit's outputs and marker are deleted, submit.sh --resume --local runs it again and
+  the merge gives them again.
 """
 import hashlib
 import json
@@ -81,8 +85,8 @@ def write_scene(work: pathlib.Path) -> pathlib.Path:
     return path
 
 
-def gen(scene, out, *extra, expect=0):
-    return run([BIN / "proxy-gen", scene, *SETTINGS, "--out-dir", out, "-q", "--threads", "2",
+def gen(scene, out, *extra, expect=0, settings=SETTINGS):
+    return run([BIN / "proxy-gen", scene, *settings, "--out-dir", out, "-q", "--threads", "2",
                 "--json", str(out) + ".json", *extra], expect)
 
 
@@ -143,6 +147,29 @@ def main() -> None:
         compare(single, out, f"{n} shards")
         print(f"{n} shards (run in order {order}) merged == whole run")
 
+    # The cache: same folder name, empty each time, so both generate every proxy.
+    cache = work / "cache"
+    cached = ["--kind", "outside", "--cache", str(cache), "--seed", "7"]
+    shutil.rmtree(out, ignore_errors=True)
+    gen(scene, out, settings=cached)
+    single_cached = work / "single_cached"
+    out.rename(single_cached)
+    pathlib.Path(str(out) + ".json").rename(str(single_cached) + ".json")
+    counts = json.loads(pathlib.Path(str(single_cached) + ".json").read_text())["cache"]
+    # Every mesh but flower2 ("make_proxy": false never reaches the cache) is generated.
+    if (counts["cached"], counts["generated"]) != (0, len(names) - 1):
+        fail(f"whole run with a fresh cache: {counts}, expected 0 cached, "
+             f"{len(names) - 1} generated")
+    shutil.rmtree(cache)
+    dirs = []
+    for i in (1, 0):
+        dirs.append(work / "cached_shards" / f"s{i}")
+        gen(scene, dirs[-1], "--shard", f"{i}/2", settings=cached)
+    run([BIN / "proxy-gen", scene, *cached, "--out-dir", out, "-q", "--json", str(out) + ".json",
+         "--merge-shards", *dirs])
+    compare(single_cached, out, "2 shards with the cache")
+    print("2 shards with the proxy cache merged == whole run")
+
     if submit:
         plan = work / "plan"
         shutil.rmtree(out, ignore_errors=True)
@@ -156,6 +183,14 @@ def main() -> None:
                 fail(f"plan: units/{k}.done missing after submit.sh --local")
         compare(single, out, "plan of 3 shards via submit.sh --local")
         print("plan of 3 shards via submit.sh --local --jobs 2 == whole run")
+        (plan / "units" / "1.done").unlink()
+        shutil.rmtree(plan / "units" / "1.shard")
+        shutil.rmtree(out)
+        p = run(["bash", submit, plan, "--resume", "--local", "--jobs", "2"])
+        if "1" not in p.stdout + p.stderr or not (plan / "units" / "1.done").is_file():
+            fail(f"submit.sh --resume did not run unit 1 again:\n{p.stdout}\n{p.stderr}")
+        compare(single, out, "plan resumed after unit 1 was lost")
+        print("a lost unit run again by submit.sh --resume --local: merged == whole run")
     print("PASS")
 
 
