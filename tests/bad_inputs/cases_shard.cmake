@@ -63,4 +63,11 @@ shard_case(shard_of_a_mesh "@CORPUS@/shard/bunny.off -o @OUT@/p.ply --shard 0/2"
 shard_case(shard_plan_too_many
   "@CORPUS@/shard/scene.json --no-cache --out-dir @OUT@/m --plan @OUT@/plan --shards 1001"
   REGEX "--shards")
+shard_case(shard_plan_over_finished_units
+  "@CORPUS@/shard/scene.json --no-cache --out-dir @OUT@/m --plan @CORPUS@/shard/plan_done --shards 2"
+  REGEX "plan_done: the plan folder already holds finished units"
+  INPUTS @CORPUS@/shard/plan_done/units/0.done WATCH @CORPUS@/shard/plan_done
+         @CORPUS@/shard/plan_done/units)
+shard_case(shard_shards_without_plan
+  "@CORPUS@/shard/scene.json --no-cache --out-dir @OUT@/m --shards 2" REGEX "--shards")
 set_tests_properties(${shard_cases} PROPERTIES FIXTURES_REQUIRED "bad_inputs_corpus;bad_inputs_shard")

@@ -29,6 +29,9 @@ def build(out: pathlib.Path, data: pathlib.Path) -> None:
     d.mkdir()
     shutil.copyfile(data / "bunny.off", d / "bunny.off")
     (d / "scene.json").write_text(json.dumps(scene(["a", "b", "c"], [0.7, 0.7, 0.7]), indent=1))
+    # A plan folder with a finished unit: a new plan there would mix two runs' units.
+    (d / "plan_done" / "units").mkdir(parents=True)
+    (d / "plan_done" / "units" / "0.done").write_text("shard 0/2\n")
     # The same meshes, another albedo: another content hash.
     (d / "other_scene.json").write_text(
         json.dumps(scene(["a", "b", "c"], [0.5, 0.7, 0.7]), indent=1))
