@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """proxy-gen SCENE --shard i/n and --merge-shards on a small scene of bundled ecosys plants.
 
-proxy_gen_shards.py BIN_DIR DATA_DIR WORK_DIR [SUBMIT_SH]
+proxy_gen_shards.py BIN_DIR DATA_DIR WORK_DIR [SUBMIT_SH [--slurm REPO]]
 
 Checks, each against facts fixed here (not produced by the code under test):
 - the split is FNV-1a 64 of the mesh name mod n, computed here independently: each shard's
@@ -15,6 +15,9 @@ Checks, each against facts fixed here (not produced by the code under test):
 - with SUBMIT_SH: --plan DIR --shards 3 run by submit.sh --local --jobs 2 gives the same files;
   after one unit's outputs and marker are deleted, submit.sh --resume --local runs it again and
   the merge gives them again.
+- with --slurm REPO (instead of all of the above but the whole run): the same plan submitted to a
+  real single-node Slurm (scripts/slurm/local_cluster.sh) as a job array with --wait gives the
+  whole run's files; exit 77 (skip) only when Slurm cannot start here.
 """
 import hashlib
 import json
@@ -23,6 +26,7 @@ import random
 import shutil
 import subprocess
 import sys
+import tempfile
 
 PLANTS = {"flower": "YELLOWFLOWER2.drc", "grass": "GRASS9.drc", "flower2": "YELLOWFLOWER7.drc",
           "bush": "BUSH13.drc", "nettle": "URTICADIOICA9.drc", "grass3": "GRASS3.drc"}
@@ -108,6 +112,7 @@ def main() -> None:
     global BIN, DATA
     BIN, DATA, work = (pathlib.Path(a) for a in sys.argv[1:4])
     submit = sys.argv[4] if len(sys.argv) > 4 else None
+    slurm_repo = sys.argv[6] if len(sys.argv) > 6 and sys.argv[5] == "--slurm" else None
     shutil.rmtree(work, ignore_errors=True)
     work.mkdir(parents=True)
     scene = write_scene(work)
@@ -122,6 +127,9 @@ def main() -> None:
     want = {n: (n in ("ground", "flower2"), False) for n in names}
     if got != want:
         fail(f"whole run: (skipped, failed) per mesh {got}, expected {want}")
+
+    if slurm_repo:
+        sys.exit(on_slurm(slurm_repo, scene, single, work / "out", submit))
 
     rng = random.Random(11)
     for n in (1, 3, 9):
@@ -192,6 +200,38 @@ def main() -> None:
         compare(single, out, "plan resumed after unit 1 was lost")
         print("a lost unit run again by submit.sh --resume --local: merged == whole run")
     print("PASS")
+
+
+def on_slurm(repo, scene, single, out, submit):
+    """The 3-shard plan as a job array on a local Slurm cluster, merged by its dependent job."""
+    sys.path.insert(0, str(pathlib.Path(repo) / "tests" / "slurm"))
+    from cluster_support import SKIP, cluster, slurm_env, stop_when_gone
+    # munged serves its socket only below folders anyone can search: a short folder in /tmp.
+    cluster_dir = tempfile.mkdtemp(prefix="proxyvis-shards-cluster-")
+    pathlib.Path(cluster_dir).chmod(0o755)
+    stop_when_gone(repo, cluster_dir)
+    r = cluster(repo, cluster_dir, "start")
+    try:
+        if r.returncode == 4:
+            print(f"SKIP: Slurm cannot run here: {r.stderr.strip()}")
+            return SKIP
+        if r.returncode != 0:
+            fail(f"local_cluster.sh start: exit {r.returncode}: {r.stderr}")
+        plan = out.parent / "plan-slurm"
+        run([BIN / "proxy-gen", scene, *SETTINGS, "--out-dir", out, "--json", str(out) + ".json",
+             "--threads", "1", "--plan", plan, "--shards", "3"])
+        p = subprocess.run(["bash", submit, plan, "--wait", "--cpus-per-task", "1"],
+                           capture_output=True, text=True, timeout=600,
+                           env=slurm_env(cluster_dir))
+        if p.returncode != 0:
+            fail(f"submit.sh --wait: exit {p.returncode}\n{p.stdout}\n{p.stderr}")
+        compare(single, out, "plan of 3 shards on Slurm")
+        print("plan of 3 shards as a Slurm job array == whole run")
+        print("PASS")
+        return 0
+    finally:
+        cluster(repo, cluster_dir, "stop")
+        shutil.rmtree(cluster_dir, ignore_errors=True)
 
 
 if __name__ == "__main__":

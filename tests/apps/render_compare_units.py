@@ -23,7 +23,8 @@ import sys
 import tempfile
 import time
 
-SKIP = 77
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "slurm"))
+from cluster_support import SKIP, cluster, stop_when_gone  # noqa: E402
 
 
 class TestFailure(Exception):
@@ -182,20 +183,6 @@ def local(rc, repo, work):
     check(os.path.exists(os.path.join(plan2, "units", f"{k}.done")), "the killed unit did not rerun")
     check(os.path.exists(os.path.join(out2, "report.json")), "no report after --resume --local")
     print("killed unit rerun by submit.sh --resume --local: OK")
-
-
-def cluster(repo, cluster_dir, command):
-    return subprocess.run([os.path.join(repo, "scripts", "slurm", "local_cluster.sh"), "--dir",
-                           cluster_dir, command], capture_output=True, text=True, timeout=90)
-
-
-def stop_when_gone(repo, cluster_dir):
-    """Stops the cluster once this process is gone, even when ctest kills it on a timeout."""
-    script = (f"while kill -0 {os.getpid()} 2>/dev/null; do sleep 1; done; exec "
-              f"{shlex.quote(os.path.join(repo, 'scripts', 'slurm', 'local_cluster.sh'))} "
-              f"--dir {shlex.quote(cluster_dir)} stop")
-    subprocess.Popen(["bash", "-c", script], start_new_session=True, stdin=subprocess.DEVNULL,
-                     stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
 
 
 def on_slurm(rc, repo, work):

@@ -12,15 +12,15 @@ and after the failure is cleared re-run only the failed unit and merge.
 """
 import json
 import os
-import shlex
 import shutil
 import subprocess
 import sys
 import tempfile
 import time
 
+from cluster_support import SKIP, cluster, stop_when_gone
+
 UNITS = 8
-SKIP = 77
 # Passed through the generated job scripts unchanged: spaces, quotes, $ and a glob.
 TAG = "a $HOME \"q\" 'b' *"
 
@@ -169,21 +169,6 @@ def refuse_second_submission(repo, env, work):
     check(r.returncode == 2 and len(lines) == 1 and "still queued or running" in lines[0],
           f"second submission while running: exit {r.returncode}: {r.stderr!r}")
     # stop cancels the sleeping units
-
-
-def cluster(repo, cluster_dir, command):
-    return subprocess.run([os.path.join(repo, "scripts", "slurm", "local_cluster.sh"), "--dir",
-                           cluster_dir, command], capture_output=True, text=True, timeout=90)
-
-
-def stop_when_gone(repo, cluster_dir):
-    """A detached watcher that stops the cluster once this test process is gone, even when
-    ctest kills it on a timeout (no finally: clause runs then)."""
-    script = (f"while kill -0 {os.getpid()} 2>/dev/null; do sleep 1; done; exec "
-              f"{shlex.quote(os.path.join(repo, 'scripts', 'slurm', 'local_cluster.sh'))} "
-              f"--dir {shlex.quote(cluster_dir)} stop")
-    subprocess.Popen(["bash", "-c", script], start_new_session=True, stdin=subprocess.DEVNULL,
-                     stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
 
 
 def daemon_pids(cluster_dir):

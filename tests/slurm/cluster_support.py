@@ -1,0 +1,27 @@
+"""The local single-node Slurm cluster for tests: start, stop, and a watcher that stops it when
+the test process is gone (ctest's timeout kills a test without running its finally: clauses)."""
+import os
+import shlex
+import subprocess
+
+SKIP = 77  # ctest's SKIP_RETURN_CODE for the cluster tests
+
+
+def cluster(repo, cluster_dir, command):
+    """Runs local_cluster.sh --dir CLUSTER_DIR COMMAND (start, stop, status, env)."""
+    return subprocess.run([os.path.join(repo, "scripts", "slurm", "local_cluster.sh"), "--dir",
+                           cluster_dir, command], capture_output=True, text=True, timeout=90)
+
+
+def stop_when_gone(repo, cluster_dir):
+    """A detached watcher that stops the cluster once this test process is gone."""
+    script = (f"while kill -0 {os.getpid()} 2>/dev/null; do sleep 1; done; exec "
+              f"{shlex.quote(os.path.join(repo, 'scripts', 'slurm', 'local_cluster.sh'))} "
+              f"--dir {shlex.quote(cluster_dir)} stop")
+    subprocess.Popen(["bash", "-c", script], start_new_session=True, stdin=subprocess.DEVNULL,
+                     stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+
+
+def slurm_env(cluster_dir):
+    """The environment that points sbatch & co at the cluster."""
+    return dict(os.environ, SLURM_CONF=os.path.join(cluster_dir, "slurm.conf"))
