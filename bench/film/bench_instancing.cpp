@@ -187,7 +187,7 @@ int main(int argc, char** argv) {
         "load s | peak RSS MiB | RSS after load MiB | Embree peak MiB | Embree kept MiB | "
         "shadow ns/ray | Mrays/s/core | primary ns/px | ns/sample | blocked |\n"
         "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
-    std::vector<double> proto_tris, instances, rss, embree;
+    std::vector<double> proto_tris, instances, rss, embree, load;
     for (const Case& c : parseCases(cases_text)) {
       const pv::SceneDesc desc = variant(scene, c.prototype_copies, 1);
       const int prototypes = pv::bench::instancedMeshCount(desc);
@@ -226,20 +226,25 @@ int main(int argc, char** argv) {
       instances.push_back(n_inst);
       rss.push_back(peak);
       embree.push_back(j["embree_peak"].get<double>());
+      load.push_back(j["load_seconds"].get<double>());
     }
-    const auto print_fit = [&](const char* what, const std::vector<double>& y) {
+    const auto print_fit = [&](const char* what, const std::vector<double>& y, bool seconds) {
       const auto fit = pv::bench::fitLinear2(proto_tris, instances, y);
       if (!fit) {
-        std::printf("\n%s: the cases do not determine the fit (vary P and N)\n", what);
+        std::printf("\n%s: the cases do not determine the fit (vary K and N)\n", what);
         return;
       }
-      std::printf(
-          "\n%s = %.1f B x prototype triangle + %.0f B x instance + %.1f MiB "
-          "(max residual %.1f %%)\n",
-          what, fit->a, fit->b, mib(fit->c), 100 * fit->max_relative_residual);
+      if (seconds)
+        std::printf("\n%s = %.2f us x prototype triangle + %.2f us x instance + %.2f s", what,
+                    1e6 * fit->a, 1e6 * fit->b, fit->c);
+      else
+        std::printf("\n%s = %.1f B x prototype triangle + %.0f B x instance + %.1f MiB", what,
+                    fit->a, fit->b, mib(fit->c));
+      std::printf(" (max residual %.1f %%)\n", 100 * fit->max_relative_residual);
     };
-    print_fit("peak RSS", rss);
-    print_fit("Embree peak", embree);
+    print_fit("peak RSS", rss, false);
+    print_fit("Embree peak", embree, false);
+    print_fit("load (wall)", load, true);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_instancing: error: %s\n", e.what());
     return 2;

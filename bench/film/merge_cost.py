@@ -7,7 +7,12 @@ partials), runs its units with scripts/slurm/submit.sh --local --jobs 2 (one thr
 times `render-compare --merge` on its own --repeats times (wall, user + sys CPU, peak RSS; the
 best of the repeats). Prints the unit result sizes per pixel by kind and the merge table.
 
-  bench/film/merge_cost.py build out/film/merge [--cases 128x4,256x4,256x16,512x4] [--repeats 3]
+  bench/film/merge_cost.py build out/film/merge [--cases 128x4,256x4,256x16,512x4,1024x4]
+      [--repeats 3]
+  bench/film/merge_cost.py build out/film/merge --tables-only   # again from merge_cost.json
+
+Then fits merge CPU = c + a * units * pixels + b * pixels (reading the units grows with both;
+writing the report's images with the pixels alone) by least squares.
 """
 import argparse
 import json
@@ -82,17 +87,54 @@ def run_case(build, out, size, seeds, repeats):
             "merge_walls": [m[0] for m in merges], "report_bytes": report}
 
 
+def solve3(rows, ys):
+    """Least squares for 3 coefficients: the normal equations, Gauss-Jordan."""
+    m = [[sum(r[i] * r[j] for r in rows) for j in range(3)] +
+         [sum(r[i] * y for r, y in zip(rows, ys))] for i in range(3)]
+    for c in range(3):
+        p = max(range(c, 3), key=lambda r: abs(m[r][c]))
+        m[c], m[p] = m[p], m[c]
+        if abs(m[c][c]) < 1e-300:
+            return None
+        for r in range(3):
+            if r != c:
+                f = m[r][c] / m[c][c]
+                m[r] = [a - f * b for a, b in zip(m[r], m[c])]
+    return [m[i][3] / m[i][i] for i in range(3)]
+
+
+def print_fit(results):
+    if len(results) < 3:
+        return
+    # Columns scaled to about 1 (pixels ~1e6) before solving.
+    rows = [(1.0, r["units"] * r["size"] ** 2 / 1e6, r["size"] ** 2 / 1e6) for r in results]
+    fit = solve3(rows, [r["merge_cpu"] for r in results])
+    if fit is None:
+        print("\nmerge CPU: the cases do not determine the fit (vary units and size)")
+        return
+    c, a, b = fit
+    worst = max(abs(r["merge_cpu"] - (c + a * u + b * p)) / r["merge_cpu"]
+                for r, (_, u, p) in zip(results, rows))
+    print(f"\nmerge CPU s = {c:.2f} + {a:.3f} us x unit x pixel + {b:.2f} us x pixel "
+          f"(max residual {100 * worst:.0f} %)")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("build")
     ap.add_argument("out")
-    ap.add_argument("--cases", default="128x4,256x4,256x16,512x4")
+    ap.add_argument("--cases", default="128x4,256x4,256x16,512x4,1024x4")
     ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--tables-only", action="store_true",
+                    help="print the tables of OUT/merge_cost.json; run nothing")
     a = ap.parse_args()
     if a.repeats < 1 or a.repeats > 20:
         raise SystemExit("merge_cost.py: error: --repeats: must be in [1, 20]")
     results = []
-    for case in a.cases.split(","):
+    if a.tables_only:
+        with open(os.path.join(a.out, "merge_cost.json")) as f:
+            results = json.load(f)
+    for case in ([] if a.tables_only else a.cases.split(",")):
         size, seeds = (int(v) for v in case.split("x"))
         results.append(run_case(a.build, a.out, size, seeds, a.repeats))
         print(f"case {case} done", file=sys.stderr, flush=True)
@@ -118,8 +160,10 @@ def main():
               f"{r['units_wall']:.1f} | {r['merge_wall']:.2f} ({walls}) | {r['merge_cpu']:.2f} | "
               f"{r['merge_rss_kib'] / 1024:.0f} | {r['report_bytes'] / 1e6:.1f} | "
               f"{1e6 * r['merge_cpu'] / (r['units'] * kpx):.1f} |")
-    with open(os.path.join(a.out, "merge_cost.json"), "w") as f:
-        json.dump(results, f, indent=1)
+    print_fit(results)
+    if not a.tables_only:
+        with open(os.path.join(a.out, "merge_cost.json"), "w") as f:
+            json.dump(results, f, indent=1)
 
 
 if __name__ == "__main__":
