@@ -8,7 +8,6 @@
 //
 //   build/bin/bench_instancing out/ecosys/proxies/scene.json [--no-proxies]
 //       [--cases 1x1,1x10,1x30,1x100,4x1,4x10,16x1]
-#include <fmt/format.h>
 #include <tbb/global_control.h>
 
 #include <CLI/CLI.hpp>
