@@ -19,6 +19,7 @@
 #include "proxies/check/class_trust.h"
 #include "reference.h"
 #include "render/image_io.h"
+#include "render/oiio_module.h"
 #include "render/render_scene.h"
 #include "runs.h"
 #include "scene/scene_desc.h"
@@ -263,6 +264,7 @@ int runCompare(CompareOptions& o, const CLI::App& app, const fs::path& plan_dir)
   // leaves nothing of the previous report, a failed or killed one leaves it intact. Staged
   // before any rendering, so an unwritable --out fails in a second (exit 3).
   StagedFolder folder(o.out, "render-compare", "report.json");
+  oiioModule();  // the report's images need it: a missing module fails now, not after the renders
 
   // A claimed class the proxy file no longer matches is proven again or dropped before any
   // estimator relies on it; a downgrade is always said on stderr (the tables would hide the bias).
