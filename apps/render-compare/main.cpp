@@ -152,7 +152,7 @@ int reportStudy(const CompareOptions& o, const SceneDesc& desc, const StudyPlan&
   std::vector<CellResult>& cells = study.cells;
   const std::vector<std::string>& stems = study.stems;
   // The attainable gain, from this run's own measurements (docs/performance.md, the ceiling).
-  const ReportCeiling ceiling = studyCeiling(plan, results, cells);
+  const ReportCeiling ceiling = studyCeiling(o, plan, results, cells);
   double reference_seconds = 0;
   const std::vector<const Image*> partials = referencePartials(plan, results, reference_seconds);
   Reference ref = cached_reference
