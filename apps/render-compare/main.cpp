@@ -12,6 +12,7 @@
 
 #include "ceiling_phase.h"
 #include "compare_options.h"
+#include "huge_page_malloc.h"
 #include "metrics/html_report.h"
 #include "metrics/image_error.h"
 #include "metrics/report.h"
@@ -334,6 +335,7 @@ std::optional<int> runStudyCommand(int argc, char** argv) {
 }  // namespace proxyvis
 
 int main(int argc, char** argv) {
+  proxyvis::execWithHugePageMalloc(argv);
   if (const std::optional<int> status = proxyvis::runStudyCommand(argc, argv)) return *status;
   CLI::App app{
       "render-compare: render a scene with each visibility estimator at equal samples and at "
