@@ -3,7 +3,7 @@
 # single (one process) and planned (--plan, every unit one after the other, --merge), alternately,
 # N times. CPU time is user + sys of each process (GNU time). Prints a Markdown table: the single
 # run's CPU, the planned run's CPU per phase (plan, each unit by kind, merge), its total and the
-# ratio planned / single, each as the median with min and max over the N rounds.
+# difference and ratio to the single run, each as the median with min and max over the N rounds.
 #   bench/render_compare/bench_unit_overhead.sh [BUILD_DIR] [OUT_DIR]
 # Environment: N (rounds, default 3); SCENE (default: dragon-plane with outside proxies made by
 # proxy-gen in OUT_DIR); FLAGS (the study, default the coordinator's: exact and roulette at
@@ -65,6 +65,7 @@ for r, mode, phase, s in rows:
     else:
         single[r] = float(s)
 by[("planned", "total")] = [totals[r] for r in single]
+by[("planned - single", "fixed cost of planning")] = [totals[r] - single[r] for r in single]
 by[("planned / single", "ratio")] = [totals[r] / single[r] for r in single]
 def cell(v):
     return f"{statistics.median(v):.2f} ({min(v):.2f}-{max(v):.2f})"
