@@ -77,6 +77,7 @@ build_sanitize() {
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g -DNDEBUG" -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g -DNDEBUG" \
     -DCMAKE_CXX_FLAGS="$flags $warn" -DCMAKE_C_FLAGS="$flags $warn" \
     -DCMAKE_EXE_LINKER_FLAGS="$flags" -DCMAKE_SHARED_LINKER_FLAGS="$flags" \
+    -DCMAKE_MODULE_LINKER_FLAGS="$flags" \
     -DPROXYVIS_BUILD_BENCH=OFF
   cmake --build "$dir" -j "$JOBS"
   # Tests labelled not_sanitized are too slow under ASan (see their definition for why).

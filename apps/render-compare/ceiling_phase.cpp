@@ -1,6 +1,9 @@
 #include "ceiling_phase.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <iterator>
+#include <string>
 
 #include "estimate/ceiling.h"
 #include "render/ceiling_stats.h"
@@ -12,7 +15,7 @@ namespace proxyvis {
 
 namespace {
 
-// Samples per pixel of the exact render made for c_s when the run has no exact cell.
+// Samples per pixel of the exact render made for c_s when the study has no exact cell.
 constexpr int kShadingRenderSpp = 4;
 
 constexpr const char* kModel =
@@ -48,40 +51,53 @@ ReportCeilingLight toReport(const std::string& name, const CeilingSummary& s) {
 
 }  // namespace
 
-ReportCeiling runCeilingPhase(const RenderScene& scene, const CompareOptions& o,
-                              const std::vector<CellResult>& cells, double planned_seconds) {
+bool ceilingNeedsOwnRender(const CompareOptions& o) {
+  const bool exact_cells = std::find(o.estimator_list.begin(), o.estimator_list.end(),
+                                     EstimatorKind::kExact) != o.estimator_list.end() &&
+                           (!o.spp_list.empty() || o.equal_time > 0);
+  return !exact_cells;
+}
+
+CeilingUnitMeasurement measureCeiling(const RenderScene& scene, const CompareOptions& o,
+                                      double planned_seconds, RenderResult* own_exact) {
   const Stopwatch clock;
-  double renders_seconds = 0;
-  std::vector<const RenderResult*> exact;
-  for (const CellResult& c : cells) {
-    renders_seconds += c.row.seconds * c.row.seeds;
-    if (c.row.estimator == estimatorName(EstimatorKind::kExact)) exact.push_back(&c.first);
-  }
-  if (planned_seconds >= 0) renders_seconds = planned_seconds;
   RenderSettings settings;
   settings.estimator = o.render.estimatorSetup(EstimatorKind::kExact);
   settings.seed = hashKeys(o.common.seed, uint64_t(0));  // the segments of every cell's seed 1
   settings.quiet = true;
-  const CeilingMeasurement m =
-      measureCeilingStats(scene, settings, kCeilingPasses, kCeilingTimeShare * renders_seconds);
-  RenderResult own;
-  if (exact.empty()) {
+  CeilingUnitMeasurement unit;
+  unit.measurement =
+      measureCeilingStats(scene, settings, kCeilingPasses, kCeilingTimeShare * planned_seconds);
+  if (own_exact) {
     settings.spp = kShadingRenderSpp;
-    own = render(scene, settings);
-    exact.push_back(&own);
+    *own_exact = render(scene, settings);
   }
-  const double c_s = shadingNsPerSegment(exact, m);
-  const CeilingResult result = computeCeiling(ceilingInput(scene, m, c_s, o.render.q_min));
+  unit.seconds = clock.seconds();
+  unit.pixels = double(scene.camera().width()) * scene.camera().height();
+  return unit;
+}
+
+ReportCeiling finishCeiling(const CeilingUnitMeasurement& unit,
+                            const std::vector<const RenderResult*>& exact_renders,
+                            ProxyClass proxy_class, bool uses_proxies, const CompareOptions& o) {
+  const CeilingMeasurement& m = unit.measurement;
+  // ceilingInput() (render/ceiling_stats.h) without the scene: the merge has only its facts.
+  CeilingInput input;
+  input.regions = m.regions;
+  input.num_lights = m.num_lights;
+  input.per_sample_ns = shadingNsPerSegment(exact_renders, m);
+  input.proxy_class = proxy_class;
+  input.q_min = o.render.q_min;
+  input.uses_proxies = uses_proxies;
+  const CeilingResult result = computeCeiling(input);
 
   ReportCeiling c;
   c.value = result.scene.ceiling;
   c.explanation = result.explanation;
   c.model = kModel;
   c.passes = m.passes;
-  c.seconds = clock.seconds();
-  c.run_share = renders_seconds > 0 ? c.seconds / renders_seconds : 0;
-  const double pixels = double(scene.camera().width()) * scene.camera().height();
-  c.exact_mse_1spp = m.passes > 0 ? result.scene.var_exact / m.passes / pixels : 0;
+  c.seconds = unit.seconds;
+  c.exact_mse_1spp = m.passes > 0 ? result.scene.var_exact / m.passes / unit.pixels : 0;
   for (size_t i = 0; i < result.lights.size(); ++i)
     c.lights.push_back(toReport(std::to_string(i), result.lights[i]));
   c.lights.push_back(toReport("all", result.scene));
@@ -89,6 +105,52 @@ ReportCeiling runCeilingPhase(const RenderScene& scene, const CompareOptions& o,
     std::fprintf(stderr, "render-compare: ceiling %.3fx exact (%d passes, %.2f s): %s\n", c.value,
                  c.passes, c.seconds, c.explanation.c_str());
   return c;
+}
+
+nlohmann::json ceilingMeasurementToJson(const CeilingUnitMeasurement& unit) {
+  const CeilingMeasurement& m = unit.measurement;
+  // One array per region, in CeilingRegionStats' order: a 512x512 image has 2 k regions per light.
+  nlohmann::json regions = nlohmann::json::array();
+  for (const CeilingRegionStats& r : m.regions)
+    regions.push_back({r.light, r.segments, r.blocked, r.mh, r.hm, r.visibility_var, r.var_fv,
+                       r.f2_mh, r.f2_hm, r.cost_proxy[0], r.cost_proxy[1], r.cost_original[0],
+                       r.cost_original[1]});
+  return {{"seconds", unit.seconds},
+          {"pixels", unit.pixels},
+          {"num_lights", m.num_lights},
+          {"passes", m.passes},
+          {"measurement_seconds", m.seconds},
+          {"ticks_per_ns", m.ticks_per_ns},
+          {"cpu_per_wall", m.cpu_per_wall},
+          {"segments", m.segments},
+          {"regions", regions}};
+}
+
+CeilingUnitMeasurement ceilingMeasurementFromJson(const nlohmann::json& j) {
+  CeilingUnitMeasurement unit;
+  CeilingMeasurement& m = unit.measurement;
+  unit.seconds = j.at("seconds").get<double>();
+  unit.pixels = j.at("pixels").get<double>();
+  m.num_lights = j.at("num_lights").get<uint32_t>();
+  m.passes = j.at("passes").get<int>();
+  m.seconds = j.at("measurement_seconds").get<double>();
+  m.ticks_per_ns = j.at("ticks_per_ns").get<double>();
+  m.cpu_per_wall = j.at("cpu_per_wall").get<double>();
+  m.segments = j.at("segments").get<uint64_t>();
+  for (const nlohmann::json& a : j.at("regions")) {
+    CeilingRegionStats r;
+    // clang-format off
+    double* fields[] = {&r.segments, &r.blocked, &r.mh, &r.hm, &r.visibility_var, &r.var_fv,
+                        &r.f2_mh, &r.f2_hm, &r.cost_proxy[0], &r.cost_proxy[1],
+                        &r.cost_original[0], &r.cost_original[1]};
+    // clang-format on
+    if (!a.is_array() || a.size() != std::size(fields) + 1)
+      throw nlohmann::json::type_error::create(302, "a ceiling region is not 13 numbers", &a);
+    r.light = a.at(0).get<uint32_t>();
+    for (size_t i = 0; i < std::size(fields); ++i) *fields[i] = a.at(i + 1).get<double>();
+    m.regions.push_back(r);
+  }
+  return unit;
 }
 
 void applyCeiling(Report& report, const ReportCeiling& ceiling) {

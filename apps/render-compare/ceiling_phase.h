@@ -1,12 +1,14 @@
 #pragma once
-// render-compare's ceiling phase: after the cells are rendered, a short measurement of the
-// renderer's own segments against proxy and original (render/ceiling_stats.h), priced with the
-// exact cells' shading cost, gives the oracle ceiling (estimate/ceiling.h) that every report row
-// is compared with.
+// render-compare's ceiling: a short measurement of the renderer's own segments against proxy and
+// original (render/ceiling_stats.h), made by the study's ceiling unit, priced at the merge with
+// the exact cells' shading cost, gives the oracle ceiling (estimate/ceiling.h) that every report
+// row is compared with.
+#include <nlohmann/json.hpp>
 #include <vector>
 
 #include "compare_options.h"
 #include "metrics/report.h"
+#include "render/ceiling_stats.h"
 #include "runs.h"
 
 namespace proxyvis {
@@ -16,12 +18,36 @@ inline constexpr int kCeilingPasses = 8;
 // ...and after the first two, none starts once the phase has used this share of the renders' time.
 inline constexpr double kCeilingTimeShare = 0.05;
 
-// Measures and computes the ceiling. `cells` are the rendered cells (their exact renders give
-// c_s; without one, a short exact render is made). Prints one line on stderr unless quiet.
-// renders_seconds >= 0 replaces the cells' render time in the time cap (a work unit, plan.h,
-// runs before the cells are known).
-ReportCeiling runCeilingPhase(const RenderScene& scene, const CompareOptions& options,
-                              const std::vector<CellResult>& cells, double renders_seconds = -1);
+// What the ceiling unit measured; the ceiling itself needs c_s, which the exact cells' renders
+// give, so it is computed where they are known (finishCeiling).
+struct CeilingUnitMeasurement {
+  CeilingMeasurement measurement;
+  double seconds = 0;  // wall time of the unit's measurement (and of its own render, if made)
+  double pixels = 0;   // of the image (the per-pixel MSE of exact at 1 spp)
+};
+
+// True when no cell of the study is an exact render: then the ceiling unit makes its own short
+// exact render to price c_s (with exact among the estimators, the cells' renders serve, as in a
+// single run, and the unit renders nothing).
+bool ceilingNeedsOwnRender(const CompareOptions& options);
+
+// The ceiling unit's work: the measurement, its time cap a share of the planned renders' time
+// (infinite: the pass cap alone). `own_exact` (when ceilingNeedsOwnRender) receives the short
+// exact render.
+CeilingUnitMeasurement measureCeiling(const RenderScene& scene, const CompareOptions& options,
+                                      double planned_seconds, RenderResult* own_exact);
+
+// The ceiling from the unit's measurement, c_s priced with `exact_renders` (at least one: the
+// exact cells' first renders, or the unit's own) and the scene's verified proxy class. Prints one
+// line on stderr unless quiet.
+ReportCeiling finishCeiling(const CeilingUnitMeasurement& unit,
+                            const std::vector<const RenderResult*>& exact_renders,
+                            ProxyClass proxy_class, bool uses_proxies,
+                            const CompareOptions& options);
+
+// The measurement in a unit result's header, and back (every number, exactly).
+nlohmann::json ceilingMeasurementToJson(const CeilingUnitMeasurement& unit);
+CeilingUnitMeasurement ceilingMeasurementFromJson(const nlohmann::json& j);
 
 // Puts the ceiling in the report and on every row (rows' `ceiling`, hence `of_ceiling`).
 void applyCeiling(Report& report, const ReportCeiling& ceiling);

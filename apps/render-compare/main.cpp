@@ -12,6 +12,7 @@
 
 #include "ceiling_phase.h"
 #include "compare_options.h"
+#include "huge_page_malloc.h"
 #include "metrics/html_report.h"
 #include "metrics/image_error.h"
 #include "metrics/report.h"
@@ -19,6 +20,7 @@
 #include "proxies/check/class_trust.h"
 #include "reference.h"
 #include "render/image_io.h"
+#include "render/oiio_module.h"
 #include "render/render_scene.h"
 #include "runs.h"
 #include "scene/scene_desc.h"
@@ -151,7 +153,7 @@ int reportStudy(const CompareOptions& o, const SceneDesc& desc, const StudyPlan&
   std::vector<CellResult>& cells = study.cells;
   const std::vector<std::string>& stems = study.stems;
   // The attainable gain, from this run's own measurements (docs/performance.md, the ceiling).
-  const ReportCeiling ceiling = studyCeiling(plan, results, cells);
+  const ReportCeiling ceiling = studyCeiling(o, plan, results, cells);
   double reference_seconds = 0;
   const std::vector<const Image*> partials = referencePartials(plan, results, reference_seconds);
   Reference ref = cached_reference
@@ -263,6 +265,7 @@ int runCompare(CompareOptions& o, const CLI::App& app, const fs::path& plan_dir)
   // leaves nothing of the previous report, a failed or killed one leaves it intact. Staged
   // before any rendering, so an unwritable --out fails in a second (exit 3).
   StagedFolder folder(o.out, "render-compare", "report.json");
+  oiioModule();  // the report's images need it: a missing module fails now, not after the renders
 
   // A claimed class the proxy file no longer matches is proven again or dropped before any
   // estimator relies on it; a downgrade is always said on stderr (the tables would hide the bias).
@@ -332,6 +335,7 @@ std::optional<int> runStudyCommand(int argc, char** argv) {
 }  // namespace proxyvis
 
 int main(int argc, char** argv) {
+  proxyvis::execWithHugePageMalloc(argv);
   if (const std::optional<int> status = proxyvis::runStudyCommand(argc, argv)) return *status;
   CLI::App app{
       "render-compare: render a scene with each visibility estimator at equal samples and at "

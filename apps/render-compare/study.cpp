@@ -135,14 +135,23 @@ StudyCells assembleCells(const CompareOptions& o, const StudyPlan& plan,
   return out;
 }
 
-ReportCeiling studyCeiling(const StudyPlan& plan, const std::vector<UnitResult>& results,
+ReportCeiling studyCeiling(const CompareOptions& o, const StudyPlan& plan,
+                           const std::vector<UnitResult>& results,
                            const std::vector<CellResult>& cells) {
-  ReportCeiling ceiling;
+  const UnitResult* unit = nullptr;
   for (size_t k = 0; k < plan.units.size(); ++k)
-    if (plan.units[k].kind == UnitKind::kCeiling && results[k].ceiling)
-      ceiling = *results[k].ceiling;
+    if (plan.units[k].kind == UnitKind::kCeiling && results[k].ceiling) unit = &results[k];
+  if (!unit) return {};
+  std::vector<const RenderResult*> exact;
   double renders_seconds = 0;
-  for (const CellResult& c : cells) renders_seconds += c.row.seconds * c.row.seeds;
+  for (const CellResult& c : cells) {
+    renders_seconds += c.row.seconds * c.row.seeds;
+    if (c.row.estimator == estimatorName(EstimatorKind::kExact)) exact.push_back(&c.first);
+  }
+  if (exact.empty())
+    for (const RenderResult& r : unit->renders) exact.push_back(&r);
+  ReportCeiling ceiling =
+      finishCeiling(*unit->ceiling, exact, unit->facts.proxy_class, unit->facts.uses_proxies, o);
   ceiling.run_share = renders_seconds > 0 ? ceiling.seconds / renders_seconds : 0;
   return ceiling;
 }

@@ -47,8 +47,11 @@ struct StudyCells {
 StudyCells assembleCells(const CompareOptions& options, const StudyPlan& plan,
                          std::vector<UnitResult>& results, const std::filesystem::path& scene);
 
-// The ceiling unit's result, its share of the renders' time filled in from the cells.
-ReportCeiling studyCeiling(const StudyPlan& plan, const std::vector<UnitResult>& results,
+// The ceiling from the ceiling unit's measurement, c_s priced with the exact cells' first renders
+// (or the unit's own exact render when the study has none), its share of the renders' time
+// filled in from the cells.
+ReportCeiling studyCeiling(const CompareOptions& options, const StudyPlan& plan,
+                           const std::vector<UnitResult>& results,
                            const std::vector<CellResult>& cells);
 
 // The reference's partial renders, in partial order.

@@ -124,37 +124,6 @@ RenderResult renderFromJson(const nlohmann::json& j) {
   return r;
 }
 
-// The inverse of ceilingToJson (metrics/ceiling_report.h); readUnitResult checks the round trip.
-ReportCeiling ceilingFromJson(const nlohmann::json& j) {
-  ReportCeiling c;
-  c.value = j.at("value").get<double>();
-  c.explanation = j.at("explanation").get<std::string>();
-  c.model = j.at("model").get<std::string>();
-  c.passes = j.at("passes").get<int>();
-  c.seconds = j.at("seconds").get<double>();
-  c.run_share = j.at("run_share").get<double>();
-  c.exact_mse_1spp = j.at("exact_mse_1spp").get<double>();
-  for (const nlohmann::json& l : j.at("lights")) {
-    ReportCeilingLight x;
-    x.light = l.at("light").get<std::string>();
-    x.segments = l.at("segments").get<double>();
-    x.p_blocked = l.at("p_proxy_blocked").get<double>();
-    x.p_mh = l.at("p_mh").get<double>();
-    x.p_hm = l.at("p_hm").get<double>();
-    x.visibility_var = l.at("var_exact").get<double>();
-    for (int i = 0; i < 2; ++i) {
-      x.cost_proxy[i] = l.at("cost_proxy").at(i).get<double>();
-      x.cost_original[i] = l.at("cost_original").at(i).get<double>();
-    }
-    x.cost_shading = l.at("cost_per_sample").get<double>();
-    x.regions = l.at("regions").get<int>();
-    x.regions_roulette = l.at("regions_roulette").get<int>();
-    x.ceiling = l.at("ceiling").get<double>();
-    c.lights.push_back(x);
-  }
-  return c;
-}
-
 // A fingerprint of the study (its flags and unit list): a unit of another plan with the same
 // scene and seed is still refused.
 std::string studyId(const StudyPlan& plan) {
@@ -224,7 +193,10 @@ UnitResult runUnit(const RenderScene& scene, const SceneFacts& facts, const Comp
       const double planned =
           o.equal_time > 0 ? o.equal_time * double(o.estimator_list.size()) * o.seeds * o.repeats
                            : std::numeric_limits<double>::infinity();
-      result.ceiling = runCeilingPhase(scene, o, {}, planned);
+      RenderResult own;
+      const bool needs_own = ceilingNeedsOwnRender(o);
+      result.ceiling = measureCeiling(scene, o, planned, needs_own ? &own : nullptr);
+      if (needs_own) result.renders.push_back(std::move(own));
       break;
     }
     case UnitKind::kReference:
@@ -262,7 +234,7 @@ void writeUnitResult(const fs::path& dir, const StudyPlan& plan, size_t unit,
                  {"study", studyId(plan)},
                  {"facts", factsToJson(result.facts)},
                  {"renders", renders}};
-  if (result.ceiling) file.header["ceiling"] = ceilingToJson(*result.ceiling);
+  if (result.ceiling) file.header["ceiling"] = ceilingMeasurementToJson(*result.ceiling);
   writeUnitFile(unitResultPath(dir, unit), std::move(file));
   writeTextAtomically(unitDonePath(dir, unit), fmt::format("{}\n", unit));  // the marker, last
 }
@@ -305,10 +277,10 @@ UnitResult readUnitResult(const fs::path& dir, const StudyPlan& plan, size_t uni
       result.renders.push_back(std::move(r));
     }
     if (h.contains("ceiling")) {
-      result.ceiling = ceilingFromJson(h.at("ceiling"));
-      // A field added to ReportCeiling but not read back here would vanish from sharded reports.
-      PV_CHECK_MSG(ceilingToJson(*result.ceiling) == h.at("ceiling"),
-                   "ceilingFromJson() does not read back every field of ceilingToJson()");
+      result.ceiling = ceilingMeasurementFromJson(h.at("ceiling"));
+      // A field added to the measurement but not read back here would vanish from sharded runs.
+      PV_CHECK_MSG(ceilingMeasurementToJson(*result.ceiling) == h.at("ceiling"),
+                   "ceilingMeasurementFromJson() does not read back every field");
     }
   } catch (const nlohmann::json::exception& e) {
     throw Error(path.string(), "not a complete render-compare unit result",

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "ceiling_phase.h"
 #include "metrics/report.h"
 #include "plan.h"
 #include "proxies/check/class_trust.h"
@@ -34,7 +35,9 @@ struct UnitResult {
   // equal-spp and reference: one render; equal-time: one per estimator of --estimators, in
   // that order. Renders of the first seed keep every image, the others their radiance only.
   std::vector<RenderResult> renders;
-  std::optional<ReportCeiling> ceiling;  // the ceiling unit
+  // The ceiling unit: its measurement (the ceiling is computed by the merge, studyCeiling), and
+  // in `renders` its own short exact render when the study has no exact cell.
+  std::optional<CeilingUnitMeasurement> ceiling;
   SceneFacts facts;
 };
 

@@ -11,6 +11,7 @@
 #include "proxies/check/class_trust.h"
 #include "render/image_io.h"
 #include "render/image_metadata.h"
+#include "render/oiio_module.h"
 #include "render/render_options.h"
 #include "render/render_scene.h"
 #include "render/renderer.h"
@@ -61,6 +62,7 @@ int runRender(RenderOptions& o) {
     throw Error("-o -", "an image cannot be written to stdout", {}, "name an .exr or .png file");
   checkOutputs({o.scene.string()}, {{"-o", o.output.string()}, {"--json", o.common.json_path}});
   const RenderImageFormat format = renderImageFormat(o.output);
+  oiioModule();  // the image writer: a missing module fails now, not after the render
   const EstimatorKind kind = parseEstimatorName(o.estimator);
   o.render.resolve();
   SceneDesc desc = loadSceneDesc(o.scene);

@@ -2,7 +2,6 @@
 
 #include <OpenImageIO/imageio.h>
 
-#include <algorithm>
 #include <cmath>
 
 #include "util/atomic_write.h"
@@ -21,11 +20,6 @@ std::unique_ptr<OIIO::ImageInput> openImage(const std::filesystem::path& path) {
 }
 
 }  // namespace
-
-float linearToSrgb(float v) {
-  v = std::clamp(v, 0.0f, 1.0f);
-  return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
-}
 
 void writeImage(const Image& image, const std::filesystem::path& path,
                 const ImageWriteOptions& options) {
@@ -68,12 +62,6 @@ void writeImage(const Image& image, const std::filesystem::path& path,
   });
 }
 
-std::string ImageHeader::attribute(const std::string& name) const {
-  for (const auto& [key, value] : attributes)
-    if (key == name) return value;
-  return {};
-}
-
 ImageHeader readImageHeader(const std::filesystem::path& path) {
   const auto in = openImage(path);
   const OIIO::ImageSpec& spec = in->spec();
@@ -87,16 +75,6 @@ ImageHeader readImageHeader(const std::filesystem::path& path) {
                                                           : spec.metadata_val(p));
   in->close();
   return header;
-}
-
-float autoExposure(const Image& image) {
-  std::vector<float> brightest;
-  for (size_t p = 0; p + 2 < image.pixels.size(); p += 3)
-    brightest.push_back(std::max({image.pixels[p], image.pixels[p + 1], image.pixels[p + 2]}));
-  if (brightest.empty()) return 1;
-  size_t k = size_t(0.99 * double(brightest.size() - 1));
-  std::nth_element(brightest.begin(), brightest.begin() + k, brightest.end());
-  return brightest[k] > 0 ? 1.0f / brightest[k] : 1.0f;
 }
 
 Image readImage(const std::filesystem::path& path) {

@@ -1,11 +1,14 @@
 // Image files through OpenImageIO: the metadata every rendered image carries and the AOV layer
-// names, read back from the written EXR (its own executable: OIIO costs ~0.35 s per process).
+// names, read back from the written EXR; errors raised inside the OIIO module (loaded on first
+// use, render/oiio_module.h) reach the caller as the same error types.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 
 #include "render/image_io.h"
 #include "render/image_metadata.h"
+#include "util/error.h"
+#include "util/input_file.h"
 
 namespace proxyvis {
 namespace {
@@ -84,6 +87,48 @@ TEST(ImageIo, AutoExposureMapsThe99thPercentileToOne) {
   image.pixels[0] = 1000;  // one hot pixel does not set the exposure
   EXPECT_FLOAT_EQ(autoExposure(image), 2.0f);
   EXPECT_FLOAT_EQ(autoExposure(Image{1, 1, 3, {0, 0, 0}}), 1.0f);
+}
+
+// The module throws; the program catches by type: a missing folder is a WriteError (exit 3), an
+// unreadable file an Error (exit 2), each naming the file.
+TEST(ImageIo, ErrorsFromTheModuleKeepTheirTypeAndFile) {
+  const fs::path dir = scratchFile("x").parent_path();
+  const Image image{2, 1, 3, std::vector<float>(6, 0.5f)};
+  const fs::path unwritable = dir / "no-such-folder" / "a.exr";
+  try {
+    writeImage(image, unwritable);
+    FAIL() << "no error";
+  } catch (const WriteError& e) {
+    EXPECT_EQ(e.exitCode(), 3);
+    EXPECT_NE(std::string(e.what()).find(unwritable.string()), std::string::npos) << e.what();
+  }
+  const fs::path missing = dir / "missing.exr";
+  try {
+    readImage(missing);
+    FAIL() << "no error";
+  } catch (const WriteError&) {
+    FAIL() << "a read error is not a WriteError";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.exitCode(), 2);
+    EXPECT_EQ(e.file(), missing.string());
+  }
+  EXPECT_FALSE(fs::exists(unwritable));
+}
+
+// The module writes through this program's writeAtomically, so an input of this run is refused
+// as an image output (that register lives in the program, not in the module) and stays intact.
+TEST(ImageIo, AnInputOfThisRunIsNotReplacedByAnImage) {
+  const fs::path input = scratchFile("input.exr");
+  const Image original{2, 1, 3, {0.25f, 0.5f, 1, 2, 4, 8}};
+  ImageWriteOptions exact;
+  exact.full_float = true;
+  writeImage(original, input, exact);
+  registerInput(input);
+  const Image other{2, 1, 3, std::vector<float>(6, 0.0f)};
+  EXPECT_THROW(writeImage(other, input), Error);
+  EXPECT_EQ(readImage(input).pixels, original.pixels);
+  EXPECT_EQ(std::distance(fs::directory_iterator(input.parent_path()), fs::directory_iterator()),
+            1);  // no temporary left
 }
 
 }  // namespace

@@ -1,0 +1,31 @@
+// The parts of render/image_io.h that need no OpenImageIO: linked into the programs and into the
+// OIIO module (render/oiio_module.h), whose PNG writer tone-maps with linearToSrgb.
+#include <algorithm>
+#include <cmath>
+
+#include "render/image_io.h"
+
+namespace proxyvis {
+
+float linearToSrgb(float v) {
+  v = std::clamp(v, 0.0f, 1.0f);
+  return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+}
+
+std::string ImageHeader::attribute(const std::string& name) const {
+  for (const auto& [key, value] : attributes)
+    if (key == name) return value;
+  return {};
+}
+
+float autoExposure(const Image& image) {
+  std::vector<float> brightest;
+  for (size_t p = 0; p + 2 < image.pixels.size(); p += 3)
+    brightest.push_back(std::max({image.pixels[p], image.pixels[p + 1], image.pixels[p + 2]}));
+  if (brightest.empty()) return 1;
+  size_t k = size_t(0.99 * double(brightest.size() - 1));
+  std::nth_element(brightest.begin(), brightest.begin() + k, brightest.end());
+  return brightest[k] > 0 ? 1.0f / brightest[k] : 1.0f;
+}
+
+}  // namespace proxyvis

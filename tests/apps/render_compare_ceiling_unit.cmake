@@ -1,0 +1,11 @@
+# render-compare's ceiling unit renders nothing when the study has exact cells (the merge prices
+# c_s with them) and its own short exact render otherwise.
+if(CMAKE_SCRIPT_MODE_FILE)
+  return()
+endif()
+find_package(Python3 REQUIRED COMPONENTS Interpreter)
+add_test(NAME app.render_compare.ceiling_unit
+  COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_LIST_DIR}/render_compare_ceiling_unit.py
+          $<TARGET_FILE:render-compare> ${CMAKE_SOURCE_DIR}
+          ${CMAKE_CURRENT_BINARY_DIR}/render_compare_ceiling_unit)
+set_tests_properties(app.render_compare.ceiling_unit PROPERTIES TIMEOUT 300)
