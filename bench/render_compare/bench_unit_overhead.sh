@@ -6,7 +6,7 @@
 # difference and ratio to the single run, each as the median with min and max over the N rounds.
 #   bench/render_compare/bench_unit_overhead.sh [BUILD_DIR] [OUT_DIR]
 # Environment: N (rounds, default 3); SCENE (default: dragon-plane with outside proxies made by
-# proxy-gen in OUT_DIR); FLAGS (the study, default the coordinator's: exact and roulette at
+# proxy-gen in OUT_DIR); FLAGS (the study, default: exact and roulette at
 # 256 spp, one seed, no equal-time table, a 1-spp reference, 512x512, one thread).
 set -eu
 build=${1:-build}
