@@ -206,8 +206,7 @@ int reportStudy(const CompareOptions& o, const SceneDesc& desc, const StudyPlan&
     }
     for (const auto& m : cost_maps) cost_ptrs.push_back(&m);
     HeatMapRange error_range = sharedLogRange(error_maps), cost_range = sharedLogRange(cost_ptrs);
-    for (const CellImages& im : images)
-      writeCellImages(im, desc, dir, exposure, error_range, cost_range);
+    writeTableImages(images, desc, dir, exposure, error_range, cost_range);
     return cellGalleries(title, reference_png, reference_exr, images, error_range, cost_range);
   };
   auto add = [&](const std::vector<HtmlGallery>& g, bool shown) {
