@@ -16,6 +16,7 @@
 #include "metrics/image_error.h"
 #include "metrics/report.h"
 #include "outputs.h"
+#include "parallel_in_order.h"
 #include "proxies/check/class_trust.h"
 #include "reference.h"
 #include "render/image_io.h"
@@ -164,7 +165,7 @@ int reportStudy(const CompareOptions& o, const SceneDesc& desc, const StudyPlan&
                  "variance of mean %.2e)%s\n",
                  (o.out / ref.file.filename()).string().c_str(), ref.spp, ref.partials, ref.seconds,
                  ref.variance_of_mean, ref.cached ? " [cached: rendered by an earlier run]" : "");
-  for (CellResult& c : cells) scoreCell(c, ref.radiance);
+  parallelInOrder(cells.size(), [&](size_t i) { scoreCell(cells[i], ref.radiance); });
 
   Report report = makeReport(o, desc, facts, ref);
   for (const CellResult& c : cells) report.rows.push_back(c.row);

@@ -3,7 +3,7 @@
 # 512x512, exact/culling/roulette at 1-4 spp, 4 seeds, --reference-spp 15 (48 equal-spp units,
 # the ceiling, 15 reference partials; about 250 MB of unit results).
 #   bench/render_compare/bench_merge.sh [BUILD_DIR] [WORK_DIR]
-# Environment: RUNS (merges timed, default 5), SIZE (width = height, default 512), JOBS (units run
+# Environment: RUNS (merges timed, default 5; 0 only renders the units), SIZE (width = height, default 512), JOBS (units run
 # at once, default 2), THREADS (the merge's --threads through SLURM_CPUS_PER_TASK; default: every
 # core).
 # The units are rendered once and kept in WORK_DIR/study; they are rendered again only when
@@ -43,6 +43,7 @@ if [ ! -f "$study/binary.sha256" ] || [ "$(cat "$study/binary.sha256")" != "$sta
   echo "bench_merge: units took $(($(date +%s) - start)) s" >&2
   echo "$stamp" > "$study/binary.sha256"
 fi
+[ "$runs" -gt 0 ] || exit 0  # RUNS=0: only render the units
 
 bytes=$(cat "$study"/units/*.result | wc -c)
 echo "merge of $(ls "$study"/units/*.result | wc -l) units, $((bytes / 1000000)) MB, ${size}x${size}"
