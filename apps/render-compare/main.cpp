@@ -194,6 +194,7 @@ int reportStudy(const CompareOptions& o, const SceneDesc& desc, const StudyPlan&
   writeColorBar(dir);
   HtmlReportLayout layout;
   layout.plots.push_back(mseTimePlot(report.rows));
+  std::vector<TableImages> tables;
   auto addTable = [&](std::string_view table, double spp, const std::string& title) {
     std::vector<CellImages> images;
     std::vector<const std::vector<float>*> error_maps, cost_ptrs;
@@ -207,7 +208,7 @@ int reportStudy(const CompareOptions& o, const SceneDesc& desc, const StudyPlan&
     }
     for (const auto& m : cost_maps) cost_ptrs.push_back(&m);
     HeatMapRange error_range = sharedLogRange(error_maps), cost_range = sharedLogRange(cost_ptrs);
-    writeTableImages(images, desc, dir, exposure, error_range, cost_range);
+    tables.push_back({images, error_range, cost_range});  // written below, all in parallel
     return cellGalleries(title, reference_png, reference_exr, images, error_range, cost_range);
   };
   auto add = [&](const std::vector<HtmlGallery>& g, bool shown) {
@@ -219,6 +220,7 @@ int reportStudy(const CompareOptions& o, const SceneDesc& desc, const StudyPlan&
   for (int spp : o.spp_list)
     add(addTable(kEqualSppTable, spp, fmt::format("Equal samples ({} spp)", spp)),
         spp == o.spp_list.back());
+  writeReportImages(tables, desc, dir, exposure);
   std::vector<CellImages> all_cells;
   for (size_t i = 0; i < cells.size(); ++i) all_cells.push_back({stems[i], &cells[i]});
   layout.files = runFileGroups(reference_png, reference_exr, all_cells);

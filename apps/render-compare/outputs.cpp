@@ -48,7 +48,7 @@ Image heatMapImage(const std::vector<float>& values, int width, int height,
 
 namespace {
 
-// The files of one cell, in the order writeTableImages reports a failure.
+// The files of one cell, in the order writeReportImages reports a failure.
 enum CellFile { kRadianceExr, kRadiancePng, kAovExr, kErrorPng, kCostPng, kCellFiles };
 
 void writeCellFile(const CellImages& images, CellFile file, const SceneDesc& scene,
@@ -113,14 +113,18 @@ void writeCellFile(const CellImages& images, CellFile file, const SceneDesc& sce
 
 }  // namespace
 
-void writeTableImages(const std::vector<CellImages>& cells, const SceneDesc& scene,
-                      const fs::path& dir, float exposure, const HeatMapRange& error_range,
-                      const HeatMapRange& cost_range) {
-  // One task per file: each file is encoded on its own (PNG compression is single-threaded), and
-  // its bytes do not depend on which thread writes it or when.
-  parallelInOrder(cells.size() * kCellFiles, [&](size_t i) {
-    writeCellFile(cells[i / kCellFiles], CellFile(i % kCellFiles), scene, dir, exposure,
-                  error_range, cost_range);
+void writeReportImages(const std::vector<TableImages>& tables, const SceneDesc& scene,
+                       const fs::path& dir, float exposure) {
+  // One task per file, over every table at once (no table waits for the last file of the one
+  // before): each file is encoded on its own (PNG compression is single-threaded), and its bytes
+  // do not depend on which thread writes it or when.
+  std::vector<std::pair<const TableImages*, size_t>> files;  // (table, file index in it)
+  for (const TableImages& t : tables)
+    for (size_t i = 0; i < t.cells.size() * kCellFiles; ++i) files.push_back({&t, i});
+  parallelInOrder(files.size(), [&](size_t f) {
+    const auto [t, i] = files[f];
+    writeCellFile(t->cells[i / kCellFiles], CellFile(i % kCellFiles), scene, dir, exposure,
+                  t->error_range, t->cost_range);
   });
 }
 
