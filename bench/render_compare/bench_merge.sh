@@ -3,13 +3,14 @@
 # 512x512, exact/culling/roulette at 1-4 spp, 4 seeds, --reference-spp 15 (48 equal-spp units,
 # the ceiling, 15 reference partials; about 250 MB of unit results).
 #   bench/render_compare/bench_merge.sh [BUILD_DIR] [WORK_DIR]
-# Environment: RUNS (merges timed, default 5; 0 only renders the units), SIZE (width = height, default 512), JOBS (units run
-# at once, default 2), THREADS (the merge's --threads through SLURM_CPUS_PER_TASK; default: every
-# core).
+# Environment: RUNS (merges timed, default 5; 0 only renders the units), SIZE (width = height,
+# default 512), JOBS (units run at once, default 2), THREADS (the merge's --threads through
+# SLURM_CPUS_PER_TASK; default: every core).
 # The units are rendered once and kept in WORK_DIR/study; they are rendered again only when
 # render-compare changed (a unit is refused by a merge of another build). Each merge runs under
 # /usr/bin/time; prints one row per run and min / median / max of wall time, CPU time (user +
-# sys) and peak RSS, with the load average before and after.
+# sys) and peak RSS, with the load average before and after. To compare two builds, give each
+# its own WORK_DIR and alternate their runs (the machine's load changes the figures).
 set -eu
 build=${1:-build}
 work=${2:-out/bench_merge}
@@ -24,7 +25,7 @@ study=$work/study
 # Proxies once (the hull is quick and does not depend on render-compare's build).
 if [ ! -f "$work/proxies/scene.json" ]; then
   "$bin/proxy-gen" "$here/scenes/cornell-bunny.json" --kind outside --method hull \
-    --out-dir "$work/proxies" --quiet >&2
+    --out-dir "$work/proxies" --quiet > /dev/null
 fi
 
 # Units again when the binary changed: the build id in every unit is a hash of the executable.
@@ -46,7 +47,7 @@ fi
 [ "$runs" -gt 0 ] || exit 0  # RUNS=0: only render the units
 
 bytes=$(cat "$study"/units/*.result | wc -c)
-echo "merge of $(ls "$study"/units/*.result | wc -l) units, $((bytes / 1000000)) MB, ${size}x${size}"
+echo "merge of $(find "$study/units" -name '*.result' | wc -l) units, $((bytes / 1000000)) MB, ${size}x${size}"
 echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
 echo
 echo "| run | wall s | user+sys s | peak RSS MB |"
