@@ -17,6 +17,7 @@
 #include "metrics/image_error.h"
 #include "metrics/report.h"
 #include "outputs.h"
+#include "parallel_in_order.h"
 #include "proxies/check/class_trust.h"
 #include "reference.h"
 #include "render/image_io.h"
@@ -166,7 +167,7 @@ int reportStudy(const CompareOptions& o, const SceneDesc& desc, const StudyPlan&
                  "variance of mean %.2e)%s\n",
                  (o.out / ref.file.filename()).string().c_str(), ref.spp, ref.partials, ref.seconds,
                  ref.variance_of_mean, ref.cached ? " [cached: rendered by an earlier run]" : "");
-  for (CellResult& c : cells) scoreCell(c, ref.radiance);
+  parallelInOrder(cells.size(), [&](size_t i) { scoreCell(cells[i], ref.radiance); });
 
   Report report = makeReport(o, desc, facts, ref);
   for (const CellResult& c : cells) report.rows.push_back(c.row);
@@ -195,6 +196,7 @@ int reportStudy(const CompareOptions& o, const SceneDesc& desc, const StudyPlan&
   writeColorBar(dir);
   HtmlReportLayout layout;
   layout.plots.push_back(mseTimePlot(report.rows));
+  std::vector<TableImages> tables;
   auto addTable = [&](std::string_view table, double spp, const std::string& title) {
     std::vector<CellImages> images;
     std::vector<const std::vector<float>*> error_maps, cost_ptrs;
@@ -208,8 +210,7 @@ int reportStudy(const CompareOptions& o, const SceneDesc& desc, const StudyPlan&
     }
     for (const auto& m : cost_maps) cost_ptrs.push_back(&m);
     HeatMapRange error_range = sharedLogRange(error_maps), cost_range = sharedLogRange(cost_ptrs);
-    for (const CellImages& im : images)
-      writeCellImages(im, desc, dir, exposure, error_range, cost_range);
+    tables.push_back({images, error_range, cost_range});  // written below, all in parallel
     return cellGalleries(title, reference_png, reference_exr, images, error_range, cost_range);
   };
   auto add = [&](const std::vector<HtmlGallery>& g, bool shown) {
@@ -221,6 +222,7 @@ int reportStudy(const CompareOptions& o, const SceneDesc& desc, const StudyPlan&
   for (int spp : o.spp_list)
     add(addTable(kEqualSppTable, spp, fmt::format("Equal samples ({} spp)", spp)),
         spp == o.spp_list.back());
+  writeReportImages(tables, desc, dir, exposure);
   std::vector<CellImages> all_cells;
   for (size_t i = 0; i < cells.size(); ++i) all_cells.push_back({stems[i], &cells[i]});
   layout.files = runFileGroups(reference_png, reference_exr, all_cells);

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "metrics/color_map.h"
+#include "parallel_in_order.h"
 #include "render/image_io.h"
 #include "render/image_metadata.h"
 
@@ -45,9 +46,14 @@ Image heatMapImage(const std::vector<float>& values, int width, int height,
   return Image{width, height, 3, heatMapRgb(values, range)};
 }
 
-void writeCellImages(const CellImages& images, const SceneDesc& scene, const fs::path& dir,
-                     float exposure, const HeatMapRange& error_range,
-                     const HeatMapRange& cost_range) {
+namespace {
+
+// The files of one cell, in the order writeReportImages reports a failure.
+enum CellFile { kRadianceExr, kRadiancePng, kAovExr, kErrorPng, kCostPng, kCellFiles };
+
+void writeCellFile(const CellImages& images, CellFile file, const SceneDesc& scene,
+                   const fs::path& dir, float exposure, const HeatMapRange& error_range,
+                   const HeatMapRange& cost_range) {
   const RenderResult& r = images.cell->first;
   const ReportRow& row = images.cell->row;
   RenderMetadata meta{"render-compare", row.estimator,           r.spp,
@@ -57,29 +63,69 @@ void writeCellImages(const CellImages& images, const SceneDesc& scene, const fs:
     m.extra.push_back({"proxyvis:content", content});
     return renderAttributes(scene, m);
   };
-  ImageWriteOptions exr;
-  exr.attributes = attributes("radiance (linear RGB), first seed");
-  writeImage(r.radiance, dir / (images.stem + ".exr"), exr);
-  ImageWriteOptions png;
-  png.exposure = exposure;
-  png.attributes = attributes("radiance, tone-mapped: x exposure, clamped, sRGB");
-  png.attributes.push_back({"proxyvis:exposure", exposure});
-  writeImage(r.radiance, dir / (images.stem + ".png"), png);
   const int w = r.radiance.width, h = r.radiance.height;
-  // AOVs (the cost heat-map's data), 32-bit.
-  ImageWriteOptions aov_options;
-  aov_options.full_float = true;
-  aov_options.channel_names = kAovChannelNames;
-  aov_options.attributes =
-      attributes("AOVs: mean estimated visibility; proxy, original and probe rays per pixel");
-  writeImage(aovImage(r), dir / (images.stem + "_aov.exr"), aov_options);
-  ImageWriteOptions heat;
-  heat.attributes = attributes("squared error per pixel against the reference, log heat-map");
-  writeImage(heatMapImage(images.cell->error_map, w, h, error_range),
-             dir / (images.stem + "_error.png"), heat);
-  heat.attributes = attributes("rays per pixel (proxy + original + 2 x probe), log heat-map");
-  writeImage(heatMapImage(raysPerPixel(r.cost), w, h, cost_range),
-             dir / (images.stem + "_cost.png"), heat);
+  switch (file) {
+    case kRadianceExr: {
+      ImageWriteOptions exr;
+      exr.attributes = attributes("radiance (linear RGB), first seed");
+      // Lossless either way: a noisy render's half floats barely compress, and zip took 4x the
+      // CPU of rle for files only a quarter smaller (docs/slurm.md, "Measured"). The AOVs keep
+      // zip: their counts repeat, and rle would make them 18x larger.
+      exr.attributes.push_back({"compression", std::string("rle")});
+      writeImage(r.radiance, dir / (images.stem + ".exr"), exr);
+      break;
+    }
+    case kRadiancePng: {
+      ImageWriteOptions png;
+      png.exposure = exposure;
+      png.attributes = attributes("radiance, tone-mapped: x exposure, clamped, sRGB");
+      png.attributes.push_back({"proxyvis:exposure", exposure});
+      writeImage(r.radiance, dir / (images.stem + ".png"), png);
+      break;
+    }
+    case kAovExr: {  // the cost heat-map's data, 32-bit
+      ImageWriteOptions aov_options;
+      aov_options.full_float = true;
+      aov_options.channel_names = kAovChannelNames;
+      aov_options.attributes =
+          attributes("AOVs: mean estimated visibility; proxy, original and probe rays per pixel");
+      writeImage(aovImage(r), dir / (images.stem + "_aov.exr"), aov_options);
+      break;
+    }
+    case kErrorPng: {
+      ImageWriteOptions heat;
+      heat.attributes = attributes("squared error per pixel against the reference, log heat-map");
+      writeImage(heatMapImage(images.cell->error_map, w, h, error_range),
+                 dir / (images.stem + "_error.png"), heat);
+      break;
+    }
+    case kCostPng: {
+      ImageWriteOptions heat;
+      heat.attributes = attributes("rays per pixel (proxy + original + 2 x probe), log heat-map");
+      writeImage(heatMapImage(raysPerPixel(r.cost), w, h, cost_range),
+                 dir / (images.stem + "_cost.png"), heat);
+      break;
+    }
+    case kCellFiles:
+      break;
+  }
+}
+
+}  // namespace
+
+void writeReportImages(const std::vector<TableImages>& tables, const SceneDesc& scene,
+                       const fs::path& dir, float exposure) {
+  // One task per file, over every table at once (no table waits for the last file of the one
+  // before): each file is encoded on its own (PNG compression is single-threaded), and its bytes
+  // do not depend on which thread writes it or when.
+  std::vector<std::pair<const TableImages*, size_t>> files;  // (table, file index in it)
+  for (const TableImages& t : tables)
+    for (size_t i = 0; i < t.cells.size() * kCellFiles; ++i) files.push_back({&t, i});
+  parallelInOrder(files.size(), [&](size_t f) {
+    const auto [t, i] = files[f];
+    writeCellFile(t->cells[i / kCellFiles], CellFile(i % kCellFiles), scene, dir, exposure,
+                  t->error_range, t->cost_range);
+  });
 }
 
 void writeColorBar(const fs::path& dir) {

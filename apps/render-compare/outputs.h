@@ -20,16 +20,21 @@ std::vector<float> raysPerPixel(const Image& cost);
 // One log range covering several maps, so heat-maps of different estimators compare.
 HeatMapRange sharedLogRange(const std::vector<const std::vector<float>*>& maps);
 
-// The images of one cell, written as `stem`.exr / .png / _aov.exr / _error.png / _cost.png in
-// `dir`, each with the render's metadata (render/image_metadata.h); the AOV channels are layers
-// "visibility.Y" and "rays.proxy", "rays.original", "rays.probe".
+// The images of each cell of the report's tables, written as `stem`.exr / .png / _aov.exr /
+// _error.png / _cost.png in `dir`, each with the render's metadata (render/image_metadata.h); the
+// heat-maps of a table share its ranges; the AOV channels are layers "visibility.Y" and
+// "rays.proxy", "rays.original", "rays.probe". The files are written in parallel; a failure
+// names the first file (table by table, cell by cell, in that order) that failed.
 struct CellImages {
   std::string stem;
   const CellResult* cell = nullptr;
 };
-void writeCellImages(const CellImages& images, const SceneDesc& scene,
-                     const std::filesystem::path& dir, float exposure,
-                     const HeatMapRange& error_range, const HeatMapRange& cost_range);
+struct TableImages {
+  std::vector<CellImages> cells;
+  HeatMapRange error_range, cost_range;
+};
+void writeReportImages(const std::vector<TableImages>& tables, const SceneDesc& scene,
+                       const std::filesystem::path& dir, float exposure);
 
 // A heat-map as an image for writeImage's PNG path (OIIO's colour maps are linear values that its
 // sRGB curve turns into the map's published colours).

@@ -63,7 +63,9 @@ void addRun(CellResult& cell, RenderResult r, const std::filesystem::path& scene
   if (!options.common.quiet)
     std::fprintf(stderr, "render-compare: %-13s %-10s seed %d/%d: %5d spp %7.3f s\n",
                  estimatorName(kind), std::string(table).c_str(), run + 1, runs, r.spp, r.seconds);
-  cell.radiance_per_seed.push_back(r.radiance);
+  // The first run's radiance is kept twice (the cell's images use it after scoring); the
+  // others are moved, not copied: a merge holds hundreds of megabytes of them.
+  cell.radiance_per_seed.push_back(run == 0 ? r.radiance : std::move(r.radiance));
   if (run == 0) {
     row.proxy_class = proxyClassName(r.proxy_class);
     if (kind == EstimatorKind::kRoulette) row.learned = toReportLearned(r.learned);

@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include "build_id.h"
+#include "parallel_in_order.h"
 #include "util/error.h"
 
 namespace proxyvis {
@@ -82,9 +83,11 @@ MergeInputs readMergeInputs(const fs::path& dir) {
                 fmt::format("its content hash is {}, the plan's {}", sceneHash(in.desc),
                             in.plan.scene_hash),
                 "restore it, or plan and run the study again");
-  for (size_t k = 0; k < in.plan.units.size(); ++k) {
-    in.results.push_back(readUnitResult(dir, in.plan, k));
-    for (const RenderResult& r : in.results.back().renders)
+  // Units are read in parallel; the first bad one in unit order is the one reported.
+  in.results.resize(in.plan.units.size());
+  parallelInOrder(in.results.size(), [&](size_t k) {
+    in.results[k] = readUnitResult(dir, in.plan, k);
+    for (const RenderResult& r : in.results[k].renders)
       if (r.radiance.width != in.desc.camera.width || r.radiance.height != in.desc.camera.height ||
           r.radiance.channels != 3)
         throw Error(unitResultPath(dir, k).string(), "this unit result has the wrong image size",
@@ -92,7 +95,7 @@ MergeInputs readMergeInputs(const fs::path& dir) {
                                 r.radiance.height, r.radiance.channels, in.desc.camera.width,
                                 in.desc.camera.height),
                     "delete it and its .done marker, then run the unit again");
-  }
+  });
   return in;
 }
 

@@ -247,7 +247,7 @@ UnitResult readUnitResult(const fs::path& dir, const StudyPlan& plan, size_t uni
                 fmt::format("unit {} of {} has not finished", unit, plan.units.size()),
                 "its result or its .done marker is missing",
                 "run the missing units first (submit.sh PLAN_DIR --resume)");
-  const UnitFile file = readUnitFile(path);
+  UnitFile file = readUnitFile(path);  // its images are moved into the renders, not copied
   const nlohmann::json& h = file.header;
   UnitResult result;
   try {
@@ -271,9 +271,9 @@ UnitResult readUnitResult(const fs::path& dir, const StudyPlan& plan, size_t uni
                   "its image count does not match its renders", "run the unit again");
     for (size_t i = 0; i < renders.size(); ++i) {
       RenderResult r = renderFromJson(renders[i]);
-      r.radiance = file.images[3 * i];
-      r.visibility = file.images[3 * i + 1];
-      r.cost = file.images[3 * i + 2];
+      r.radiance = std::move(file.images[3 * i]);
+      r.visibility = std::move(file.images[3 * i + 1]);
+      r.cost = std::move(file.images[3 * i + 2]);
       result.renders.push_back(std::move(r));
     }
     if (h.contains("ceiling")) {

@@ -44,5 +44,23 @@ TEST(HeatMap, RobustRangeIgnoresFireflies) {
   EXPECT_GT(robustLogRange(std::vector<float>(4, 0.0f)).hi, 0);
 }
 
+// The range is two order statistics of the positive finite values, whatever their order: 1..1000
+// in a scrambled order among zeros, negatives and non-finite values, lo is the value at index
+// floor(0.02 x 999) = 19 of the sorted list (20), hi at floor(0.995 x 999) = 994 (995).
+TEST(HeatMap, RobustRangeIsOrderStatisticsOfPositiveValues) {
+  std::vector<float> v;
+  for (int i = 0; i < 1000; ++i) {
+    v.push_back(float((i * 337) % 1000 + 1));  // 337 is coprime to 1000: a permutation
+    if (i % 7 == 0) v.push_back(0.0f);
+    if (i % 11 == 0) v.push_back(-5.0f);
+    if (i % 13 == 0) v.push_back(std::numeric_limits<float>::infinity());
+    if (i % 17 == 0) v.push_back(std::numeric_limits<float>::quiet_NaN());
+  }
+  HeatMapRange r = robustLogRange(v);
+  EXPECT_TRUE(r.log_scale);
+  EXPECT_EQ(r.lo, 20.0);
+  EXPECT_EQ(r.hi, 995.0);
+}
+
 }  // namespace
 }  // namespace proxyvis
