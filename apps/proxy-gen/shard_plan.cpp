@@ -9,6 +9,7 @@
 #include "util/app_main.h"
 #include "util/atomic_write.h"
 #include "util/error.h"
+#include "util/plan_folder.h"
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
@@ -45,15 +46,8 @@ std::vector<std::string> planFlags(const CLI::App& app) {
 
 void writeShardPlan(const fs::path& dir, uint64_t shards, const std::vector<std::string>& flags,
                     const std::string& out_dir, const std::string& json_path) {
-  std::error_code ec;
-  fs::create_directories(dir / "units", ec);
-  if (ec) throw WriteError(dir.string(), "cannot create the plan folder", ec.message());
-  for (const auto& entry : fs::directory_iterator(dir / "units", ec))
-    if (entry.path().extension() == ".done")
-      throw Error(dir.string(), "the plan folder already holds finished units",
-                  "a new plan would mix them with units of another run",
-                  "choose another folder or empty its units/");
-  const std::string program = fs::canonical("/proc/self/exe").string();
+  createPlanFolder(dir, "run");
+  const std::string program = planningProgram();
   json run_unit = json::array({program});
   for (const std::string& f : flags) run_unit.push_back(f);
   run_unit.insert(run_unit.end(),

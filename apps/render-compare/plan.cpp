@@ -8,6 +8,7 @@
 #include "util/atomic_write.h"
 #include "util/error.h"
 #include "util/input_file.h"
+#include "util/plan_folder.h"
 
 namespace proxyvis {
 
@@ -191,16 +192,8 @@ StudyPlan readPlan(const fs::path& dir) {
 }
 
 void writePlanFolder(const fs::path& dir, const StudyPlan& plan) {
-  std::error_code ec;
-  fs::create_directories(dir / "units", ec);
-  if (ec) throw WriteError(dir.string(), "cannot create the plan folder", ec.message());
-  for (const auto& entry : fs::directory_iterator(dir / "units", ec))
-    if (entry.path().extension() == ".done")
-      throw Error(dir.string(), "the plan folder already holds finished units",
-                  "a new plan would mix them with units of another study",
-                  "choose another folder or empty its units/");
-  const std::string program = fs::canonical("/proc/self/exe").string();
-  writeTextAtomically(dir / kPlanFile, planToJson(plan, program).dump(2) + "\n");
+  createPlanFolder(dir, "study");
+  writeTextAtomically(dir / kPlanFile, planToJson(plan, planningProgram()).dump(2) + "\n");
 }
 
 }  // namespace proxyvis
