@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <future>
 #include <limits>
 
 #include "ceiling_phase.h"
@@ -299,7 +300,11 @@ int runCompare(CompareOptions& o, const CLI::App& app, const fs::path& plan_dir)
 
 // `render-compare --merge DIR`: the report of a plan folder whose units have all run.
 int mergeStudy(const fs::path& dir) {
+  // Loading OpenImageIO (~0.4 s of CPU in the dynamic loader, one thread) overlaps the reading of
+  // the units instead of adding to it. A missing module still fails before anything is written.
+  std::future<void> module = std::async(std::launch::async, [] { oiioModule(); });
   MergeInputs in = readMergeInputs(dir);
+  module.get();
   StagedFolder folder(in.options.out, "render-compare", "report.json");
   return reportStudy(in.options, in.desc, in.plan, in.results, folder, std::nullopt);
 }
