@@ -78,7 +78,7 @@ build_sanitize() {
     -DCMAKE_CXX_FLAGS="$flags $warn" -DCMAKE_C_FLAGS="$flags $warn" \
     -DCMAKE_EXE_LINKER_FLAGS="$flags" -DCMAKE_SHARED_LINKER_FLAGS="$flags" \
     -DCMAKE_MODULE_LINKER_FLAGS="$flags" \
-    -DPROXYVIS_BUILD_BENCH=OFF
+    -DPROXYVIS_BUILD_BENCH=OFF -DPROXYVIS_PRELOAD_OIIO_MODULE=ON
   cmake --build "$dir" -j "$JOBS"
   # Tests labelled not_sanitized are too slow under ASan (see their definition for why).
   ctest --test-dir "$dir" --output-on-failure -j "$JOBS" -LE not_sanitized
