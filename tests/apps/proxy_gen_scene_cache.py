@@ -21,6 +21,9 @@ import subprocess
 import sys
 import time
 
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent / "support"))
+from plant_scene import write_plant_scene  # noqa: E402
+
 PLANTS = {"flower": "YELLOWFLOWER2.drc", "grass": "GRASS9.drc", "flower2": "YELLOWFLOWER7.drc"}
 
 
@@ -45,34 +48,10 @@ def hashes(folder: pathlib.Path) -> dict:
 
 
 def write_scene(work: pathlib.Path) -> pathlib.Path:
-    meshes = work / "meshes"
-    meshes.mkdir()
-    for name, file in PLANTS.items():
-        shutil.copyfile(DATA / "ecosys" / file, meshes / f"{name}.drc")
-    (meshes / "ground.obj").write_text(
-        "v -4 -4 0\nv 8 -4 0\nv 8 4 0\nv -4 4 0\nf 1 2 3\nf 1 3 4\n")
-    (work / "plants.instances.txt").write_text(
+    return write_plant_scene(work, DATA, PLANTS, (
         "flower 0 0 0\nflower 1.2 0.5 0\nflower 2.4 -0.3 0\n"
         "grass 0.6 1.0 0\ngrass 2.0 1.2 0\n"
-        "flower2 3.2 0.4 0\nflower2 -0.6 0.6 0\n")
-    scene = {
-        "camera": {"eye": [1.2, -5, 1.6], "look_at": [1.2, 0.5, 0.3], "up": [0, 0, 1],
-                   "fov_deg": 45, "resolution": [64, 48]},
-        "lights": [{"type": "quad", "corner": [-2, -1, 6], "edge_u": [6, 0, 0],
-                    "edge_v": [0, 3, 0], "radiance": [5, 5, 5]}],
-        "meshes": [
-            {"name": "ground", "file": "meshes/ground.obj"},
-            {"name": "flower", "file": "meshes/flower.drc", "place": False},
-            {"name": "grass", "file": "meshes/grass.drc", "place": False},
-            # Instanced like the others, but asked for no proxy.
-            {"name": "flower2", "file": "meshes/flower2.drc", "place": False,
-             "make_proxy": False},
-        ],
-        "instances": {"file": "plants.instances.txt"},
-    }
-    path = work / "scene.json"
-    path.write_text(json.dumps(scene, indent=1))
-    return path
+        "flower2 3.2 0.4 0\nflower2 -0.6 0.6 0\n"))
 
 
 def gen(scene, out, cache, *extra, expect=0):

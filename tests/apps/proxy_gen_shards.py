@@ -28,6 +28,9 @@ import subprocess
 import sys
 import tempfile
 
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent / "support"))
+from plant_scene import write_plant_scene  # noqa: E402
+
 PLANTS = {"flower": "YELLOWFLOWER2.drc", "grass": "GRASS9.drc", "flower2": "YELLOWFLOWER7.drc",
           "bush": "BUSH13.drc", "nettle": "URTICADIOICA9.drc", "grass3": "GRASS3.drc"}
 SETTINGS = ["--kind", "outside", "--no-cache", "--seed", "7"]
@@ -66,27 +69,8 @@ def without_timing(report):
 
 
 def write_scene(work: pathlib.Path) -> pathlib.Path:
-    meshes = work / "meshes"
-    meshes.mkdir()
-    for name, file in PLANTS.items():
-        shutil.copyfile(DATA / "ecosys" / file, meshes / f"{name}.drc")
-    (meshes / "ground.obj").write_text(
-        "v -4 -4 0\nv 8 -4 0\nv 8 4 0\nv -4 4 0\nf 1 2 3\nf 1 3 4\n")
-    (work / "plants.instances.txt").write_text(
-        "".join(f"{name} {k * 1.5} {k * 0.3} 0\n" for k, name in enumerate(PLANTS)))
-    scene = {
-        "camera": {"eye": [1.2, -5, 1.6], "look_at": [1.2, 0.5, 0.3], "up": [0, 0, 1],
-                   "fov_deg": 45, "resolution": [64, 48]},
-        "lights": [{"type": "quad", "corner": [-2, -1, 6], "edge_u": [6, 0, 0],
-                    "edge_v": [0, 3, 0], "radiance": [5, 5, 5]}],
-        "meshes": [{"name": "ground", "file": "meshes/ground.obj"}] + [
-            {"name": name, "file": f"meshes/{name}.drc", "place": False,
-             **({"make_proxy": False} if name == "flower2" else {})} for name in PLANTS],
-        "instances": {"file": "plants.instances.txt"},
-    }
-    path = work / "scene.json"
-    path.write_text(json.dumps(scene, indent=1))
-    return path
+    return write_plant_scene(work, DATA, PLANTS, "".join(
+        f"{name} {k * 1.5} {k * 0.3} 0\n" for k, name in enumerate(PLANTS)))
 
 
 def gen(scene, out, *extra, expect=0, settings=SETTINGS):
