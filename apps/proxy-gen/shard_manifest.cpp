@@ -9,6 +9,7 @@
 #include "scene_mesh.h"
 #include "util/input_file.h"
 #include "util/output_path.h"
+#include "util/program_build_id.h"
 #include "util/sha256.h"
 
 namespace fs = std::filesystem;

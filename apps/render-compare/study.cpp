@@ -8,20 +8,48 @@
 #include <map>
 #include <tuple>
 
-#include "build_id.h"
 #include "parallel_in_order.h"
 #include "util/error.h"
+#include "util/program_build_id.h"
 
 namespace proxyvis {
 
 namespace fs = std::filesystem;
+
+namespace {
+
+// Units and merge must be the build that planned: another build may trace or round differently.
+void requirePlanningBuild(const StudyPlan& plan, const fs::path& plan_file, const char* to_do) {
+  if (plan.build != programBuildId())
+    throw Error(
+        plan_file.string(),
+        fmt::format("the plan was written by another build of render-compare ({}; this is {})",
+                    plan.build, programBuildId()),
+        "units and merge must be one build, or the tables could mix renderers", to_do);
+}
+
+// The plan's options and the scene description they give, refused when the scene's content
+// changed since the plan was written.
+SceneDesc plannedScene(const StudyPlan& plan, CompareOptions& o, const fs::path& plan_file) {
+  parseStudyArgs(plan.args, o, plan_file);
+  SceneDesc desc = loadSceneDesc(o.scene);
+  o.render.applyTo(desc);
+  if (sceneHash(desc) != plan.scene_hash)
+    throw Error(
+        desc.path.string(), "the scene changed since the plan was written",
+        fmt::format("its content hash is {}, the plan's {}", sceneHash(desc), plan.scene_hash),
+        "restore it, or plan and run the study again");
+  return desc;
+}
+
+}  // namespace
 
 StudyPlan newStudyPlan(const CLI::App& app, const CompareOptions& o, const SceneDesc& desc) {
   StudyPlan plan;
   plan.args = studyArgs(app, o);
   plan.scene = fs::absolute(o.scene).lexically_normal().string();
   plan.scene_hash = sceneHash(desc);
-  plan.build = buildId();
+  plan.build = programBuildId();
   plan.seed = o.common.seed;
   plan.units = planCellUnits(o);
   return plan;
@@ -68,21 +96,9 @@ MergeInputs readMergeInputs(const fs::path& dir) {
   MergeInputs in;
   in.plan = readPlan(dir);
   const fs::path plan_file = dir / "plan.json";
-  if (in.plan.build != buildId())
-    throw Error(
-        plan_file.string(),
-        fmt::format("the plan was written by another build of render-compare ({}; this is {})",
-                    in.plan.build, buildId()),
-        "units and merge must be one build, or the tables could mix renderers",
-        "merge with the program named in the plan, or plan again");
-  parseStudyArgs(in.plan.args, in.options, plan_file);
-  in.desc = loadSceneDesc(in.options.scene);
-  in.options.render.applyTo(in.desc);
-  if (sceneHash(in.desc) != in.plan.scene_hash)
-    throw Error(in.desc.path.string(), "the scene changed since the plan was written",
-                fmt::format("its content hash is {}, the plan's {}", sceneHash(in.desc),
-                            in.plan.scene_hash),
-                "restore it, or plan and run the study again");
+  requirePlanningBuild(in.plan, plan_file,
+                       "merge with the program named in the plan, or plan again");
+  in.desc = plannedScene(in.plan, in.options, plan_file);
   // Units are read in parallel; the first bad one in unit order is the one reported.
   in.results.resize(in.plan.units.size());
   parallelInOrder(in.results.size(), [&](size_t k) {
@@ -179,28 +195,15 @@ int runUnitCommand(const fs::path& dir, size_t unit, bool quiet) {
     throw Error(plan_file.string(), fmt::format("the plan has no unit {}", unit),
                 fmt::format("its units are 0..{}", plan.units.size() - 1),
                 "give a unit of the plan");
-  if (plan.build != buildId())
-    throw Error(
-        plan_file.string(),
-        fmt::format("the plan was written by another build of render-compare ({}; this is {})",
-                    plan.build, buildId()),
-        "units and merge must be one build, or the tables could mix renderers",
-        "run the program named in the plan, or plan again");
+  requirePlanningBuild(plan, plan_file, "run the program named in the plan, or plan again");
   CompareOptions o;
-  parseStudyArgs(plan.args, o, plan_file);
+  SceneDesc desc = plannedScene(plan, o, plan_file);
   o.common.quiet = o.common.quiet || quiet;
   // The plan's --threads, within the SLURM_CPUS_PER_TASK the caller already applied (the smaller
   // of two limits wins).
   const tbb::global_control limit(
       tbb::global_control::max_allowed_parallelism,
       o.common.threads > 0 ? size_t(o.common.threads) : size_t(tbb::info::default_concurrency()));
-  SceneDesc desc = loadSceneDesc(o.scene);
-  o.render.applyTo(desc);
-  if (sceneHash(desc) != plan.scene_hash)
-    throw Error(
-        desc.path.string(), "the scene changed since the plan was written",
-        fmt::format("its content hash is {}, the plan's {}", sceneHash(desc), plan.scene_hash),
-        "restore it, or plan and run the study again");
   TrustedRenderScene loaded =
       loadTrustedRenderScene(desc, o.render.sceneOptions(o.common.quiet), "render-compare");
   const UnitResult result =

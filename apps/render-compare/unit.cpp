@@ -7,7 +7,6 @@
 #include <cstdlib>
 #include <limits>
 
-#include "build_id.h"
 #include "ceiling_phase.h"
 #include "metrics/ceiling_report.h"
 #include "reference.h"
@@ -18,6 +17,7 @@
 #include "util/atomic_write.h"
 #include "util/error.h"
 #include "util/fnv1a.h"
+#include "util/program_build_id.h"
 
 namespace proxyvis {
 
@@ -230,7 +230,7 @@ void writeUnitResult(const fs::path& dir, const StudyPlan& plan, size_t unit,
                  {"kind", unitKindName(plan.units.at(unit).kind)},
                  {"scene_hash", plan.scene_hash},
                  {"seed", plan.seed},
-                 {"build", buildId()},
+                 {"build", programBuildId()},
                  {"study", studyId(plan)},
                  {"facts", factsToJson(result.facts)},
                  {"renders", renders}};

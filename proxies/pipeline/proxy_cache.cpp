@@ -10,6 +10,7 @@
 #include "util/atomic_write.h"
 #include "util/error.h"
 #include "util/output_set.h"
+#include "util/program_build_id.h"
 #include "util/proxy_class.h"
 #include "util/sha256.h"
 
@@ -39,15 +40,6 @@ std::optional<std::string> readOwnFileBytes(const fs::path& path) {
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (!in.good() && !in.eof()) return std::nullopt;
   return bytes;
-}
-
-const std::string& programBuildId() {
-  static const std::string id = [] {
-    if (const std::optional<std::string> exe = readOwnFileBytes("/proc/self/exe"))
-      return "exe-sha256:" + sha256Hex(*exe);
-    return fmt::format("version:{} compiled:{} {}", PROXYVIS_VERSION, __DATE__, __TIME__);
-  }();
-  return id;
 }
 
 nlohmann::json proxyCacheSettings(const ProxyGenOptions& o) {

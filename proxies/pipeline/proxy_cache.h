@@ -31,11 +31,6 @@ struct CachedProxy {
 // unreadable.
 std::optional<std::string> readOwnFileBytes(const std::filesystem::path& path);
 
-// What identifies this program's build in cache keys: the SHA-256 of its own executable (any
-// rebuild with a changed generator misses), or the version and compile time when the executable
-// cannot be read. Computed once per process.
-const std::string& programBuildId();
-
 // The settings of `options` that change a generated proxy, as canonical JSON (the time budget is
 // left out: it can only make a run fail, and failures are not cached).
 nlohmann::json proxyCacheSettings(const ProxyGenOptions& options);

@@ -9,6 +9,7 @@
 
 #include "proxies/pipeline/proxy_cache.h"
 #include "util/error.h"
+#include "util/program_build_id.h"
 #include "util/sha256.h"
 
 namespace fs = std::filesystem;
