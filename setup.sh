@@ -25,6 +25,8 @@ PKGS=(
   libgtest-dev libgmock-dev libbenchmark-dev
   chromium  # headless: the report test opens render-compare's HTML page in it
   slurm-wlm munge  # scripts/slurm: plans as job arrays; a single-node cluster for its tests
+  openmpi-bin libopenmpi-dev  # data-parallel rendering (lib/distributed, mpirun)
+  strace  # the data-parallel tests check which files each rank opens
 )
 
 # Only for ./setup.sh fuzz: the compiler with libFuzzer and the sanitizer runtimes.

@@ -15,6 +15,7 @@
 #include "render/render_options.h"
 #include "render/render_scene.h"
 #include "render/renderer.h"
+#include "render_data_parallel.h"
 #include "render_image.h"
 #include "scene/scene_desc.h"
 #include "util/app_main.h"
@@ -35,6 +36,7 @@ struct RenderOptions {
   int spp = 16;
   double seconds = 0;  // --time; > 0 replaces --spp
   RenderFlags render;
+  DataParallelFlags data_parallel;
   CommonOptions common;
 };
 
@@ -54,10 +56,18 @@ void addOptions(CLI::App& app, RenderOptions& o) {
                    ->check(numberIn(0.001, kMaxRenderSeconds));
   spp->excludes(time);
   addRenderFlags(app, o.render);
+  addDataParallelFlags(app, o.data_parallel, false);
   addCommonOptions(app, o.common);
 }
 
 int runRender(RenderOptions& o) {
+  if (o.data_parallel.enabled) {
+    if (o.seconds > 0)
+      throw Error("", "--time is not available with --data-parallel", {}, "use --spp");
+    DataParallelRenderRequest request{o.scene,  o.output,        o.estimator, o.spp,
+                                      o.render, o.data_parallel, o.common};
+    return runDataParallelRender(request);
+  }
   if (o.output == "-")
     throw Error("-o -", "an image cannot be written to stdout", {}, "name an .exr or .png file");
   checkOutputs({o.scene.string()}, {{"-o", o.output.string()}, {"--json", o.common.json_path}});

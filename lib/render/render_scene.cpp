@@ -24,14 +24,16 @@ bool overlaps(const Bounds3f& a, const Bounds3f& b) {
          a.lo.z <= b.hi.z && b.lo.z <= a.hi.z;
 }
 
-// Adds every object to `builder`, taking each object's geometry from meshes[mesh] (originals) or
-// from the chosen proxy. Prototypes are built lazily, once per mesh; a flattened instance's
-// vertices are placed straight into Embree's buffer (no copy of the scene's triangles).
-void addObjects(TraceSceneBuilder& builder, const std::vector<RenderObject>& objects,
-                const std::vector<const TriMesh*>& geometry, bool flatten) {
+}  // namespace
+
+void addRenderObjects(TraceSceneBuilder& builder, const std::vector<RenderObject>& objects,
+                      const std::vector<const TriMesh*>& geometry, bool flatten,
+                      const std::vector<bool>* include) {
   std::vector<int64_t> prototype(geometry.size(), -1);
   for (uint32_t id = 0; id < objects.size(); ++id) {
+    if (include && !(*include)[id]) continue;
     const RenderObject& o = objects[id];
+    if (!geometry[o.mesh]) continue;
     const TriMesh& mesh = *geometry[o.mesh];
     if (o.instance < 0 || flatten) {
       builder.addMesh(mesh, o.to_world, id);
@@ -42,7 +44,9 @@ void addObjects(TraceSceneBuilder& builder, const std::vector<RenderObject>& obj
   }
 }
 
-}  // namespace
+float rayEpsilon(const Bounds3f& originals_bounds) {
+  return std::max(kMinRayEpsilon, kRayEpsilonOfDiagonal * originals_bounds.diagonal());
+}
 
 int chooseProxy(const SceneMeshDesc& mesh, const RenderSceneOptions& options) {
   if (!options.use_proxies) return -1;
@@ -138,10 +142,10 @@ std::unique_ptr<RenderScene> loadRenderScene(const SceneDesc& desc,
   scene->build_ = chooseBuild(options.instance_build, !desc.instances.empty(), flat_triangles,
                               options.memory_budget_bytes);
   const bool flatten = scene->build_.flat;
-  addObjects(builder, objects, original_ptrs, flatten);
+  addRenderObjects(builder, objects, original_ptrs, flatten);
   scene->originals_ = builder.build();
   if (any_proxy) {
-    addObjects(builder, objects, proxy_ptrs, flatten);
+    addRenderObjects(builder, objects, proxy_ptrs, flatten);
     scene->own_proxies_ = builder.build();
     scene->proxies_ = scene->own_proxies_.get();
   } else {
@@ -153,8 +157,7 @@ std::unique_ptr<RenderScene> loadRenderScene(const SceneDesc& desc,
     builder.addMesh(originals[m], 0);
     scene->self_[m] = builder.build();
   }
-  scene->epsilon_ =
-      std::max(kMinRayEpsilon, kRayEpsilonOfDiagonal * scene->originals_->bounds().diagonal());
+  scene->epsilon_ = rayEpsilon(scene->originals_->bounds());
 
   // The class the estimators may rely on, after the light checks of docs/design.md, pitfall 2.
   std::vector<Bounds3f> light_bounds;

@@ -113,6 +113,20 @@ class RenderScene {
   float epsilon_ = 1e-4f;
 };
 
+// Adds objects to `builder` with each object's geometry taken from geometry[mesh] (originals or
+// proxies; null: the object is skipped), user id = the object's index. Placed meshes and, when
+// `flatten`, instances go into the top-level BVH with their vertices mapped to world space;
+// instances otherwise become Embree instances of one prototype per mesh, built on first use.
+// `include` (one flag per object) limits it to some objects. The same calls give the same
+// Embree answers, whichever process builds them (the data-parallel renderer relies on this).
+void addRenderObjects(TraceSceneBuilder& builder, const std::vector<RenderObject>& objects,
+                      const std::vector<const TriMesh*>& geometry, bool flatten,
+                      const std::vector<bool>* include = nullptr);
+
+// The offset for shadow-ray origins and tnear of a scene whose originals fill `bounds`
+// (RenderScene::epsilon()): a fraction of the diagonal, never below an absolute floor.
+float rayEpsilon(const Bounds3f& originals_bounds);
+
 // Loads every mesh and proxy (loadMesh), builds the Embree scenes and checks the lights against
 // the proxies (docs/design.md, pitfall 2: an outside proxy guarantees no HM' segments only if the
 // light is outside it; an inside proxy guarantees no MH' only if the light is outside the

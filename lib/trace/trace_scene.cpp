@@ -6,6 +6,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <string>
@@ -115,7 +116,51 @@ void intersectOne(RTCScene scene, IgnoreContext& ctx, const Segment& s, RTCRayHi
   if (second.hit.geomID != RTC_INVALID_GEOMETRY_ID) rh = second;
 }
 
+// hitsAlong(): records every candidate hit's user id (nearest t kept) and rejects it, so that
+// traversal goes on through the whole segment.
+struct CollectContext {
+  RTCIntersectContext base;
+  const uint32_t* user_ids;
+  std::vector<TraceScene::UserHit>* out;
+  size_t first;  // out's entries from earlier queries are left alone
+};
+
+void collectFilter(const RTCFilterFunctionNArguments* args) {
+  auto* ctx = reinterpret_cast<CollectContext*>(args->context);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    unsigned top = RTCHitN_instID(args->hit, args->N, i, 0);
+    if (top == RTC_INVALID_GEOMETRY_ID) top = RTCHitN_geomID(args->hit, args->N, i);
+    const uint32_t id = ctx->user_ids[top];
+    const float t = RTCRayN_tfar(args->ray, args->N, i);
+    bool found = false;
+    for (size_t k = ctx->first; k < ctx->out->size(); ++k) {
+      TraceScene::UserHit& h = (*ctx->out)[k];
+      if (h.user_id == id) {
+        h.t = std::min(h.t, t);
+        found = true;
+        break;
+      }
+    }
+    if (!found) ctx->out->push_back({id, t});
+    args->valid[i] = 0;
+  }
+}
+
 }  // namespace
+
+void TraceScene::hitsAlong(const Segment& s, std::vector<UserHit>& out) const {
+  if (!isValid(s)) throwInvalid(s, "");
+  impl_->counters.local().add(1);
+  CollectContext ctx;
+  rtcInitIntersectContext(&ctx.base);
+  ctx.base.filter = collectFilter;
+  ctx.user_ids = impl_->user_ids.data();
+  ctx.out = &out;
+  ctx.first = out.size();
+  RTCRay ray = toRtcRay(s);
+  rtcOccluded1(impl_->scene, &ctx.base, &ray);
+}
 
 TraceScene::TraceScene(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 TraceScene::~TraceScene() = default;

@@ -154,6 +154,14 @@ class TraceScene {
                 uint32_t ignore_user_id = kIgnoreNone) const;
   // Closest hit along org + t*dir, t in [tnear, tfar].
   Hit intersect(const Segment& ray, uint32_t ignore_user_id = kIgnoreNone) const;
+  // Every user id whose geometry the segment crosses in [tnear, tfar], each once with its
+  // nearest crossing t, appended to `out` in no particular order. One traversal that rejects
+  // every hit (a context filter), so nothing is missed behind a first hit.
+  struct UserHit {
+    uint32_t user_id = 0;
+    float t = 0;
+  };
+  void hitsAlong(const Segment& s, std::vector<UserHit>& out) const;
 
   // Box containing all geometry; for instances, the transformed corners of the prototype box.
   // Empty (Bounds3f::empty()) for an empty scene.

@@ -34,6 +34,14 @@ struct Tiling {
 // One primary ray per pixel, jittered from a stream keyed on the pixel alone. Parallel over tiles.
 std::vector<ShadingPoint> shadingPoints(const RenderScene& scene, const Tiling& tiling);
 
+// The primary ray of pixel (x, y) (index `pixel`), as shadingPoints() traces it.
+Segment primaryRay(const Camera& camera, int x, int y, uint32_t pixel);
+// The shading point of a primary hit (invalid for a miss or a degenerate normal): the hit point
+// offset by `epsilon` along the normal that faces the camera. The data-parallel renderer calls it
+// with the same hit on the rank that owns the geometry, so both renderers shade alike.
+ShadingPoint shadingPointOf(const Segment& ray, const Hit& hit, float epsilon,
+                            const Vec3f& albedo);
+
 // A light sample prepared for visibility estimation; weight == 0 means it needs no visibility
 // (back-facing, or the pixel has no shading point).
 struct PreparedSample {
@@ -46,11 +54,14 @@ struct PreparedSample {
 // on (seed, pixel, pass).
 void prepareSamples(const RenderScene& scene, const ShadingPoint& sp, uint64_t seed, uint32_t pixel,
                     int pass, int count, PreparedSample* out);
+void prepareSamples(const LightSampler& lights, const ShadingPoint& sp, uint64_t seed,
+                    uint32_t pixel, int pass, int count, PreparedSample* out);
 
 // A segment from the shading point to a point on a light, or false when the geometry term is
 // zero (the light is behind the surface).
 bool makeSegment(const RenderScene& scene, const ShadingPoint& sp, const Vec3f& light_point,
                  Segment& out);
+bool makeSegment(const ShadingPoint& sp, const Vec3f& light_point, Segment& out);
 
 // The learning region of a query: screen tile x light x whether the shading point's own object
 // uses a proxy. Points on such an object trace their own original in both V and V' (the

@@ -1,0 +1,152 @@
+#include "render_data_parallel.h"
+
+#include <fmt/format.h>
+#include <tbb/global_control.h>
+
+#include <csignal>
+#include <cstdlib>
+
+#include "distributed/data_parallel_render.h"
+#include "distributed/distributed_scene.h"
+#include "distributed/mpi_comm.h"
+#include "render/image_io.h"
+#include "render/image_metadata.h"
+#include "render/oiio_module.h"
+#include "render_image.h"
+#include "scene/scene_desc.h"
+#include "util/build_info.h"
+#include "util/output_path.h"
+#include "util/output_set.h"
+#include "util/rng.h"
+
+namespace proxyvis {
+
+namespace {
+
+// Fault injection for the tests: the rank named by PROXYVIS_TEST_KILL_RANK dies by SIGKILL once
+// the scene is loaded, as a node that fails mid-job would.
+void maybeDieForTest(int rank) {
+  const char* k = std::getenv("PROXYVIS_TEST_KILL_RANK");
+  if (k && std::atoi(k) == rank) std::raise(SIGKILL);
+}
+
+Image dataParallelExr(const DataParallelResult& r) {
+  const size_t n = size_t(r.radiance.width) * size_t(r.radiance.height);
+  Image out{r.radiance.width, r.radiance.height, 6, std::vector<float>(n * 6)};
+  for (size_t i = 0; i < n; ++i) {
+    float* px = &out.pixels[i * 6];
+    std::copy_n(&r.radiance.pixels[i * 3], 3, px);
+    px[3] = r.visibility.pixels[i];
+    px[4] = r.forwards.pixels[i];
+    px[5] = r.owner.pixels[i];
+  }
+  return out;
+}
+
+}  // namespace
+
+int runDataParallelRender(DataParallelRenderRequest& o) {
+  MpiComm comm(nullptr, nullptr);
+  try {
+    const bool root = comm.rank() == 0;
+    Forwarding forwarding{};
+    RenderImageFormat format{};
+    SceneDesc desc;
+    comm.collectively([&] {
+      if (o.output == "-")
+        throw Error("-o -", "an image cannot be written to stdout", {},
+                    "name an .exr or .png file");
+      if (o.estimator != "exact" && o.estimator != "roulette")
+        throw Error("", "--estimator " + o.estimator + " is not available with --data-parallel",
+                    "forwarding decides visibility exactly or by roulette",
+                    "use --estimator exact or roulette");
+      forwarding = parseForwarding(o.data_parallel.forwarding);
+      format = renderImageFormat(o.output);
+      if (root) {
+        checkOutputs({o.scene.string()},
+                     {{"-o", o.output.string()}, {"--json", o.common.json_path}});
+        oiioModule();  // the image writer: a missing module fails now, not after the render
+      }
+      o.render.resolve();
+      desc = loadSceneDesc(o.scene);
+      o.render.applyTo(desc);
+    });
+
+    DistributedSceneOptions options;
+    const RenderSceneOptions scene_options = o.render.sceneOptions(o.common.quiet);
+    options.instance_build = scene_options.instance_build;
+    options.memory_budget_bytes = scene_options.memory_budget_bytes;
+    options.proxies = forwarding == Forwarding::kProxies;
+    options.quiet = o.common.quiet;
+    const auto scene = DistributedScene::load(desc, options, comm);
+    maybeDieForTest(comm.rank());
+
+    DataParallelSettings settings;
+    settings.forwarding = forwarding;
+    settings.roulette = o.estimator == "roulette";
+    settings.spp = o.spp;
+    // Seed index 0 of --seed, as render and render-compare: the images agree.
+    settings.seed = hashKeys(o.common.seed, 0);
+    settings.passes_per_round = o.data_parallel.passes_per_round;
+    settings.q_min = o.render.q_min;
+    settings.forward_cost_us = o.data_parallel.forward_cost_us;
+    settings.local_cost_us = o.data_parallel.local_cost_us;
+    settings.quiet = o.common.quiet;
+    const DataParallelResult result = renderDataParallel(*scene, settings, comm);
+    const std::vector<RankFacts> facts = gatherRankFacts(*scene, result.stats, comm);
+    if (!root) return kExitOk;
+
+    RenderMetadata meta{"render", o.estimator, result.spp, result.stats.seconds, o.common.seed, {}};
+    meta.extra.push_back({"proxyvis:forwarding", std::string(forwardingName(forwarding))});
+    meta.extra.push_back({"proxyvis:ranks", std::to_string(comm.size())});
+    ImageWriteOptions write;
+    write.attributes = renderAttributes(desc, meta);
+    Image image;
+    if (format == RenderImageFormat::kExr) {
+      image = dataParallelExr(result);
+      write.full_float = true;
+      write.channel_names = {"R", "G", "B", "visibility.Y", "forwards.Y", "rank.Y"};
+    } else {
+      image = result.radiance;
+      write.exposure = autoExposure(result.radiance);
+      write.attributes.push_back({"proxyvis:exposure", write.exposure});
+    }
+    nlohmann::json summary =
+        dataParallelRow(o.estimator, forwarding, result.stats, o.data_parallel.forward_cost_us);
+    summary["program"] = "render";
+    summary["scene"] = desc.path.string();
+    summary["output"] = o.output.string();
+    summary["spp"] = result.spp;
+    summary["seed"] = o.common.seed;
+    summary["width"] = result.radiance.width;
+    summary["height"] = result.radiance.height;
+    summary["threads"] =
+        int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+    summary["scene_build"] = scene->buildChoice().name();
+    summary["per_rank"] = rankFactsJson(facts);
+    summary["build"] = buildText();
+    summary["version"] = versionText();
+
+    OutputSet outputs(MissingFolders::kCreate);
+    outputs.add(o.output, [&](const std::filesystem::path& tmp) { writeImage(image, tmp, write); });
+    if (!o.common.json_path.empty()) outputs.addText(o.common.json_path, summary.dump(2) + "\n");
+    outputs.commit();
+
+    const DataParallelStats& s = result.stats;
+    printHumanReport(
+        o.common,
+        fmt::format("render: wrote {}: {} with --forwarding {}, {} ranks, {} spp in {:.2f} s\n"
+                    "  shadow segments {}: {:.4f} forwards each ({} forwards, {:.1f} MB in {} "
+                    "messages over {} rounds); blocked here {}, by inside proxies {}, "
+                    "undecided {}\n{}",
+                    o.output.string(), o.estimator, forwardingName(forwarding), comm.size(),
+                    result.spp, s.seconds, s.shadow_segments, s.forwardsPerSegment(), s.forwards,
+                    1e-6 * double(s.forward_bytes), s.forward_messages, s.rounds, s.blocked_locally,
+                    s.blocked_by_inside, s.undecided, rankFactsText(facts)));
+    return kExitOk;
+  } catch (const ReportedOnAnotherRank& e) {
+    return e.exitCode();
+  }
+}
+
+}  // namespace proxyvis

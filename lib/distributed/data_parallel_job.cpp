@@ -1,0 +1,131 @@
+#include "distributed/data_parallel_job.h"
+
+#include <fmt/format.h>
+
+#include "util/app_main.h"
+
+namespace proxyvis {
+
+void addDataParallelFlags(CLI::App& app, DataParallelFlags& flags, bool list) {
+  const std::string group = "Data-parallel (run under mpirun; docs/data_parallel.md)";
+  app.add_flag("--data-parallel", flags.enabled,
+               "Split the scene's objects over the MPI ranks (each loads only its own originals "
+               "and every proxy) and forward shadow rays between them")
+      ->group(group);
+  app.add_option("--forwarding", flags.forwarding,
+                 list ? "Forwarding policies to compare, comma-separated: domain-bounds, "
+                        "instance-boxes, proxies"
+                      : "Which ranks a shadow ray is sent to: domain-bounds, instance-boxes or "
+                        "proxies (outside and inside proxies where the scene has them)")
+      ->capture_default_str()
+      ->group(group);
+  app.add_option("--passes-per-round", flags.passes_per_round,
+                 "Light samples per pixel traced between two exchanges of rays")
+      ->check(integerIn(1, 1024))
+      ->capture_default_str()
+      ->group(group);
+  app.add_option("--forward-cost-us", flags.forward_cost_us,
+                 "Cost of one forwarded ray in microseconds: roulette's choice of q and the "
+                 "report's modelled efficiency (default: measured on this run)")
+      ->check(numberIn(0, 1e6))
+      ->group(group);
+  app.add_option("--local-cost-us", flags.local_cost_us,
+                 "Roulette: a segment's local work in microseconds (default: measured); with "
+                 "--forward-cost-us the render is bit-reproducible")
+      ->check(numberIn(0, 1e6))
+      ->group(group);
+}
+
+std::vector<RankFacts> gatherRankFacts(const DistributedScene& scene,
+                                       const DataParallelStats& stats, const MpiComm& comm) {
+  const DistributedScene::Facts& f = scene.facts();
+  nlohmann::json mine = {
+      {"rank", comm.rank()},
+      {"host", comm.hostName()},
+      {"own_objects", f.own_objects},
+      {"own_triangles", f.own_triangles},
+      {"replicated_triangles", f.replicated_triangles},
+      {"proxy_triangles", f.proxy_triangles},
+      {"peak_rss_bytes", peakRssBytes()},
+      {"shaded_pixels",
+       stats.rank_shaded_pixels.empty() ? 0 : stats.rank_shaded_pixels[size_t(comm.rank())]}};
+  nlohmann::json files = nlohmann::json::array();
+  for (const auto& p : f.originals_opened) files.push_back(p.string());
+  mine["originals_opened"] = files;
+  std::vector<RankFacts> out;
+  for (const std::string& text : comm.gatherToRoot(mine.dump())) {
+    const nlohmann::json j = nlohmann::json::parse(text);
+    RankFacts r;
+    r.rank = j["rank"];
+    r.host = j["host"];
+    r.own_objects = j["own_objects"];
+    r.own_triangles = j["own_triangles"];
+    r.replicated_triangles = j["replicated_triangles"];
+    r.proxy_triangles = j["proxy_triangles"];
+    r.peak_rss_bytes = j["peak_rss_bytes"];
+    r.shaded_pixels = j["shaded_pixels"];
+    r.originals_opened = j["originals_opened"].get<std::vector<std::string>>();
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
+nlohmann::json dataParallelRow(const std::string& estimator, Forwarding forwarding,
+                               const DataParallelStats& s, double forward_cost_us) {
+  nlohmann::json row = {{"estimator", estimator},
+                        {"forwarding", forwardingName(forwarding)},
+                        {"ranks", s.ranks},
+                        {"shadow_segments", s.shadow_segments},
+                        {"forwards", s.forwards},
+                        {"forwards_per_shadow_segment", s.forwardsPerSegment()},
+                        {"forward_bytes", s.forward_bytes},
+                        {"forward_messages", s.forward_messages},
+                        {"forward_rounds", s.rounds},
+                        {"blocked_locally", s.blocked_locally},
+                        {"blocked_by_inside_proxy", s.blocked_by_inside},
+                        {"undecided", s.undecided},
+                        {"forwarded_segments", s.forwarded_segments},
+                        {"mean_q", s.mean_q},
+                        {"rank_peak_rss_bytes", s.rank_peak_rss_bytes},
+                        {"seconds", s.seconds},
+                        {"compute_seconds", s.max_compute_seconds},
+                        {"exchange_seconds", s.max_exchange_seconds},
+                        {"max_rank_forwards", s.max_rank_forwards}};
+  if (forward_cost_us >= 0) {
+    row["forward_cost_us"] = forward_cost_us;
+    row["modelled_seconds"] = s.modelledSeconds(forward_cost_us);
+  } else {
+    row["forward_cost_us"] = nullptr;
+    row["modelled_seconds"] = nullptr;
+  }
+  return row;
+}
+
+nlohmann::json rankFactsJson(const std::vector<RankFacts>& facts) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const RankFacts& r : facts)
+    out.push_back({{"rank", r.rank},
+                   {"host", r.host},
+                   {"own_objects", r.own_objects},
+                   {"own_triangles", r.own_triangles},
+                   {"replicated_triangles", r.replicated_triangles},
+                   {"proxy_triangles", r.proxy_triangles},
+                   {"peak_rss_bytes", r.peak_rss_bytes},
+                   {"shaded_pixels", r.shaded_pixels},
+                   {"originals_opened", r.originals_opened}});
+  return out;
+}
+
+std::string rankFactsText(const std::vector<RankFacts>& facts) {
+  std::string out;
+  for (const RankFacts& r : facts)
+    out += fmt::format(
+        "  rank {} ({}): {} objects, {:.2f} M own + {:.2f} M replicated triangles, {} original "
+        "files, {} pixels shaded, peak RSS {:.0f} MiB\n",
+        r.rank, r.host, r.own_objects, 1e-6 * double(r.own_triangles),
+        1e-6 * double(r.replicated_triangles), r.originals_opened.size(), r.shaded_pixels,
+        double(r.peak_rss_bytes) / double(1 << 20));
+  return out;
+}
+
+}  // namespace proxyvis

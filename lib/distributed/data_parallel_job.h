@@ -1,0 +1,49 @@
+#pragma once
+// What render and render-compare share for a data-parallel run: the flags, one run from a scene
+// description to the image on rank 0, and its JSON row (the report keys users' scripts read:
+// forwarding, ranks, forwards_per_shadow_segment, forward_bytes, forward_messages,
+// rank_peak_rss_bytes, ...).
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "distributed/data_parallel_render.h"
+#include "distributed/distributed_scene.h"
+
+namespace proxyvis {
+
+struct DataParallelFlags {
+  bool enabled = false;                // --data-parallel
+  std::string forwarding = "proxies";  // one policy (render) or a comma list (render-compare)
+  int passes_per_round = 8;
+  double forward_cost_us = -1;  // roulette's forward cost and the report's model; < 0: measured
+  double local_cost_us = -1;
+};
+
+// Adds --data-parallel, --forwarding, --passes-per-round, --forward-cost-us, --local-cost-us.
+// `list`: --forwarding takes a comma-separated list (render-compare).
+void addDataParallelFlags(CLI::App& app, DataParallelFlags& flags, bool list);
+
+// One rank's share, for the report (gathered on rank 0).
+struct RankFacts {
+  int rank = 0;
+  std::string host;
+  uint64_t own_objects = 0, own_triangles = 0, replicated_triangles = 0, proxy_triangles = 0;
+  uint64_t peak_rss_bytes = 0, shaded_pixels = 0;
+  std::vector<std::string> originals_opened;
+};
+// Collective; the full list on rank 0, empty elsewhere.
+std::vector<RankFacts> gatherRankFacts(const DistributedScene& scene,
+                                       const DataParallelStats& stats, const MpiComm& comm);
+
+// The row of one run: estimator, forwarding, ranks, the forward counts, memory, time, and the
+// modelled time and forward cost when forward_cost_us >= 0.
+nlohmann::json dataParallelRow(const std::string& estimator, Forwarding forwarding,
+                               const DataParallelStats& stats, double forward_cost_us);
+nlohmann::json rankFactsJson(const std::vector<RankFacts>& facts);
+
+// The ranks' peak RSS and their shares, one line each, for the human report.
+std::string rankFactsText(const std::vector<RankFacts>& facts);
+
+}  // namespace proxyvis

@@ -1,0 +1,53 @@
+#include "distributed/roulette_forwarding.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace proxyvis {
+
+RouletteForwarding::RouletteForwarding(size_t regions, double q_min)
+    : stats_(regions), q_min_(q_min) {}
+
+void RouletteForwarding::add(uint32_t region, double estimate, bool undecided, bool forwarded,
+                             uint32_t forwards, bool visible) {
+  Stats& s = stats_[region];
+  s.segments += 1;
+  s.estimate_sum += estimate;
+  if (undecided) s.undecided += 1;
+  if (forwarded) {
+    s.forwarded += 1;
+    s.forwards += forwards;
+    if (visible) s.visible += 1;
+  }
+}
+
+void RouletteForwarding::setMeasuredCosts(double local_us, double forward_us) {
+  local_us_ = std::max(local_us, 1e-3);
+  forward_us_ = std::max(forward_us, 1e-3);
+}
+
+std::vector<double> RouletteForwarding::probabilities(double forward_cost_us,
+                                                      double local_cost_us) const {
+  const double c_forward = forward_cost_us >= 0 ? std::max(forward_cost_us, 1e-3) : forward_us_;
+  const double c_local = local_cost_us >= 0 ? std::max(local_cost_us, 1e-3) : local_us_;
+  std::vector<double> q(stats_.size(), 1.0);
+  for (size_t i = 0; i < stats_.size(); ++i) {
+    const Stats& s = stats_[i];
+    if (s.forwarded == 0 || s.segments == 0) continue;  // nothing learned: forward all
+    const double p_undecided = s.undecided / s.segments;
+    const double p_mh = p_undecided * (s.visible / s.forwarded);
+    const double v = s.estimate_sum / s.segments;
+    const double a = v * (1 - v) - p_mh;
+    if (p_mh <= 0) {
+      q[i] = q_min_;
+      continue;
+    }
+    if (a <= 0) continue;
+    const double k = s.forwards / s.forwarded;
+    const double d = c_forward * p_undecided * k;
+    q[i] = std::clamp(std::sqrt(p_mh * c_local / (a * d)), q_min_, 1.0);
+  }
+  return q;
+}
+
+}  // namespace proxyvis

@@ -1,0 +1,184 @@
+"""Data-parallel rendering over MPI, end to end (label mpi). Cases:
+  identical  exact renders equal the single-process exact render bit for bit (R, G, B) at 1, 2, 3
+             and 4 ranks, every forwarding policy, 1 and 2 threads
+  files      no rank opens another rank's original (strace of every rank's open calls)
+  faults     a rank that cannot read its original ends the job with exit 2 and one line naming the
+             rank and the file; a rank killed mid-job fails the job; no output replaces a good one
+  refuse     a proxy whose recorded class does not hold for its file is refused before rendering
+  roulette   roulette is unbiased: over seeds, its image minus the same seed's exact image has
+             mean zero (z-test), and its variance matches V~ - V's closed form
+usage: data_parallel_test.py CASE RENDER_EXE PROXY_GEN_EXE DATA_DIR SCENES_DIR WORK_DIR"""
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+
+sys.path.insert(0, os.path.dirname(__file__))
+from mpi_support import make_unique_scene, mpi_env, mpirun_cmd, rgb_equal, run  # noqa: E402
+
+case, render, proxy_gen, data_dir, scenes_dir, work = sys.argv[1:7]
+shutil.rmtree(work, ignore_errors=True)
+os.makedirs(work)
+scene = make_unique_scene(work, data_dir, scenes_dir, proxy_gen)
+FORWARDINGS = ["domain-bounds", "instance-boxes", "proxies"]
+
+
+def dp(ranks, out, *flags, expect=0, env=None):
+    return run(mpirun_cmd(ranks) + [render, scene, "--data-parallel", "-o", out, "--quiet",
+                                    *flags], expect=expect, env=env)
+
+
+def summary(path):
+    with open(path) as f:
+        return json.load(f)
+
+
+if case == "identical":
+    single = os.path.join(work, "single.exr")
+    run([render, scene, "--estimator", "exact", "--spp", "8", "--seed", "5", "-o", single,
+         "--quiet", "--threads", "2"])
+    checked = 0
+    for ranks in (1, 2, 3, 4):
+        for fw in FORWARDINGS:
+            for threads in ((1, 2) if ranks == 2 else (1,)):
+                out = os.path.join(work, f"dp_{ranks}_{fw}_{threads}.exr")
+                js = out + ".json"
+                dp(ranks, out, "--forwarding", fw, "--spp", "8", "--seed", "5",
+                   "--threads", str(threads), "--passes-per-round", "3", "--json", js)
+                same, text = rgb_equal(single, out, work)
+                if not same:
+                    sys.exit(f"FAIL: {ranks} ranks, --forwarding {fw}, {threads} threads: the "
+                             f"image differs from the single-process exact render\n{text}")
+                s = summary(js)
+                if s["ranks"] != ranks or s["forwarding"] != fw:
+                    sys.exit(f"FAIL: summary says {s['ranks']} ranks, {s['forwarding']}")
+                if ranks > 1 and s["forwards"] == 0:
+                    sys.exit(f"FAIL: {ranks} ranks, {fw}: no ray was forwarded; the scene does "
+                             "not exercise forwarding")
+                if ranks == 1 and s["forwards"] != 0:
+                    sys.exit(f"FAIL: one rank forwarded {s['forwards']} rays")
+                for key in ("forwards_per_shadow_segment", "forward_bytes", "forward_messages",
+                            "rank_peak_rss_bytes"):
+                    if key not in s:
+                        sys.exit(f"FAIL: the summary has no '{key}'")
+                # Every request is 32 bytes and its answer 1.
+                if s["forward_bytes"] != 33 * s["forwards"]:
+                    sys.exit(f"FAIL: {s['forward_bytes']} bytes for {s['forwards']} forwards")
+                checked += 1
+    print(f"ok: {checked} data-parallel renders equal the single-process exact render")
+
+elif case == "files":
+    # Every rank under strace; its opened files against the other ranks' originals.
+    trace = os.path.join(work, "trace")
+    js = os.path.join(work, "files.json")
+    cmd = mpirun_cmd(3) + [
+        "sh", "-c", f'exec strace -f -qq -e trace=open,openat -o "{trace}.$OMPI_COMM_WORLD_RANK" '
+        f'"$@"', "sh", render, scene, "--data-parallel", "--forwarding", "proxies", "--spp", "2",
+        "-o", os.path.join(work, "files.exr"), "--json", js, "--quiet", "--threads", "1"]
+    run(cmd)
+    per_rank = summary(js)["per_rank"]
+    owned = [set(r["originals_opened"]) for r in per_rank]
+    everywhere = set.intersection(*owned)  # replicated: the ground
+    for r in range(3):
+        mine = owned[r] - everywhere
+        if not mine:
+            sys.exit(f"FAIL: rank {r} owns no original")
+        for q in range(r + 1, 3):
+            if mine & (owned[q] - everywhere):
+                sys.exit(f"FAIL: ranks {r} and {q} both own {mine & owned[q]}")
+    for r in range(3):
+        with open(f"{trace}.{r}") as f:
+            opened = f.read()
+        if "meshes/m" not in opened:
+            sys.exit(f"FAIL: rank {r}'s trace shows no mesh opened: is strace working?")
+        for q in range(3):
+            if q == r:
+                continue
+            for path in owned[q] - everywhere:
+                if f'"{path}"' in opened:
+                    sys.exit(f"FAIL: rank {r} opened {path}, an original of rank {q}")
+        for path in owned[r] - everywhere:
+            if f'"{path}"' not in opened:
+                sys.exit(f"FAIL: rank {r} says it loaded {path} but strace saw no open of it")
+    print("ok: each rank opened its own originals and no other rank's")
+
+elif case == "faults":
+    good = os.path.join(work, "good.exr")
+    dp(2, good, "--spp", "2", "--json", good + ".json")
+    before = open(good, "rb").read()
+    owned = summary(good + ".json")["per_rank"][1]["originals_opened"]
+    victim = next(p for p in owned if "/meshes/m" in p)
+    with open(victim, "r+b") as f:
+        f.truncate(os.path.getsize(victim) // 2)
+    p = dp(2, good, "--spp", "2", expect=2)
+    lines = [l for l in p.stderr.splitlines() if "error" in l]
+    if len(lines) != 1 or "rank 1" not in lines[0] or os.path.basename(victim) not in lines[0]:
+        sys.exit(f"FAIL: expected one error line naming rank 1 and {victim}:\n{p.stderr}")
+    if open(good, "rb").read() != before:
+        sys.exit("FAIL: the failed job replaced the good output")
+    shutil.copyfile(os.path.join(data_dir, "bunny.off" if victim.endswith(".off")
+                                 else "spot_triangulated.obj"), victim)
+    env = mpi_env()
+    env["PROXYVIS_TEST_KILL_RANK"] = "1"
+    p = dp(2, good, "--spp", "2", expect=None, env=env)
+    if p.returncode == 0:
+        sys.exit("FAIL: a job whose rank 1 was killed exited 0")
+    if open(good, "rb").read() != before:
+        sys.exit("FAIL: the killed job replaced the good output")
+    leftovers = [f for f in os.listdir(work) if f.startswith("good") and f not in
+                 ("good.exr", "good.exr.json")]
+    if leftovers:
+        sys.exit(f"FAIL: the killed job left {leftovers}")
+    print(f"ok: unreadable original -> exit 2 naming rank 1; killed rank -> exit "
+          f"{p.returncode}; the good output untouched")
+
+elif case == "refuse":
+    with open(scene) as f:
+        s = json.load(f)
+    s["meshes"][1]["proxies"][0]["sha256"] = "0" * 64
+    bad = os.path.join(work, "bad.json")
+    with open(bad, "w") as f:
+        json.dump(s, f)
+    out = os.path.join(work, "refused.exr")
+    p = run(mpirun_cmd(2) + [render, bad, "--data-parallel", "--forwarding", "proxies", "-o", out,
+                             "--quiet"], expect=2)
+    if "not proved for this file" not in p.stderr or os.path.exists(out):
+        sys.exit(f"FAIL: a proxy with a wrong sha256 was not refused:\n{p.stderr}")
+    # Without proxies to rely on, the box baseline still renders it.
+    dp(2, out, "--forwarding", "instance-boxes", "--spp", "1")
+    print("ok: a proxy whose class is not proved for its file is refused before rendering")
+
+elif case == "roulette":
+    # Paired by seed: the light samples are the same, only forwarding differs, so
+    # D = mean(roulette image) - mean(exact image) has expectation 0 exactly.
+    diffs = []
+    for seed in range(12):
+        ex = os.path.join(work, f"exact_{seed}.exr")
+        ro = os.path.join(work, f"roulette_{seed}.exr")
+        dp(2, ex, "--forwarding", "proxies", "--spp", "4", "--seed", str(seed), "--threads", "1")
+        dp(2, ro, "--forwarding", "proxies", "--estimator", "roulette", "--spp", "4", "--seed",
+           str(seed), "--threads", "1", "--forward-cost-us", "200", "--local-cost-us", "1",
+           "--json", ro + ".json", "--passes-per-round", "1")
+        stats = []
+        for f in (ex, ro):
+            p = run(["oiiotool", "--stats", f])
+            line = next(l for l in p.stdout.splitlines() if "Stats Avg" in l)
+            stats.append([float(v) for v in line.split(":")[1].split()[:3]])
+        diffs.append(sum(stats[1]) / 3 - sum(stats[0]) / 3)
+        s = summary(ro + ".json")
+        if not (0 < s["mean_q"] < 1):
+            sys.exit(f"FAIL: roulette forwarded with mean q {s['mean_q']}: not a roulette")
+    n = len(diffs)
+    mean = sum(diffs) / n
+    var = sum((d - mean) ** 2 for d in diffs) / (n - 1)
+    z = mean / math.sqrt(var / n) if var > 0 else 0
+    print(f"roulette - exact over {n} seeds: mean {mean:.3e}, sd {math.sqrt(var):.3e}, z {z:.2f}")
+    if var == 0:
+        sys.exit("FAIL: roulette and exact images are identical: nothing was left to chance")
+    if abs(z) > 4:
+        sys.exit(f"FAIL: |z| = {abs(z):.2f} > 4: roulette is biased")
+    print("ok: roulette is unbiased against exact (z-test)")
+else:
+    sys.exit(f"unknown case {case}")

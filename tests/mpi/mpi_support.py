@@ -1,0 +1,130 @@
+"""Helpers for the data-parallel tests: mpirun with the flags this machine needs, and a small
+scene whose every object is its own mesh file (so that which rank opens which file is a fact a
+test can check), with outside and inside proxies made by proxy-gen."""
+import hashlib
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+
+def mpirun_cmd(ranks):
+    # --oversubscribe: more ranks than cores; --bind-to none: a rank's TBB threads may use any
+    # core. Root is allowed because CI and the sessions run as root.
+    return ["mpirun", "--allow-run-as-root", "--oversubscribe", "--bind-to", "none",
+            "-np", str(ranks)]
+
+
+def mpi_env():
+    env = dict(os.environ)
+    env.update({
+        "OMPI_ALLOW_RUN_AS_ROOT": "1",
+        "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
+        # Containers forbid the cross-memory attach Open MPI's shared-memory transport tries
+        # first; without this every message prints a warning.
+        "OMPI_MCA_btl_vader_single_copy_mechanism": "none",
+    })
+    return env
+
+
+def run(cmd, expect=0, env=None):
+    p = subprocess.run(cmd, capture_output=True, text=True, env=env or mpi_env())
+    if expect is not None and p.returncode != expect:
+        sys.exit(f"FAIL: {' '.join(cmd)}\nexit {p.returncode}, expected {expect}\n"
+                 f"stdout:\n{p.stdout}\nstderr:\n{p.stderr}")
+    return p
+
+
+def sha256(path):
+    with open(path, "rb") as f:
+        return hashlib.sha256(f.read()).hexdigest()
+
+
+def off_or_obj_bounds(path):
+    lo, hi = [1e30] * 3, [-1e30] * 3
+    with open(path) as f:
+        if path.endswith(".off"):
+            tokens = f.read().split()
+            assert tokens[0] == "OFF"
+            nv = int(tokens[1])
+            coords = [float(t) for t in tokens[4:4 + 3 * nv]]
+            verts = [coords[i:i + 3] for i in range(0, len(coords), 3)]
+        else:
+            verts = [[float(x) for x in line.split()[1:4]] for line in f if line.startswith("v ")]
+    for v in verts:
+        for a in range(3):
+            lo[a] = min(lo[a], v[a])
+            hi[a] = max(hi[a], v[a])
+    return lo, hi
+
+
+def make_unique_scene(folder, data_dir, scenes_dir, proxy_gen, side=3, spacing=1.6,
+                      with_inside=True):
+    """A side x side grid of sculptures, each its own copy of bunny.off or
+    spot_triangulated.obj (distinct files), placed on a ground quad, with a sun at about 30
+    degrees and a sky quad. Returns the scene path."""
+    os.makedirs(os.path.join(folder, "meshes"), exist_ok=True)
+    protos = {}
+    for name, file in (("bunny", "bunny.off"), ("spot", "spot_triangulated.obj")):
+        src = os.path.join(data_dir, file)
+        proxies = []
+        kinds = [("outside", ["--method", "hull"])]
+        if with_inside:
+            kinds.append(("inside", ["--max-faces", "300"]))
+        for kind, flags in kinds:
+            out = os.path.join(folder, f"{name}.{kind}.ply")
+            if not os.path.exists(out):
+                run([proxy_gen, src, "--kind", kind, *flags, "-o", out, "--quiet"], env=os.environ)
+            proxies.append({"kind": kind, "file": os.path.basename(out), "class": kind,
+                            "sha256": sha256(out)})
+        protos[name] = (src, proxies, off_or_obj_bounds(src))
+    meshes = [{"name": "ground", "file": os.path.abspath(os.path.join(scenes_dir, "meshes", "ground.obj")),
+               "albedo": [0.7, 0.7, 0.7], "make_proxy": False,
+               "transform": {"scale": spacing * side * 1.5}}]
+    k = 0
+    for i in range(side):
+        for j in range(side):
+            name = "bunny" if (i + j) % 2 == 0 else "spot"
+            src, proxies, (lo, hi) = protos[name]
+            ext = os.path.splitext(src)[1]
+            copy = os.path.join(folder, "meshes", f"m{k}{ext}")
+            shutil.copyfile(src, copy)
+            s = 1.0 / (hi[1] - lo[1])
+            cx, cz = (lo[0] + hi[0]) / 2, (lo[2] + hi[2]) / 2
+            x = (i - (side - 1) / 2) * spacing
+            z = (j - (side - 1) / 2) * spacing
+            # row-major 3x4: uniform scale, then translate so the model stands on y = 0.
+            m = [s, 0, 0, x - s * cx, 0, s, 0, -s * lo[1] + 0.001, 0, 0, s, z - s * cz]
+            meshes.append({"name": f"m{k}", "file": os.path.join("meshes", f"m{k}{ext}"),
+                           "albedo": [0.8, 0.6, 0.4], "transform": m, "proxies": proxies})
+            k += 1
+    extent = spacing * side
+    scene = {
+        "description": "data-parallel test: every sculpture its own mesh file",
+        "camera": {"eye": [0, extent * 1.1, extent * 1.4], "look_at": [0, 0.3, 0],
+                   "up": [0, 1, 0], "fov_deg": 40, "resolution": [48, 36]},
+        "lights": [
+            # A sun at about 30 degrees to the side, and a dim sky high above.
+            {"type": "quad", "corner": [-60, 35, -2], "edge_u": [0, 0, 4], "edge_v": [0, 4, 0],
+             "radiance": [400, 380, 350]},
+            {"type": "quad", "corner": [-3 * extent, 20, -3 * extent], "edge_u": [6 * extent, 0, 0],
+             "edge_v": [0, 0, 6 * extent], "radiance": [0.3, 0.4, 0.6]},
+        ],
+        "meshes": meshes,
+    }
+    path = os.path.join(folder, "unique.json")
+    with open(path, "w") as f:
+        json.dump(scene, f, indent=1)
+    return path
+
+
+def rgb_equal(exr_a, exr_b, work):
+    """True if the R, G, B channels of two EXRs are equal bit for bit (idiff -fail 0)."""
+    a = os.path.join(work, "a_rgb.exr")
+    b = os.path.join(work, "b_rgb.exr")
+    run(["oiiotool", exr_a, "--ch", "R,G,B", "-d", "float", "-o", a])
+    run(["oiiotool", exr_b, "--ch", "R,G,B", "-d", "float", "-o", b])
+    p = subprocess.run(["idiff", "-fail", "0", "-failpercent", "0", "-warn", "0", a, b],
+                       capture_output=True, text=True)
+    return p.returncode == 0, p.stdout
