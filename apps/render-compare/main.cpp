@@ -13,6 +13,7 @@
 
 #include "ceiling_phase.h"
 #include "compare_options.h"
+#include "data_parallel_study.h"
 #include "huge_page_malloc.h"
 #include "metrics/html_report.h"
 #include "metrics/image_error.h"
@@ -351,11 +352,20 @@ int main(int argc, char** argv) {
       "render-compare"};
   proxyvis::CompareOptions options;
   proxyvis::addCompareOptions(app, options);
+  proxyvis::DataParallelFlags data_parallel;
+  proxyvis::addDataParallelFlags(app, data_parallel, true);
   std::filesystem::path plan_dir;
   app.add_option("--plan", plan_dir,
                  "Write the study as independent work units to this folder (plan.json) instead "
                  "of running it: run them with scripts/slurm/submit.sh, which merges them into "
                  "--out (docs/slurm.md). Also: --run-unit DIR K, --merge DIR");
-  return proxyvis::runApp(app, argc, argv, options.common,
-                          [&] { return proxyvis::runCompare(options, app, plan_dir); });
+  return proxyvis::runApp(app, argc, argv, options.common, [&] {
+    if (data_parallel.enabled) {
+      if (!plan_dir.empty())
+        throw proxyvis::Error("", "--plan is not available with --data-parallel", {},
+                              "run the data-parallel study under mpirun or srun");
+      return proxyvis::runDataParallelStudy(options, data_parallel, app.count("--estimators") > 0);
+    }
+    return proxyvis::runCompare(options, app, plan_dir);
+  });
 }

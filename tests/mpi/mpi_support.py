@@ -12,7 +12,7 @@ import sys
 def mpirun_cmd(ranks):
     # --oversubscribe: more ranks than cores; --bind-to none: a rank's TBB threads may use any
     # core. Root is allowed because CI and the sessions run as root.
-    return ["mpirun", "--allow-run-as-root", "--oversubscribe", "--bind-to", "none",
+    return ["mpirun", "-q", "--allow-run-as-root", "--oversubscribe", "--bind-to", "none",
             "-np", str(ranks)]
 
 
