@@ -16,7 +16,7 @@ namespace proxyvis {
 struct DataParallelFlags {
   bool enabled = false;                // --data-parallel
   std::string forwarding = "proxies";  // one policy (render) or a comma list (render-compare)
-  int passes_per_round = 4;  // roulette learns between rounds: its first round forwards all
+  int passes_per_round = 4;     // roulette learns between rounds: its first round forwards all
   double forward_cost_us = -1;  // roulette's forward cost and the report's model; < 0: measured
   double local_cost_us = -1;
 };

@@ -3,6 +3,7 @@
 
 #include <sys/resource.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <climits>
@@ -85,13 +86,18 @@ DataParallelResult renderDataParallel(const DistributedScene& scene,
   if (settings.forwarding == Forwarding::kProxies && !scene.hasProxyForwarding())
     throw Error("", "--forwarding proxies needs the scene loaded with its proxies");
   static_assert(sizeof(Segment) == 32, "the request format is 8 floats");
+  // Compute time is the process CPU time outside MPI calls (Open MPI polls while it waits), so
+  // that ranks sharing cores (more ranks than cores on a test machine) are not charged for the
+  // time another rank ran.
   const Stopwatch clock;
-  double mpi_seconds = 0;
+  const double cpu_start = processCpuSeconds();
+  double mpi_cpu = 0;
   auto timed = [&](auto&& call) {
-    const Stopwatch t;
+    const double c = processCpuSeconds();
     call();
-    mpi_seconds += t.seconds();
+    mpi_cpu += processCpuSeconds() - c;
   };
+  auto computeCpu = [&] { return processCpuSeconds() - cpu_start - mpi_cpu; };
 
   const int rank = comm.rank(), ranks = comm.size();
   const int width = scene.camera().width(), height = scene.camera().height();
@@ -233,7 +239,7 @@ DataParallelResult renderDataParallel(const DistributedScene& scene,
         round = comm.exchange(outbox, sizeof(Segment), answerRequests,
                               const_cast<AnswerContext*>(&answer_context), replies);
       });
-      mpi_seconds -= round.answer_seconds;  // answering is compute
+      mpi_cpu -= round.answer_cpu_seconds;  // answering is compute
       exchange_seconds += round.seconds;
       my_forwards += round.items_sent;
       counts[5] += round.bytes_sent;
@@ -287,8 +293,7 @@ DataParallelResult renderDataParallel(const DistributedScene& scene,
       learner.add(r.region[e], r.estimate[e], undecided, r.forwarded[e] != 0, r.forwards[e],
                   r.forwarded[e] && r.estimate[e] > 0);
     }
-    const double compute = clock.seconds() - mpi_seconds;
-    learner.setMeasuredCosts(my_segments ? 1e6 * compute / double(my_segments) : 1.0,
+    learner.setMeasuredCosts(my_segments ? 1e6 * computeCpu() / double(my_segments) : 1.0,
                              my_forwards ? 1e6 * exchange_seconds / double(my_forwards) : 1.0);
     progress.update();
   }
@@ -310,7 +315,7 @@ DataParallelResult renderDataParallel(const DistributedScene& scene,
     forwards.pixels[p] = float(s.forwards);
     owner.pixels[p] = float(rank + 1);
   }
-  const double compute_seconds = clock.seconds() - mpi_seconds;
+  const double compute_seconds = computeCpu() / double(tbb::this_task_arena::max_concurrency());
   timed([&] {
     comm.sum(radiance.pixels, true);
     comm.sum(visibility.pixels, true);

@@ -5,6 +5,8 @@
 #include <chrono>
 #include <cstring>
 
+#include "util/stopwatch.h"
+
 namespace proxyvis {
 
 namespace {
@@ -178,10 +180,11 @@ MpiComm::RoundStats MpiComm::exchange(const std::vector<std::vector<uint8_t>>& o
     int index = MPI_UNDEFINED;
     MPI_Waitany(int(recv_req.size()), recv_req.data(), &index, MPI_STATUS_IGNORE);
     const size_t r = size_t(recv_from[size_t(index)]);
-    const double t0 = now();
+    const double t0 = now(), c0 = processCpuSeconds();
     answers[r].resize(recv_counts[r]);
     answer(context, inbox[r].data(), recv_counts[r], answers[r].data());
     stats.answer_seconds += now() - t0;
+    stats.answer_cpu_seconds += processCpuSeconds() - c0;
     answer_req.emplace_back();
     MPI_Isend(answers[r].data(), checkedCount(answers[r].size()), MPI_BYTE, int(r), kReplyTag,
               MPI_COMM_WORLD, &answer_req.back());

@@ -79,7 +79,7 @@ class MpiComm {
   struct RoundStats {
     uint64_t items_sent = 0, bytes_sent = 0, messages_sent = 0;
     double seconds = 0;  // wall time inside the round, answering excluded
-    double answer_seconds = 0;
+    double answer_seconds = 0, answer_cpu_seconds = 0;  // answering (process CPU: all threads)
   };
   using Answer = void (*)(void* context, const uint8_t* requests, size_t count, uint8_t* answers);
   RoundStats exchange(const std::vector<std::vector<uint8_t>>& outbox, size_t bytes_per_item,

@@ -51,12 +51,6 @@ uint64_t timed(F&& trace, bool& visible) {
   return best;
 }
 
-double processCpuSeconds() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
-}
-
 }  // namespace
 
 CeilingMeasurement measureCeilingStats(const RenderScene& scene, const RenderSettings& settings,

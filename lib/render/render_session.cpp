@@ -40,13 +40,6 @@ int samplesPerPass(const RenderSettings& s, int probes) {
   return s.time_budget > 0 ? kProbePassSamplesUnderBudget : std::max(1, s.spp);
 }
 
-// CPU time of the whole process (every thread), in seconds.
-double processCpuSeconds() {
-  timespec ts{};
-  if (clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts) != 0) return 0;
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
-
 // Per-pixel sums, one cache line per pixel: phase B touches one line per pixel, not four.
 struct alignas(64) PixelSums {
   Vec3d radiance;
