@@ -61,12 +61,11 @@ int runDataParallelRender(DataParallelRenderRequest& o) {
                     "forwarding decides visibility exactly or by roulette",
                     "use --estimator exact or roulette");
       forwarding = parseForwarding(o.data_parallel.forwarding);
-      format = renderImageFormat(o.output);
-      if (root) {
+      if (root)
         checkOutputs({o.scene.string()},
                      {{"-o", o.output.string()}, {"--json", o.common.json_path}});
-        oiioModule();  // the image writer: a missing module fails now, not after the render
-      }
+      format = renderImageFormat(o.output);
+      if (root) oiioModule();  // the image writer: a missing module fails now, not after the render
       o.render.resolve();
       desc = loadSceneDesc(o.scene);
       o.render.applyTo(desc);
@@ -135,14 +134,15 @@ int runDataParallelRender(DataParallelRenderRequest& o) {
     const DataParallelStats& s = result.stats;
     printHumanReport(
         o.common,
-        fmt::format("render: wrote {}: {} with --forwarding {}, {} ranks, {} spp in {:.2f} s\n"
+        fmt::format("render: wrote {}: {} with --forwarding {} on {} rank{}, {} spp in {:.2f} s\n"
                     "  shadow segments {}: {:.4f} forwards each ({} forwards, {:.1f} MB in {} "
                     "messages over {} rounds); blocked here {}, by inside proxies {}, "
                     "undecided {}\n{}",
                     o.output.string(), o.estimator, forwardingName(forwarding), comm.size(),
-                    result.spp, s.seconds, s.shadow_segments, s.forwardsPerSegment(), s.forwards,
-                    1e-6 * double(s.forward_bytes), s.forward_messages, s.rounds, s.blocked_locally,
-                    s.blocked_by_inside, s.undecided, rankFactsText(facts)));
+                    comm.size() == 1 ? "" : "s", result.spp, s.seconds, s.shadow_segments,
+                    s.forwardsPerSegment(), s.forwards, 1e-6 * double(s.forward_bytes),
+                    s.forward_messages, s.rounds, s.blocked_locally, s.blocked_by_inside,
+                    s.undecided, rankFactsText(facts)));
     return kExitOk;
   } catch (const ReportedOnAnotherRank& e) {
     return e.exitCode();

@@ -109,9 +109,10 @@ std::vector<std::string> MpiComm::gatherToRoot(const std::string& text) const {
 
 void MpiComm::agree(const std::optional<Error>& error) const {
   // The first failing rank, by a min-reduction of (rank if failed, else size).
-  int first = error ? rank_ : size_;
+  int first = error ? rank_ : size_, failed = error ? 1 : 0;
   MPI_Allreduce(MPI_IN_PLACE, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
   if (first == size_) return;
+  MPI_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_SUM, MPI_COMM_WORLD);
   // That rank sends its message and exit code to rank 0.
   std::string text;
   int code = kExitBadInput;
@@ -129,7 +130,9 @@ void MpiComm::agree(const std::optional<Error>& error) const {
     int exitCode() const override { return code_; }
     int code_;
   };
-  throw RankError("rank " + std::to_string(first) + ": " + text, header[1]);
+  // An error every rank has (a bad flag, a scene file) is not about one rank: no prefix.
+  throw RankError(failed == size_ ? text : "rank " + std::to_string(first) + ": " + text,
+                  header[1]);
 }
 
 MpiComm::RoundStats MpiComm::exchange(const std::vector<std::vector<uint8_t>>& outbox,

@@ -56,8 +56,9 @@ class MpiComm {
   std::vector<std::string> gatherToRoot(const std::string& text) const;
 
   // Every rank calls this with its own error (nullopt if it has none). If any rank has one, the
-  // first such rank's message (prefixed "rank R: ") is thrown as an Error on rank 0 with its
-  // exit code, and every other rank throws ReportedOnAnotherRank; otherwise returns.
+  // first such rank's message (prefixed "rank R: " unless every rank failed) is thrown as an
+  // Error on rank 0 with its exit code, and every other rank throws ReportedOnAnotherRank;
+  // otherwise returns.
   void agree(const std::optional<Error>& error) const;
   // Runs `step`, turning an Error it throws into agree()'s collective error.
   template <typename F>

@@ -1,0 +1,110 @@
+#!/usr/bin/env python3
+"""Forwards per shadow segment and efficiency of data-parallel rendering, per scene and policy.
+
+For each scene: render-compare --data-parallel on RANKS ranks with every forwarding policy and
+both estimators, and once more with the inside proxies removed from the scene (outside proxies
+only), then one Markdown table: forwards per shadow segment, its ratio to the instance-box
+baseline, bytes, messages, per-rank peak RSS, measured and modelled efficiency (at
+--forward-cost-us) relative to exact with instance boxes.
+
+  bench/data_parallel/bench_forwarding.py [--build build] [--out out/bench_dp] [--ranks 4]
+      [--spp 32] [--seeds 2] [--forward-cost-us 20] [--scenes scenes/park.json,...]
+      [--repeats 3]
+
+Repeats run the whole study again (the policies interleaved within each run), so the table
+shows the spread of the timing columns as min-max over repeats; the counts do not vary with
+timing for exact rows."""
+import argparse
+import json
+import os
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, os.path.join(ROOT, "tests", "mpi"))
+from mpi_support import mpi_env, mpirun_cmd  # noqa: E402
+
+
+def without_inside(scene, out_dir):
+    """The scene with only its outside proxies, written beside the original's paths."""
+    with open(scene) as f:
+        s = json.load(f)
+    base = os.path.dirname(os.path.abspath(scene))
+    for m in s["meshes"]:
+        m["file"] = os.path.join(base, m["file"]) if not os.path.isabs(m["file"]) else m["file"]
+        for p in m.get("proxies", []):
+            p["file"] = os.path.join(base, p["file"]) if not os.path.isabs(p["file"]) else p["file"]
+        m["proxies"] = [p for p in m.get("proxies", []) if p["kind"] != "inside"]
+    if "instances" in s:
+        f = s["instances"]["file"]
+        s["instances"]["file"] = f if os.path.isabs(f) else os.path.join(base, f)
+    path = os.path.join(out_dir, os.path.basename(scene).replace(".json", ".outside-only.json"))
+    with open(path, "w") as f:
+        json.dump(s, f)
+    return path
+
+
+def study(args, scene, out):
+    cmd = mpirun_cmd(args.ranks) + [
+        os.path.join(args.build, "bin", "render-compare"), scene, "--data-parallel",
+        "--forwarding", "domain-bounds,instance-boxes,proxies", "--spp", str(args.spp),
+        "--seeds", str(args.seeds), "--forward-cost-us", str(args.forward_cost_us),
+        "--passes-per-round", "2", "--threads", str(args.threads), "--out", out, "--quiet",
+        "--reference-spp", str(args.reference_spp)] + args.extra.split()
+    p = subprocess.run(cmd, capture_output=True, text=True, env=mpi_env())
+    if p.returncode != 0:
+        sys.exit(f"bench_forwarding: {' '.join(cmd)} failed:\n{p.stderr}")
+    with open(os.path.join(out, "report.json")) as f:
+        return json.load(f)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
+    ap.add_argument("--build", default="build")
+    ap.add_argument("--out", default="out/bench_dp")
+    ap.add_argument("--ranks", type=int, default=4)
+    ap.add_argument("--threads", type=int, default=1)
+    ap.add_argument("--spp", type=int, default=32)
+    ap.add_argument("--seeds", type=int, default=2)
+    ap.add_argument("--reference-spp", type=int, default=1024)
+    ap.add_argument("--forward-cost-us", type=float, default=20)
+    ap.add_argument("--repeats", type=int, default=1)
+    ap.add_argument("--scenes", default="scenes/park.json,scenes/park-low-sun.json")
+    ap.add_argument("--no-outside-only", action="store_true")
+    ap.add_argument("--extra", default="", help="more render-compare flags")
+    args = ap.parse_args()
+    os.makedirs(args.out, exist_ok=True)
+    print(f"{args.ranks} ranks, {args.spp} spp x {args.seeds} seeds, forward cost "
+          f"{args.forward_cost_us:g} us (model), {args.repeats} repeat(s)\n")
+    print("| scene | proxies | estimator | forwarding | forwards / segment | vs instance boxes | "
+          "forward MB | messages | rank peak RSS MiB | MSE | efficiency measured | "
+          "efficiency modelled |")
+    print("|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for scene in args.scenes.split(","):
+        variants = [("outside + inside", scene)]
+        if not args.no_outside_only:
+            variants.append(("outside only", without_inside(scene, args.out)))
+        for label, path in variants:
+            reports = [study(args, path, os.path.join(
+                args.out, f"{os.path.basename(path)}.{k}")) for k in range(args.repeats)]
+            rows = [r["rows"] for r in reports]
+            base = next(r for r in rows[0] if r["estimator"] == "exact"
+                        and r["forwarding"] == "instance-boxes")
+            for i, row in enumerate(rows[0]):
+                if label == "outside only" and row["forwarding"] != "proxies":
+                    continue  # the box policies do not use proxies: the same as above
+                def spread(key):
+                    v = [rr[i][key] for rr in rows]
+                    return f"{min(v):.2f}x" if len(v) == 1 else f"{min(v):.2f}-{max(v):.2f}x"
+                print(f"| {os.path.basename(scene)} | {label} | {row['estimator']} | "
+                      f"{row['forwarding']} | {row['forwards_per_shadow_segment']:.4f} | "
+                      f"{row['forwards_per_shadow_segment'] / base['forwards_per_shadow_segment']:.3f} | "
+                      f"{row['forward_bytes'] / 1e6:.2f} | {row['forward_messages']} | "
+                      f"{row['rank_peak_rss_bytes'] / 2**20:.0f} | {row['mse']:.3e} | "
+                      f"{spread('relative_efficiency')} | {spread('modelled_relative_efficiency')} |")
+            sys.stdout.flush()
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,36 @@
+# render and render-compare --data-parallel on bad flags and input, run as a one-rank MPI job
+# (MPI's singleton start, no mpirun): exit code 2, one error line, nothing written. The
+# multi-rank faults (a rank that cannot read its original, a killed rank, an unproved proxy) are
+# in tests/mpi. Open MPI's own allocations are not ours to free: not run under the sanitizers.
+set(rs @CORPUS@/render_scene.json)
+set(dp_cases)
+macro(dp_case name)
+  bad_input_test(${name} ${ARGN})
+  list(APPEND dp_cases bad_inputs.${name})
+endmacro()
+dp_case(dp_unknown_forwarding render "${rs} --data-parallel --forwarding nearest -o @OUT@/x.exr"
+  REGEX "--forwarding: unknown policy 'nearest'" OUTPUTS @OUT@/x.exr TIMEOUT 30)
+dp_case(dp_estimator_not_available render "${rs} --data-parallel --estimator culling -o @OUT@/x.exr"
+  REGEX "--estimator culling is not available with --data-parallel" OUTPUTS @OUT@/x.exr TIMEOUT 30)
+dp_case(dp_time_budget render "${rs} --data-parallel --time 1 -o @OUT@/x.exr"
+  REGEX "--time is not available with --data-parallel" OUTPUTS @OUT@/x.exr TIMEOUT 30)
+dp_case(dp_passes_per_round_zero render "${rs} --data-parallel --passes-per-round 0 -o @OUT@/x.exr"
+  REGEX "--passes-per-round: must be in" OUTPUTS @OUT@/x.exr TIMEOUT 30)
+dp_case(dp_forward_cost_negative render "${rs} --data-parallel --forward-cost-us -3 -o @OUT@/x.exr"
+  REGEX "--forward-cost-us" OUTPUTS @OUT@/x.exr TIMEOUT 30)
+dp_case(dp_garbage_mesh render
+  "@CORPUS@/render_garbage_mesh.json --data-parallel -o @OUT@/x.exr --json @OUT@/x.json"
+  REGEX "render_garbage\\.obj" INPUTS @CORPUS@/render_garbage_mesh.json @CORPUS@/render_garbage.obj
+  OUTPUTS @OUT@/x.exr @OUT@/x.json TIMEOUT 30)
+dp_case(dp_output_is_scene render "${rs} --data-parallel -o ${rs}" REGEX "names the input"
+  INPUTS ${rs} TIMEOUT 30)
+dp_case(dp_compare_estimator render-compare
+  "${rs} --data-parallel --estimators exact,paper-equal --out @OUT@/report"
+  REGEX "--estimators paper-equal is not available" OUTPUTS @OUT@/report TIMEOUT 30)
+dp_case(dp_compare_empty_forwarding render-compare
+  "${rs} --data-parallel --forwarding , --out @OUT@/report"
+  REGEX "--forwarding is empty" OUTPUTS @OUT@/report TIMEOUT 30)
+dp_case(dp_compare_with_plan render-compare
+  "${rs} --data-parallel --plan @OUT@/plan --out @OUT@/report"
+  REGEX "--plan is not available with --data-parallel" OUTPUTS @OUT@/plan @OUT@/report TIMEOUT 30)
+set_property(TEST ${dp_cases} APPEND PROPERTY LABELS not_sanitized mpi)
