@@ -6,7 +6,9 @@
              rank and the file; a rank killed mid-job fails the job; no output replaces a good one
   refuse     a proxy whose recorded class does not hold for its file is refused before rendering
   roulette   roulette is unbiased: over seeds, its image minus the same seed's exact image has
-             mean zero (z-test), and its variance matches V~ - V's closed form
+             mean zero (z-test)
+  readme     the mpirun commands of README.md's data-parallel section run as written, in a
+             folder laid out like a new clone, and the exact render equals `render`'s
 usage: data_parallel_test.py CASE RENDER_EXE PROXY_GEN_EXE DATA_DIR SCENES_DIR WORK_DIR"""
 import json
 import math
@@ -21,7 +23,7 @@ from mpi_support import make_unique_scene, mpi_env, mpirun_cmd, rgb_equal, run  
 case, render, proxy_gen, data_dir, scenes_dir, work = sys.argv[1:7]
 shutil.rmtree(work, ignore_errors=True)
 os.makedirs(work)
-scene = make_unique_scene(work, data_dir, scenes_dir, proxy_gen)
+scene = make_unique_scene(work, data_dir, scenes_dir, proxy_gen) if case != "readme" else None
 FORWARDINGS = ["domain-bounds", "instance-boxes", "proxies"]
 
 
@@ -180,5 +182,38 @@ elif case == "roulette":
     if abs(z) > 4:
         sys.exit(f"FAIL: |z| = {abs(z):.2f} > 4: roulette is biased")
     print("ok: roulette is unbiased against exact (z-test)")
+elif case == "readme":
+    import re
+    import shlex
+    root = os.path.dirname(os.path.abspath(scenes_dir))
+    text = open(os.path.join(root, "README.md"), encoding="utf-8").read()
+    section = text.split("## Data-parallel rendering over MPI", 1)[1].split("\n## ", 1)[0]
+    block = re.search(r"```sh\n(.*?)```", section, re.S).group(1)
+    block = re.sub(r"\\\n\s*", "", block)
+    lines = [l.strip() for l in block.splitlines() if l.strip().startswith("mpirun")]
+    if len(lines) < 2:
+        sys.exit(f"FAIL: {len(lines)} mpirun lines in README's data-parallel section")
+    os.makedirs(os.path.join(work, "build"))
+    for name in ("data", "scenes"):
+        os.symlink(os.path.join(root, name), os.path.join(work, name))
+    os.symlink(os.path.dirname(os.path.abspath(render)), os.path.join(work, "build", "bin"))
+    for line in lines:
+        p = subprocess.run(shlex.split(line, comments=True), cwd=work, capture_output=True,
+                           text=True, env=mpi_env(), timeout=500)
+        if p.returncode != 0:
+            sys.exit(f"FAIL: $ {line}\nexit {p.returncode}\n{p.stdout}\n{p.stderr}")
+        print(f"ok: {line}")
+    exr = os.path.join(work, "out", "park.exr")
+    single = os.path.join(work, "single.exr")
+    spp = re.search(r"--spp (\d+)", lines[0]).group(1)
+    run([render, os.path.join(root, "scenes", "park.json"), "--spp", spp, "-o", single, "--quiet"])
+    same, text = rgb_equal(single, exr, work)
+    if not same:
+        sys.exit(f"FAIL: README's data-parallel render differs from render's\n{text}")
+    report = summary(os.path.join(work, "out", "park-dp", "report.json"))
+    policies = {r["forwarding"] for r in report["rows"]}
+    if policies != {"domain-bounds", "instance-boxes", "proxies"}:
+        sys.exit(f"FAIL: the report's rows cover {policies}")
+    print("ok: README's data-parallel commands run and the render equals render's")
 else:
     sys.exit(f"unknown case {case}")
