@@ -48,21 +48,57 @@ void writePair(const Image& image, const std::filesystem::path& stem, float expo
   writeImage(image, stem.string() + ".png", png);
 }
 
+// The table's columns and each row's cells, shared by report.md and report.html.
+std::vector<std::string> tableHeader(double cost_us) {
+  return {"spp",
+          "estimator",
+          "forwarding",
+          "forwards / shadow segment",
+          "forward MB",
+          "messages",
+          "rank peak RSS MiB",
+          "seconds",
+          "MSE",
+          "efficiency (measured)",
+          fmt::format("efficiency at {:g} us / forward (model)", cost_us)};
+}
+
+std::vector<std::string> tableCells(const Row& r) {
+  return {std::to_string(r.spp),
+          r.estimator,
+          forwardingName(r.forwarding),
+          fmt::format("{:.4f}", r.segments ? double(r.forwards) / double(r.segments) : 0.0),
+          fmt::format("{:.2f}", 1e-6 * double(r.bytes)),
+          std::to_string(r.messages),
+          fmt::format("{:.0f}", double(r.peak_rss) / double(1 << 20)),
+          fmt::format("{:.3f}", r.seconds),
+          fmt::format("{:.3e}", r.mse),
+          fmt::format("{:.2f}x", r.relative),
+          fmt::format("{:.2f}x", r.modelled_relative)};
+}
+
 std::string markdownTable(const std::vector<Row>& rows, double cost_us) {
-  std::string t = fmt::format(
-      "| spp | estimator | forwarding | forwards / shadow segment | forward MB | messages | "
-      "rank peak RSS MiB | seconds | MSE | efficiency (measured) | efficiency at {:g} us / "
-      "forward (model) |\n|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n",
-      cost_us);
-  for (const Row& r : rows)
-    t += fmt::format(
-        "| {} | {} | {} | {:.4f} | {:.2f} | {} | {:.0f} | {:.3f} | {:.3e} | {:.2f}x | "
-        "{:.2f}x |\n",
-        r.spp, r.estimator, forwardingName(r.forwarding),
-        r.segments ? double(r.forwards) / double(r.segments) : 0.0, 1e-6 * double(r.bytes),
-        r.messages, double(r.peak_rss) / double(1 << 20), r.seconds, r.mse, r.relative,
-        r.modelled_relative);
+  auto line = [](const std::vector<std::string>& cells) {
+    std::string t = "|";
+    for (const std::string& c : cells) t += " " + c + " |";
+    return t + "\n";
+  };
+  std::string t =
+      line(tableHeader(cost_us)) + "|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  for (const Row& r : rows) t += line(tableCells(r));
   return t;
+}
+
+std::string htmlTable(const std::vector<Row>& rows, double cost_us) {
+  std::string t = "<table><tr>";
+  for (const std::string& h : tableHeader(cost_us)) t += "<th>" + h + "</th>";
+  t += "</tr>";
+  for (const Row& r : rows) {
+    t += "<tr>";
+    for (const std::string& c : tableCells(r)) t += "<td>" + c + "</td>";
+    t += "</tr>";
+  }
+  return t + "</table>";
 }
 
 }  // namespace
@@ -247,23 +283,10 @@ int runDataParallelStudy(CompareOptions& o, const DataParallelFlags& flags, bool
         "(data-parallel)</title><style>body{font-family:sans-serif}table{border-"
         "collapse:collapse}td,th{border:1px solid #ccc;padding:3px 6px}img{image-"
         "rendering:pixelated;width:320px}</style></head><body>";
-    html += fmt::format("<h1>{} (data-parallel, {} ranks)</h1><p>{}</p><table><tr>",
-                        desc.displayName(), comm.size(), model_note);
-    for (const char* h :
-         {"spp", "estimator", "forwarding", "forwards / shadow segment", "forward MB", "messages",
-          "rank peak RSS MiB", "seconds", "MSE", "efficiency (measured)", "efficiency (model)"})
-      html += fmt::format("<th>{}</th>", h);
-    html += "</tr>";
-    for (const Row& r : rows)
-      html += fmt::format(
-          "<tr><td>{}</td><td>{}</td><td>{}</td><td>{:.4f}</td><td>{:.2f}</td><td>{}</td><td>{:.0f}"
-          "</td><td>{:.3f}</td><td>{:.3e}</td><td>{:.2f}x</td><td>{:.2f}x</td></tr>",
-          r.spp, r.estimator, forwardingName(r.forwarding),
-          r.segments ? double(r.forwards) / double(r.segments) : 0.0, 1e-6 * double(r.bytes),
-          r.messages, double(r.peak_rss) / double(1 << 20), r.seconds, r.mse, r.relative,
-          r.modelled_relative);
+    html += fmt::format("<h1>{} (data-parallel, {} ranks)</h1><p>{}</p>{}", desc.displayName(),
+                        comm.size(), model_note, htmlTable(rows, cost_us));
     html +=
-        "</table><h2>Images</h2><p><figure style=\"display:inline-block\"><img "
+        "<h2>Images</h2><p><figure style=\"display:inline-block\"><img "
         "src=\"images/reference.png\"><figcaption>reference</figcaption></figure>";
     for (const Row& r : rows)
       html += fmt::format(

@@ -89,29 +89,8 @@ std::unique_ptr<DistributedScene> DistributedScene::load(const SceneDesc& desc,
     outside[m] = proxyOfKind(desc.meshes[m], "outside");
     inside[m] = proxyOfKind(desc.meshes[m], "inside");
   }
-  comm.collectively([&] {
-    auto add = [&](uint32_t mesh, int32_t instance, const Affine3f& t) {
-      RenderObject o;
-      o.mesh = mesh;
-      o.instance = instance;
-      o.to_world = t;
-      const auto inv = inverse(t);
-      if (!inv)
-        throw Error(desc.path.string(),
-                    "singular transform for mesh '" + desc.meshes[mesh].name + "'");
-      o.to_object = *inv;
-      o.proxy = chosen[mesh];
-      ds.objects_.push_back(o);
-      used[mesh] = true;
-    };
-    for (uint32_t m = 0; m < num_meshes; ++m)
-      if (desc.meshes[m].place) add(m, -1, desc.meshes[m].transform);
-    for (size_t i = 0; i < desc.instances.size(); ++i)
-      add(desc.instances[i].mesh, int32_t(i), desc.instances[i].transform);
-    if (ds.objects_.empty())
-      throw Error(desc.path.string(), "nothing to render",
-                  "no mesh is placed and there are no instances");
-  });
+  comm.collectively([&] { ds.objects_ = renderObjects(desc, chosen); });
+  for (const RenderObject& o : ds.objects_) used[o.mesh] = true;
   const std::vector<RenderObject>& objects = ds.objects_;
 
   // Every proxy of every used mesh, on every rank; the classes forwarding relies on, proved.

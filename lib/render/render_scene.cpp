@@ -26,6 +26,31 @@ bool overlaps(const Bounds3f& a, const Bounds3f& b) {
 
 }  // namespace
 
+std::vector<RenderObject> renderObjects(const SceneDesc& desc, const std::vector<int>& chosen) {
+  std::vector<RenderObject> objects;
+  auto add = [&](uint32_t mesh, int32_t instance, const Affine3f& t) {
+    RenderObject o;
+    o.mesh = mesh;
+    o.instance = instance;
+    o.to_world = t;
+    const auto inv = inverse(t);
+    if (!inv)
+      throw Error(desc.path.string(),
+                  "singular transform for mesh '" + desc.meshes[mesh].name + "'");
+    o.to_object = *inv;
+    o.proxy = chosen[mesh];
+    objects.push_back(o);
+  };
+  for (uint32_t m = 0; m < desc.meshes.size(); ++m)
+    if (desc.meshes[m].place) add(m, -1, desc.meshes[m].transform);
+  for (size_t i = 0; i < desc.instances.size(); ++i)
+    add(desc.instances[i].mesh, int32_t(i), desc.instances[i].transform);
+  if (objects.empty())
+    throw Error(desc.path.string(), "nothing to render",
+                "no mesh is placed and there are no instances");
+  return objects;
+}
+
 void addRenderObjects(TraceSceneBuilder& builder, const std::vector<RenderObject>& objects,
                       const std::vector<const TriMesh*>& geometry, bool flatten,
                       const std::vector<bool>* include) {
@@ -77,32 +102,12 @@ std::unique_ptr<RenderScene> loadRenderScene(const SceneDesc& desc,
   std::unique_ptr<RenderScene> scene(new RenderScene(desc));
   const size_t num_meshes = desc.meshes.size();
 
-  // Objects: placed meshes first, then instances, in file order.
-  std::vector<RenderObject>& objects = scene->objects_;
   std::vector<int> chosen(num_meshes);
-  std::vector<bool> used(num_meshes, false);
   for (size_t m = 0; m < num_meshes; ++m) chosen[m] = chooseProxy(desc.meshes[m], options);
-  auto addObject = [&](uint32_t mesh, int32_t instance, const Affine3f& t) {
-    RenderObject o;
-    o.mesh = mesh;
-    o.instance = instance;
-    o.to_world = t;
-    const auto inv = inverse(t);
-    if (!inv)
-      throw Error(desc.path.string(),
-                  "singular transform for mesh '" + desc.meshes[mesh].name + "'");
-    o.to_object = *inv;
-    o.proxy = chosen[mesh];
-    objects.push_back(o);
-    used[mesh] = true;
-  };
-  for (uint32_t m = 0; m < num_meshes; ++m)
-    if (desc.meshes[m].place) addObject(m, -1, desc.meshes[m].transform);
-  for (size_t i = 0; i < desc.instances.size(); ++i)
-    addObject(desc.instances[i].mesh, int32_t(i), desc.instances[i].transform);
-  if (objects.empty())
-    throw Error(desc.path.string(), "nothing to render",
-                "no mesh is placed and there are no instances");
+  scene->objects_ = renderObjects(desc, chosen);
+  std::vector<RenderObject>& objects = scene->objects_;
+  std::vector<bool> used(num_meshes, false);
+  for (const RenderObject& o : objects) used[o.mesh] = true;
 
   // Meshes and proxies, loaded once each.
   std::vector<TriMesh> originals(num_meshes), proxies(num_meshes);

@@ -113,6 +113,11 @@ class RenderScene {
   float epsilon_ = 1e-4f;
 };
 
+// The objects of a scene: placed meshes first, then instances, in file order; an object's index
+// is its user id in every Embree scene. `chosen` is each mesh's proxy index (chooseProxy). Throws
+// Error for a singular transform or a scene with nothing to render.
+std::vector<RenderObject> renderObjects(const SceneDesc& desc, const std::vector<int>& chosen);
+
 // Adds objects to `builder` with each object's geometry taken from geometry[mesh] (originals or
 // proxies; null: the object is skipped), user id = the object's index. Placed meshes and, when
 // `flatten`, instances go into the top-level BVH with their vertices mapped to world space;
