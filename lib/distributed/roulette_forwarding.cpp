@@ -35,13 +35,12 @@ std::vector<double> RouletteForwarding::probabilities(double forward_cost_us,
     const Stats& s = stats_[i];
     if (s.forwarded == 0 || s.segments == 0) continue;  // nothing learned: forward all
     const double p_undecided = s.undecided / s.segments;
-    const double p_mh = p_undecided * (s.visible / s.forwarded);
+    // Laplace's rule for the share of forwarded segments found visible: a region whose first
+    // few forwards were all blocked must not drop to q_min, where one visible segment later
+    // weighs 1/q_min.
+    const double p_mh = p_undecided * ((s.visible + 1) / (s.forwarded + 2));
     const double v = s.estimate_sum / s.segments;
     const double a = v * (1 - v) - p_mh;
-    if (p_mh <= 0) {
-      q[i] = q_min_;
-      continue;
-    }
     if (a <= 0) continue;
     const double k = s.forwards / s.forwarded;
     const double d = c_forward * p_undecided * k;

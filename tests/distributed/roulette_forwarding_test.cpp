@@ -18,11 +18,12 @@ TEST(RouletteForwarding, ForwardsEverythingUntilItHasLearned) {
 TEST(RouletteForwarding, ClosedFormQ) {
   RouletteForwarding r(1, 0.01);
   // 1000 segments: 400 undecided, all forwarded (1 rank each), 100 of them visible; the other
-  // 600 visible without a forward. V = 0.7, P(MH') = 0.1, A = 0.21 - 0.1 = 0.11.
+  // 600 visible without a forward. V = 0.7; P(MH') = 0.4 x 101/402 (Laplace's rule).
   for (int i = 0; i < 600; ++i) r.add(0, 1.0, false, false, 0, false);
   for (int i = 0; i < 400; ++i) r.add(0, i < 100 ? 1.0 : 0.0, true, true, 1, i < 100);
   const double c_local = 1, c_forward = 20;
-  const double expected = std::sqrt(0.1 * c_local / (0.11 * c_forward * 0.4 * 1.0));
+  const double p_mh = 0.4 * 101.0 / 402.0, a = 0.7 * 0.3 - p_mh;
+  const double expected = std::sqrt(p_mh * c_local / (a * c_forward * 0.4 * 1.0));
   EXPECT_NEAR(r.probabilities(c_forward, c_local)[0], expected, 1e-12);
   // Dearer forwards, smaller q; clamped at q_min.
   EXPECT_LT(r.probabilities(200, 1)[0], expected);
@@ -36,10 +37,17 @@ TEST(RouletteForwarding, ProxyErrorsDominatingMeansForwardAll) {
   EXPECT_EQ(r.probabilities(1000, 1)[0], 1.0);
 }
 
-TEST(RouletteForwarding, NeverWrongProxiesGetQMin) {
-  RouletteForwarding r(1, 0.05);
-  for (int i = 0; i < 100; ++i) r.add(0, 0.0, true, true, 1, false);
-  EXPECT_EQ(r.probabilities(20, 1)[0], 0.05);
+TEST(RouletteForwarding, FewBlockedForwardsDoNotSendQToTheFloor) {
+  // Three forwards, all blocked: Laplace's rule still assumes visible ones are possible.
+  RouletteForwarding few(1, 0.05), many(1, 0.05);
+  for (int i = 0; i < 3; ++i) few.add(0, 0.0, true, true, 1, false);
+  for (int i = 0; i < 7; ++i) few.add(0, 1.0, false, false, 0, false);
+  for (int i = 0; i < 3000; ++i) many.add(0, 0.0, true, true, 1, false);
+  for (int i = 0; i < 7000; ++i) many.add(0, 1.0, false, false, 0, false);
+  const double q_few = few.probabilities(20, 1)[0], q_many = many.probabilities(20, 1)[0];
+  EXPECT_GT(q_few, 0.1);
+  EXPECT_LT(q_many, q_few);
+  EXPECT_EQ(q_many, 0.05);
 }
 
 // The estimator itself: undecided segments (probability u) are visible with probability m/u;
