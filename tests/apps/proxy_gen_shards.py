@@ -189,18 +189,13 @@ def main() -> None:
 def on_slurm(repo, scene, single, out, submit):
     """The 3-shard plan as a job array on a local Slurm cluster, merged by its dependent job."""
     sys.path.insert(0, str(pathlib.Path(repo) / "tests" / "slurm"))
-    from cluster_support import SKIP, cluster, slurm_env, stop_when_gone
+    from cluster_support import SKIP, cluster, slurm_env, start_cluster
     # munged serves its socket only below folders anyone can search: a short folder in /tmp.
     cluster_dir = tempfile.mkdtemp(prefix="proxyvis-shards-cluster-")
     pathlib.Path(cluster_dir).chmod(0o755)
-    stop_when_gone(repo, cluster_dir)
-    r = cluster(repo, cluster_dir, "start")
     try:
-        if r.returncode == 4:
-            print(f"SKIP: Slurm cannot run here: {r.stderr.strip()}")
+        if not start_cluster(repo, cluster_dir):
             return SKIP
-        if r.returncode != 0:
-            fail(f"local_cluster.sh start: exit {r.returncode}: {r.stderr}")
         plan = out.parent / "plan-slurm"
         run([BIN / "proxy-gen", scene, *SETTINGS, "--out-dir", out, "--json", str(out) + ".json",
              "--threads", "1", "--plan", plan, "--shards", "3"])

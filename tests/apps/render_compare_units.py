@@ -24,7 +24,7 @@ import tempfile
 import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "slurm"))
-from cluster_support import SKIP, cluster, stop_when_gone  # noqa: E402
+from cluster_support import SKIP, cluster, start_cluster  # noqa: E402
 
 
 class TestFailure(Exception):
@@ -187,13 +187,9 @@ def local(rc, repo, work):
 
 def on_slurm(rc, repo, work):
     cluster_dir = os.path.join(work, "cluster")
-    stop_when_gone(repo, cluster_dir)
-    r = cluster(repo, cluster_dir, "start")
-    if r.returncode == 4:
-        print(f"SKIP: Slurm cannot run here: {r.stderr.strip()}")
-        return SKIP
     try:
-        check(r.returncode == 0, f"local_cluster.sh start: exit {r.returncode}: {r.stderr}")
+        if not start_cluster(repo, cluster_dir):
+            return SKIP
         env = dict(os.environ, SLURM_CONF=os.path.join(cluster_dir, "slurm.conf"))
         scene = os.path.join(repo, "scenes", "dragon-plane.json")
         flags = ["--width", "32", "--height", "24", "--seeds", "2", "--spp", "2,4",

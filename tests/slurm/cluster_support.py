@@ -3,6 +3,8 @@ the test process is gone (ctest's timeout kills a test without running its final
 import os
 import shlex
 import subprocess
+import sys
+import time
 
 SKIP = 77  # ctest's SKIP_RETURN_CODE for the cluster tests
 
@@ -25,3 +27,19 @@ def stop_when_gone(repo, cluster_dir):
 def slurm_env(cluster_dir):
     """The environment that points sbatch & co at the cluster."""
     return dict(os.environ, SLURM_CONF=os.path.join(cluster_dir, "slurm.conf"))
+
+
+def start_cluster(repo, cluster_dir):
+    """Starts the cluster, with the watcher that stops it if the test dies. True when it runs;
+    False when Slurm cannot run here (the caller exits SKIP); a failed start fails the test."""
+    stop_when_gone(repo, cluster_dir)
+    t0 = time.monotonic()
+    r = cluster(repo, cluster_dir, "start")
+    sys.stdout.write(r.stdout)
+    if r.returncode == 4:
+        print(f"SKIP: Slurm cannot run here: {r.stderr.strip()}")
+        return False
+    if r.returncode != 0:
+        sys.exit(f"FAIL: local_cluster.sh start: exit {r.returncode}: {r.stderr}")
+    print(f"timing: cluster start: {time.monotonic() - t0:.1f} s")
+    return True

@@ -21,7 +21,7 @@ import sys
 import tempfile
 import time
 
-from cluster_support import SKIP, cluster, slurm_env, stop_when_gone
+from cluster_support import SKIP, cluster, slurm_env, start_cluster
 
 mode, repo, render, proxy_gen, data_dir, scenes_dir, work = sys.argv[1:8]
 spec = importlib.util.spec_from_file_location(
@@ -197,16 +197,9 @@ def on_cluster(scene):
     cluster_dir = os.path.join(tmp, "cluster")
     started = False
     try:
-        stop_when_gone(repo, cluster_dir)
-        t0 = time.monotonic()
-        r = cluster(repo, cluster_dir, "start")
-        sys.stdout.write(r.stdout)
-        if r.returncode == 4:
-            print(f"SKIP: Slurm cannot run here: {r.stderr.strip()}")
+        if not start_cluster(repo, cluster_dir):
             return SKIP
         started = True
-        check(r.returncode == 0, f"local_cluster.sh start: exit {r.returncode}: {r.stderr}")
-        print(f"timing: cluster start: {time.monotonic() - t0:.1f} s")
         env = slurm_env(cluster_dir)
         jobs = os.path.join(work, "jobs")  # the jobs' folder: their logs land here
         os.makedirs(jobs)

@@ -18,7 +18,7 @@ import sys
 import tempfile
 import time
 
-from cluster_support import SKIP, cluster, stop_when_gone
+from cluster_support import SKIP, cluster, start_cluster
 
 UNITS = 8
 # Passed through the generated job scripts unchanged: spaces, quotes, $ and a glob.
@@ -198,16 +198,9 @@ def main():
     started = False
     try:
         if mode == "--slurm":
-            stop_when_gone(repo, cluster_dir)
-            t0 = time.monotonic()
-            r = cluster(repo, cluster_dir, "start")
-            sys.stdout.write(r.stdout)
-            if r.returncode == 4:
-                print(f"SKIP: Slurm cannot run here: {r.stderr.strip()}")
+            if not start_cluster(repo, cluster_dir):
                 return SKIP
             started = True
-            check(r.returncode == 0, f"local_cluster.sh start: exit {r.returncode}: {r.stderr}")
-            print(f"timing: cluster start: {time.monotonic() - t0:.1f} s")
             env["SLURM_CONF"] = os.path.join(cluster_dir, "slurm.conf")
             status = cluster(repo, cluster_dir, "status")
             check(status.returncode == 0 and "idle" in status.stdout,
