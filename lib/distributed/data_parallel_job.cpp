@@ -90,7 +90,11 @@ nlohmann::json dataParallelRow(const std::string& estimator, Forwarding forwardi
                         {"seconds", s.seconds},
                         {"compute_seconds", s.max_compute_seconds},
                         {"exchange_seconds", s.max_exchange_seconds},
-                        {"max_rank_forwards", s.max_rank_forwards}};
+                        {"max_rank_forwards", s.max_rank_forwards},
+                        {"forward_bytes_per_rank", double(s.forward_bytes) / s.ranks},
+                        {"forward_messages_per_rank", double(s.forward_messages) / s.ranks},
+                        {"max_rank_forward_bytes", s.max_rank_forward_bytes},
+                        {"max_rank_forward_messages", s.max_rank_forward_messages}};
   if (forward_cost_us >= 0) {
     row["forward_cost_us"] = forward_cost_us;
     row["modelled_seconds"] = s.modelledSeconds(forward_cost_us);

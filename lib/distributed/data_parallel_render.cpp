@@ -351,9 +351,11 @@ DataParallelResult renderDataParallel(const DistributedScene& scene,
   stats.rank_shaded_pixels.assign(per_rank.begin() + ranks, per_rank.end());
   stats.rank_peak_rss_bytes =
       *std::max_element(stats.rank_rss_bytes.begin(), stats.rank_rss_bytes.end());
-  std::vector<uint64_t> max_forwards = {my_forwards};
-  comm.max(max_forwards);
-  stats.max_rank_forwards = max_forwards[0];
+  std::vector<uint64_t> busiest = {my_forwards, counts[5], counts[6]};
+  comm.max(busiest);
+  stats.max_rank_forwards = busiest[0];
+  stats.max_rank_forward_bytes = busiest[1];
+  stats.max_rank_forward_messages = busiest[2];
   std::vector<double> times = {compute_seconds, exchange_seconds, clock.seconds()};
   comm.max(times);
   stats.max_compute_seconds = times[0];

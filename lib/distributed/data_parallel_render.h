@@ -43,21 +43,22 @@ struct DataParallelSettings {
 
 struct DataParallelStats {
   int ranks = 1;
-  uint64_t pixels_shaded = 0;        // all ranks
-  uint64_t shadow_segments = 0;      // segments that needed visibility (all ranks)
-  uint64_t blocked_locally = 0;      // by a rank's own or replicated originals
-  uint64_t blocked_by_inside = 0;    // by an inside proxy, without a forward
-  uint64_t undecided = 0;            // unblocked here with at least one remote rank to ask
-  uint64_t forwarded_segments = 0;   // undecided segments that were sent (roulette: some)
-  uint64_t forwards = 0;             // segment messages items sent (one per segment and rank asked)
-  uint64_t forward_bytes = 0;        // requests and answers, all ranks
-  uint64_t forward_messages = 0;     // non-empty messages, all ranks
-  uint64_t rounds = 0;               // exchange rounds
-  uint64_t max_rank_forwards = 0;    // forwards sent by the busiest rank
-  double seconds = 0;                // wall time of the render (load excluded), rank 0
-  double max_compute_seconds = 0;    // the slowest rank's time outside MPI calls
-  double max_exchange_seconds = 0;   // the largest rank's time inside exchanges and reductions
-  uint64_t rank_peak_rss_bytes = 0;  // the largest over ranks (load included)
+  uint64_t pixels_shaded = 0;       // all ranks
+  uint64_t shadow_segments = 0;     // segments that needed visibility (all ranks)
+  uint64_t blocked_locally = 0;     // by a rank's own or replicated originals
+  uint64_t blocked_by_inside = 0;   // by an inside proxy, without a forward
+  uint64_t undecided = 0;           // unblocked here with at least one remote rank to ask
+  uint64_t forwarded_segments = 0;  // undecided segments that were sent (roulette: some)
+  uint64_t forwards = 0;            // segment messages items sent (one per segment and rank asked)
+  uint64_t forward_bytes = 0;       // requests and answers, all ranks
+  uint64_t forward_messages = 0;    // non-empty messages, all ranks
+  uint64_t rounds = 0;              // exchange rounds
+  uint64_t max_rank_forwards = 0;   // forwards sent by the busiest rank
+  uint64_t max_rank_forward_bytes = 0, max_rank_forward_messages = 0;  // sent by the busiest
+  double seconds = 0;                    // wall time of the render (load excluded), rank 0
+  double max_compute_seconds = 0;        // the slowest rank's time outside MPI calls
+  double max_exchange_seconds = 0;       // the largest rank's time inside exchanges and reductions
+  uint64_t rank_peak_rss_bytes = 0;      // the largest over ranks (load included)
   std::vector<uint64_t> rank_rss_bytes;  // per rank
   std::vector<uint64_t> rank_shaded_pixels;
   double mean_q = 1;  // roulette: mean forwarding probability over undecided ones
