@@ -41,6 +41,9 @@ import sys
 import tempfile
 import time
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from splitmix import rand  # noqa: E402
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 
@@ -89,16 +92,15 @@ VARIANTS = [
 ]
 
 
-def rand(*keys):
-    """SplitMix64 of the keys, mapped to [0, 1) (as make_foliage_instances.py)."""
-    h = 0x9E3779B97F4A7C15
-    for k in keys:
-        h = (h ^ (k + 0x632BE59BD9B4E019)) & 0xFFFFFFFFFFFFFFFF
-        h = (h * 0xBF58476D1CE4E5B9) & 0xFFFFFFFFFFFFFFFF
-        h ^= h >> 31
-        h = (h * 0x94D049BB133111EB) & 0xFFFFFFFFFFFFFFFF
-        h ^= h >> 29
-    return (h >> 11) / float(1 << 53)
+def proxy_entry(kind, name, e, file):
+    """The scene's entry for the proxy proxy-gen reported as `e`, stored at `file`."""
+    if e.get("class") != kind:
+        print(f"warning: {name}: the {kind} proxy is class {e.get('class')}", file=sys.stderr)
+    entry = {"kind": kind}
+    if "method" in e:
+        entry["method"] = e["method"]
+    entry.update({"file": file, "class": e.get("class"), "sha256": e["sha256"]})
+    return entry
 
 
 def mesh_info_json(mesh_info, path):
@@ -404,15 +406,7 @@ def main():
                 shutil.copyfile(src + ".sha256", dst + ".sha256")
             if e.get("sha256") != sha256(dst):
                 sys.exit(f"{dst}: sha256 differs from the one proxy-gen recorded")
-            if e.get("class") != kind:
-                print(f"warning: {name}: the {kind} proxy is class {e.get('class')}",
-                      file=sys.stderr)
-            entry = {"kind": kind}
-            if "method" in e:
-                entry["method"] = e["method"]
-            entry.update({"file": "park/" + os.path.basename(dst), "class": e.get("class"),
-                          "sha256": e["sha256"]})
-            proxies[name].append(entry)
+            proxies[name].append(proxy_entry(kind, name, e, "park/" + os.path.basename(dst)))
     write_scenes(proxies)
     print("wrote scenes/park.json, scenes/park-low-sun.json, scenes/park.instances.txt, "
           f"scenes/park/ ({2 * len(PROTOTYPES)} proxies) in {time.time() - start:.1f} s")

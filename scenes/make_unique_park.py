@@ -366,14 +366,8 @@ def main():
                 e = entries.get(name)
                 if e is None:
                     sys.exit(f"proxy-gen wrote no {kind} proxy for {name}")
-                if e.get("class") != kind:
-                    print(f"warning: {name}: the {kind} proxy is class {e.get('class')}",
-                          file=sys.stderr)
-                entry = {"kind": kind}
-                if "method" in e:
-                    entry["method"] = e["method"]
-                entry.update({"file": os.path.relpath(os.path.join(out_dir, e["file"]), out),
-                              "class": e.get("class"), "sha256": e["sha256"]})
+                entry = make_park.proxy_entry(
+                    kind, name, e, os.path.relpath(os.path.join(out_dir, e["file"]), out))
                 proxies[name].append(entry)
             for m in rep.get("meshes", []):
                 faces += m.get("faces", 0) if "skipped" not in m else 0

@@ -39,8 +39,7 @@ Segment primaryRay(const Camera& camera, int x, int y, uint32_t pixel);
 // The shading point of a primary hit (invalid for a miss or a degenerate normal): the hit point
 // offset by `epsilon` along the normal that faces the camera. The data-parallel renderer calls it
 // with the same hit on the rank that owns the geometry, so both renderers shade alike.
-ShadingPoint shadingPointOf(const Segment& ray, const Hit& hit, float epsilon,
-                            const Vec3f& albedo);
+ShadingPoint shadingPointOf(const Segment& ray, const Hit& hit, float epsilon, const Vec3f& albedo);
 
 // A light sample prepared for visibility estimation; weight == 0 means it needs no visibility
 // (back-facing, or the pixel has no shading point).
