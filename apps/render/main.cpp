@@ -96,18 +96,9 @@ int runRender(RenderOptions& o) {
 
   RenderMetadata meta{"render", estimatorName(kind), result.spp, result.seconds, o.common.seed, {}};
   if (o.seconds > 0) meta.extra.push_back({"proxyvis:time_budget", float(o.seconds)});
-  ImageWriteOptions write;
-  write.attributes = renderAttributes(desc, meta);
-  Image image;
-  if (format == RenderImageFormat::kExr) {
-    image = exrWithAovs(result);
-    write.full_float = true;
-    write.channel_names = exrWithAovsChannelNames();
-  } else {
-    image = result.radiance;
-    write.exposure = autoExposure(result.radiance);
-    write.attributes.push_back({"proxyvis:exposure", write.exposure});
-  }
+  const RenderImageFile file = renderImageFile(
+      format, result.radiance, [&] { return exrWithAovs(result); }, exrWithAovsChannelNames(),
+      renderAttributes(desc, meta));
   RenderRun run{
       estimatorName(kind),
       o.common.seed,
@@ -118,7 +109,7 @@ int runRender(RenderOptions& o) {
   const nlohmann::json summary = renderSummary(desc, run, result, o.output);
 
   OutputSet outputs(MissingFolders::kCreate);
-  outputs.add(o.output, [&](const fs::path& tmp) { writeImage(image, tmp, write); });
+  outputs.add(o.output, [&](const fs::path& tmp) { writeImage(file.image, tmp, file.write); });
   if (!o.common.json_path.empty()) outputs.addText(o.common.json_path, summary.dump(2) + "\n");
   outputs.commit();
 

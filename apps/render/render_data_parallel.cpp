@@ -98,18 +98,9 @@ int runDataParallelRender(DataParallelRenderRequest& o) {
     RenderMetadata meta{"render", o.estimator, result.spp, result.stats.seconds, o.common.seed, {}};
     meta.extra.push_back({"proxyvis:forwarding", std::string(forwardingName(forwarding))});
     meta.extra.push_back({"proxyvis:ranks", std::to_string(comm.size())});
-    ImageWriteOptions write;
-    write.attributes = renderAttributes(desc, meta);
-    Image image;
-    if (format == RenderImageFormat::kExr) {
-      image = dataParallelExr(result);
-      write.full_float = true;
-      write.channel_names = {"R", "G", "B", "visibility.Y", "forwards.Y", "rank.Y"};
-    } else {
-      image = result.radiance;
-      write.exposure = autoExposure(result.radiance);
-      write.attributes.push_back({"proxyvis:exposure", write.exposure});
-    }
+    const RenderImageFile file = renderImageFile(
+        format, result.radiance, [&] { return dataParallelExr(result); },
+        {"R", "G", "B", "visibility.Y", "forwards.Y", "rank.Y"}, renderAttributes(desc, meta));
     nlohmann::json summary =
         dataParallelRow(o.estimator, forwarding, result.stats, o.data_parallel.forward_cost_us);
     summary["program"] = "render";
@@ -127,7 +118,8 @@ int runDataParallelRender(DataParallelRenderRequest& o) {
     summary["version"] = versionText();
 
     OutputSet outputs(MissingFolders::kCreate);
-    outputs.add(o.output, [&](const std::filesystem::path& tmp) { writeImage(image, tmp, write); });
+    outputs.add(o.output,
+                [&](const std::filesystem::path& tmp) { writeImage(file.image, tmp, file.write); });
     if (!o.common.json_path.empty()) outputs.addText(o.common.json_path, summary.dump(2) + "\n");
     outputs.commit();
 

@@ -39,6 +39,24 @@ Image exrWithAovs(const RenderResult& result) {
   return out;
 }
 
+RenderImageFile renderImageFile(RenderImageFormat format, const Image& radiance,
+                                const std::function<Image()>& exr,
+                                std::vector<std::string> channels,
+                                std::vector<ImageAttribute> attributes) {
+  RenderImageFile f;
+  f.write.attributes = std::move(attributes);
+  if (format == RenderImageFormat::kExr) {
+    f.image = exr();
+    f.write.full_float = true;
+    f.write.channel_names = std::move(channels);
+  } else {
+    f.image = radiance;
+    f.write.exposure = autoExposure(radiance);
+    f.write.attributes.push_back({"proxyvis:exposure", f.write.exposure});
+  }
+  return f;
+}
+
 nlohmann::json renderSummary(const SceneDesc& scene, const RenderRun& run, const RenderResult& r,
                              const std::filesystem::path& output) {
   return {{"program", "render"},

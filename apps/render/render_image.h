@@ -2,6 +2,7 @@
 // What `render` writes: the image (EXR: linear RGB plus the AOV layers; PNG: tone-mapped RGB),
 // each with the render's metadata, and the run's JSON summary.
 #include <filesystem>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -20,6 +21,18 @@ RenderImageFormat renderImageFormat(const std::filesystem::path& path);
 Image exrWithAovs(const RenderResult& result);
 // The channel names of exrWithAovs().
 std::vector<std::string> exrWithAovsChannelNames();
+
+// What `render` writes and how: for EXR, exr() with 32-bit float channels named `channels`; for
+// PNG, the radiance tone-mapped at its automatic exposure (recorded as proxyvis:exposure). Both
+// carry `attributes`.
+struct RenderImageFile {
+  Image image;
+  ImageWriteOptions write;
+};
+RenderImageFile renderImageFile(RenderImageFormat format, const Image& radiance,
+                                const std::function<Image()>& exr,
+                                std::vector<std::string> channels,
+                                std::vector<ImageAttribute> attributes);
 
 struct RenderRun {
   std::string estimator;
