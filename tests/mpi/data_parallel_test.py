@@ -1,6 +1,6 @@
 """Data-parallel rendering over MPI, end to end (label mpi). Cases:
   identical  exact renders equal the single-process exact render bit for bit (R, G, B) at 1, 2, 3
-             and 4 ranks, every forwarding policy, 1 and 2 threads
+             and 4 ranks, every forwarding policy, 1 and 2 threads, from render and render-compare
   files      no rank opens another rank's original (strace of every rank's open calls)
   faults     a rank that cannot read its original ends the job with exit 2 and one line naming the
              rank and the file; a rank killed mid-job fails the job; no output replaces a good one
@@ -38,37 +38,59 @@ def summary(path):
 
 
 if case == "identical":
+    # One render-compare job per rank count renders every policy in one MPI launch (its row
+    # images are the first seed's, which is render's seed); render itself covers 2 threads.
     single = os.path.join(work, "single.exr")
     run([render, scene, "--estimator", "exact", "--spp", "8", "--seed", "5", "-o", single,
          "--quiet", "--threads", "2"])
+    compare = os.path.join(os.path.dirname(render), "render-compare")
+
+    def check_summary(s, ranks, fw, what):
+        if s["ranks"] != ranks or s["forwarding"] != fw:
+            sys.exit(f"FAIL: {what}: the summary says {s['ranks']} ranks, {s['forwarding']}")
+        if ranks > 1 and s["forwards"] == 0:
+            sys.exit(f"FAIL: {what}: no ray was forwarded; the scene does not exercise it")
+        if ranks == 1 and s["forwards"] != 0:
+            sys.exit(f"FAIL: {what}: one rank forwarded {s['forwards']} rays")
+        for key in ("forwards_per_shadow_segment", "forward_bytes", "forward_messages",
+                    "rank_peak_rss_bytes"):
+            if key not in s:
+                sys.exit(f"FAIL: {what}: the summary has no '{key}'")
+
+    def check_image(out, what):
+        same, text = rgb_equal(single, out, work)
+        if not same:
+            sys.exit(f"FAIL: {what}: the image differs from the single-process exact render\n"
+                     f"{text}")
+
     checked = 0
     for ranks in (1, 2, 3, 4):
-        for fw in FORWARDINGS:
-            for threads in ((1, 2) if ranks == 2 else (1,)):
-                out = os.path.join(work, f"dp_{ranks}_{fw}_{threads}.exr")
-                js = out + ".json"
-                dp(ranks, out, "--forwarding", fw, "--spp", "8", "--seed", "5",
-                   "--threads", str(threads), "--passes-per-round", "3", "--json", js)
-                same, text = rgb_equal(single, out, work)
-                if not same:
-                    sys.exit(f"FAIL: {ranks} ranks, --forwarding {fw}, {threads} threads: the "
-                             f"image differs from the single-process exact render\n{text}")
-                s = summary(js)
-                if s["ranks"] != ranks or s["forwarding"] != fw:
-                    sys.exit(f"FAIL: summary says {s['ranks']} ranks, {s['forwarding']}")
-                if ranks > 1 and s["forwards"] == 0:
-                    sys.exit(f"FAIL: {ranks} ranks, {fw}: no ray was forwarded; the scene does "
-                             "not exercise forwarding")
-                if ranks == 1 and s["forwards"] != 0:
-                    sys.exit(f"FAIL: one rank forwarded {s['forwards']} rays")
-                for key in ("forwards_per_shadow_segment", "forward_bytes", "forward_messages",
-                            "rank_peak_rss_bytes"):
-                    if key not in s:
-                        sys.exit(f"FAIL: the summary has no '{key}'")
-                # Every request is 32 bytes and its answer 1.
-                if s["forward_bytes"] != 33 * s["forwards"]:
-                    sys.exit(f"FAIL: {s['forward_bytes']} bytes for {s['forwards']} forwards")
-                checked += 1
+        report = os.path.join(work, f"rc_{ranks}")
+        run(mpirun_cmd(ranks) + [compare, scene, "--data-parallel", "--forwarding",
+                                 ",".join(FORWARDINGS), "--estimators", "exact", "--spp", "8",
+                                 "--seeds", "1", "--seed", "5", "--reference-spp", "8",
+                                 "--passes-per-round", "3", "--threads", "1", "--quiet",
+                                 "--out", report])
+        rows = summary(os.path.join(report, "report.json"))["rows"]
+        if sorted(r["forwarding"] for r in rows) != sorted(FORWARDINGS):
+            sys.exit(f"FAIL: {ranks} ranks: the report's rows are {rows}")
+        for row in rows:
+            what = f"{ranks} ranks, --forwarding {row['forwarding']}"
+            check_summary(row, ranks, row["forwarding"], what)
+            check_image(os.path.join(report, row["image"]), what)
+            checked += 1
+    for fw in FORWARDINGS:
+        out = os.path.join(work, f"dp_2_{fw}_2threads.exr")
+        dp(2, out, "--forwarding", fw, "--spp", "8", "--seed", "5", "--threads", "2",
+           "--json", out + ".json")
+        what = f"render, 2 ranks x 2 threads, --forwarding {fw}"
+        s = summary(out + ".json")
+        check_summary(s, 2, fw, what)
+        # Every request is 32 bytes and its answer 1.
+        if s["forward_bytes"] != 33 * s["forwards"]:
+            sys.exit(f"FAIL: {what}: {s['forward_bytes']} bytes for {s['forwards']} forwards")
+        check_image(out, what)
+        checked += 1
     print(f"ok: {checked} data-parallel renders equal the single-process exact render")
 
 elif case == "files":
