@@ -133,6 +133,12 @@ std::string formatHumanReport(const PairCheckReport& r) {
   out += rateLine("f_miss", s.f_miss, "MM' / (MH' + MM')");
   out += rateLine("P(err|V'=0)", s.error_given_v0, "MH' / (HH' + MH')");
   out += rateLine("P(err|V'=1)", s.error_given_v1, "HM' / (HM' + MM')");
+  out += rateLine("P(H'|M)", s.wasted_forward,
+                  "MH' / (MH' + MM'): hits the proxy, misses the original (outside: a wasted "
+                  "forward)");
+  out += rateLine("P(M'|H)", s.missed_block,
+                  "HM' / (HH' + HM'): misses the proxy, hits the original (inside: a block "
+                  "missed)");
   out += fmt::format(
       "  cost ratio c_p/c_o {:.3f}  (proxy {:.1f} ns, original {:.1f} ns per segment; "
       "{:.2f} M classified segments/s)\n",
@@ -166,6 +172,8 @@ nlohmann::json toJson(const PairCheckReport& r) {
   j["f_miss"] = valueOrNull(s.f_miss);
   j["P_error_given_V0"] = valueOrNull(s.error_given_v0);
   j["P_error_given_V1"] = valueOrNull(s.error_given_v1);
+  j["P_hit_proxy_given_miss_original"] = valueOrNull(s.wasted_forward);
+  j["P_miss_proxy_given_hit_original"] = valueOrNull(s.missed_block);
   j["intervals"] = {{"level", 0.95},
                     {"method", "wilson"},
                     {"HH", rateJson(s.hh)},
@@ -177,6 +185,8 @@ nlohmann::json toJson(const PairCheckReport& r) {
                     {"f_miss", rateJson(s.f_miss)},
                     {"P_error_given_V0", rateJson(s.error_given_v0)},
                     {"P_error_given_V1", rateJson(s.error_given_v1)},
+                    {"P_hit_proxy_given_miss_original", rateJson(s.wasted_forward)},
+                    {"P_miss_proxy_given_hit_original", rateJson(s.missed_block)},
                     {"error", rateJson(s.error)}};
   j["sampled_class"] = sampledClassName(r.sampled_class);
   if (auto b = missedClassBound(r))

@@ -27,6 +27,8 @@ ClassStats deriveStats(const ClassCounts& c, double z) {
   s.error_given_v0 = estimateRate(c.mh, c.hh + c.mh, z);
   s.error_given_v1 = estimateRate(c.hm, c.hm + c.mm, z);
   s.error = estimateRate(c.hm + c.mh, n, z);
+  s.wasted_forward = estimateRate(c.mh, c.mh + c.mm, z);
+  s.missed_block = estimateRate(c.hm, c.hh + c.hm, z);
   return s;
 }
 

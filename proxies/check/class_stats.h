@@ -40,6 +40,11 @@ struct ClassStats {
   RateEstimate error_given_v0;  // P(error | V'=0) = MH' / (HH' + MH')
   RateEstimate error_given_v1;  // P(error | V'=1) = HM' / (HM' + MM')
   RateEstimate error;           // (HM' + MH') / N
+  // The rates that cost a data-parallel renderer (docs/data_parallel.md) messages: an outside
+  // proxy hit by a segment that misses the original sends a forward for nothing; an inside proxy
+  // missed by a segment that hits the original fails to save one.
+  RateEstimate wasted_forward;  // P(hit proxy | miss original) = MH' / (MH' + MM') = 1 - f_miss
+  RateEstimate missed_block;    // P(miss proxy | hit original) = HM' / (HH' + HM') = 1 - f_hit
 };
 
 ClassStats deriveStats(const ClassCounts& c, double z = 1.959963984540054);

@@ -18,7 +18,7 @@ endif()
 if(CMAKE_SCRIPT_MODE_FILE)
   file(READ "${JSON_FILE}" json)
   expect_json_keys("${JSON_FILE}" "${json}" counts V_avg f_hit f_miss intervals sampled_class exact
-    cost_ratio seed rays seconds)
+    cost_ratio seed rays seconds P_hit_proxy_given_miss_original P_miss_proxy_given_hit_original)
   string(JSON exact GET "${json}" exact)
   if(NOT exact STREQUAL JSON_EXACT)
     message(FATAL_ERROR "exact = ${exact}, expected ${JSON_EXACT}")

@@ -21,6 +21,9 @@ TEST(ClassStats, DerivedQuantitiesFromCounts) {
   EXPECT_DOUBLE_EQ(s.error_given_v0.value, 20.0 / 50.0);
   EXPECT_DOUBLE_EQ(s.error_given_v1.value, 10.0 / 50.0);
   EXPECT_DOUBLE_EQ(s.error.value, 30.0 / 100.0);
+  EXPECT_DOUBLE_EQ(s.wasted_forward.value, 20.0 / 60.0);  // MH' among the segments V = 1
+  EXPECT_DOUBLE_EQ(s.missed_block.value, 10.0 / 40.0);    // HM' among the segments V = 0
+  EXPECT_EQ(s.wasted_forward.n, 60u);
   EXPECT_EQ(s.error_given_v1.n, 50u);
   EXPECT_LT(s.f_hit.ci.lo, s.f_hit.value);
   EXPECT_GT(s.f_hit.ci.hi, s.f_hit.value);
@@ -82,7 +85,7 @@ TEST(ClassStats, IntervalsCoverTrueRates) {
   };
   const Case cases[] = {{{0.30, 0.02, 0.08, 0.60}, 2000}, {{0.10, 0.05, 0.25, 0.60}, 1000}};
   constexpr int kReplicates = 2000;
-  constexpr int kChecksPerCase = 7;
+  constexpr int kChecksPerCase = 9;
   const double z = sidakZ(0.01, std::size(cases) * kChecksPerCase);
   const double tolerance = z * std::sqrt(0.95 * 0.05 / kReplicates);
   for (size_t ci = 0; ci < std::size(cases); ++ci) {
@@ -94,7 +97,9 @@ TEST(ClassStats, IntervalsCoverTrueRates) {
                                           P_hh / (P_hh + P_hm),
                                           P_mm / (P_mh + P_mm),
                                           P_mh / (P_hh + P_mh),
-                                          P_hm / (P_hm + P_mm)};
+                                          P_hm / (P_hm + P_mm),
+                                          P_mh / (P_mh + P_mm),
+                                          P_hm / (P_hh + P_hm)};
     int covered[kChecksPerCase] = {};
     for (int r = 0; r < kReplicates; ++r) {
       Rng rng(/*seed=*/1234 + ci, r);
@@ -111,8 +116,15 @@ TEST(ClassStats, IntervalsCoverTrueRates) {
           ++c.mm;
       }
       const ClassStats s = deriveStats(c);
-      const RateEstimate* est[kChecksPerCase] = {
-          &s.hm, &s.mh, &s.v_avg, &s.f_hit, &s.f_miss, &s.error_given_v0, &s.error_given_v1};
+      const RateEstimate* est[kChecksPerCase] = {&s.hm,
+                                                 &s.mh,
+                                                 &s.v_avg,
+                                                 &s.f_hit,
+                                                 &s.f_miss,
+                                                 &s.error_given_v0,
+                                                 &s.error_given_v1,
+                                                 &s.wasted_forward,
+                                                 &s.missed_block};
       for (int k = 0; k < kChecksPerCase; ++k)
         covered[k] += est[k]->ci.lo <= truth[k] && truth[k] <= est[k]->ci.hi;
     }
