@@ -31,7 +31,7 @@ void addDataParallelFlags(CLI::App& app, DataParallelFlags& flags, bool list) {
       ->group(group);
   app.add_option("--local-cost-us", flags.local_cost_us,
                  "Roulette: a segment's local work in microseconds (default: measured); with "
-                 "--forward-cost-us the render is bit-reproducible")
+                 "--forward-cost-us the render is bit-reproducible for a given rank count")
       ->check(numberIn(0, 1e6))
       ->group(group);
 }

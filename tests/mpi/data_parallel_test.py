@@ -6,7 +6,7 @@
              rank and the file; a rank killed mid-job fails the job; no output replaces a good one
   refuse     a proxy whose recorded class does not hold for its file is refused before rendering
   roulette   roulette is unbiased: over seeds, its image minus the same seed's exact image has
-             mean zero (z-test)
+             mean zero (z-test); with fixed costs it is the same image at 1 and 2 threads
   readme     the mpirun commands of README.md's data-parallel section run as written, in a
              folder laid out like a new clone, and the exact render equals `render`'s
 usage: data_parallel_test.py CASE RENDER_EXE PROXY_GEN_EXE DATA_DIR SCENES_DIR WORK_DIR"""
@@ -206,6 +206,14 @@ elif case == "roulette":
         sys.exit("FAIL: roulette and exact images are identical: nothing was left to chance")
     if abs(z) > 4:
         sys.exit(f"FAIL: |z| = {abs(z):.2f} > 4: roulette is biased")
+    # With fixed costs its choices are a function of the seed: the same image at 2 threads.
+    again = os.path.join(work, "roulette_0_threads2.exr")
+    dp(2, again, "--forwarding", "proxies", "--estimator", "roulette", "--spp", "4", "--seed", "0",
+       "--threads", "2", "--forward-cost-us", "200", "--local-cost-us", "1",
+       "--passes-per-round", "1")
+    same, text = rgb_equal(os.path.join(work, "roulette_0.exr"), again, work)
+    if not same:
+        sys.exit(f"FAIL: roulette with fixed costs differs between 1 and 2 threads\n{text}")
     print("ok: roulette is unbiased against exact (z-test)")
 elif case == "readme":
     import re
