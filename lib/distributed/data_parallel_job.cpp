@@ -25,8 +25,10 @@ void addDataParallelFlags(CLI::App& app, DataParallelFlags& flags, bool list) {
       ->capture_default_str()
       ->group(group);
   app.add_option("--forward-cost-us", flags.forward_cost_us,
-                 "Cost of one forwarded ray in microseconds: roulette's choice of q and the "
-                 "report's modelled efficiency (default: measured on this run)")
+                 list ? "Cost of one forwarded ray in microseconds: roulette's choice of q and the "
+                        "report's modelled efficiency (default 20)"
+                      : "Cost of one forwarded ray in microseconds: roulette's choice of q and the "
+                        "summary's modelled time (default: roulette measures it on this run)")
       ->check(numberIn(0, 1e6))
       ->group(group);
   app.add_option("--local-cost-us", flags.local_cost_us,
