@@ -43,3 +43,36 @@ def start_cluster(repo, cluster_dir):
         sys.exit(f"FAIL: local_cluster.sh start: exit {r.returncode}: {r.stderr}")
     print(f"timing: cluster start: {time.monotonic() - t0:.1f} s")
     return True
+
+
+def daemon_pids(cluster_dir):
+    """The pids of the cluster's daemons (munged, slurmctld, slurmd) from their pid files."""
+    pids = []
+    for name in ("munged", "slurmctld", "slurmd"):
+        try:
+            with open(os.path.join(cluster_dir, "run", f"{name}.pid")) as f:
+                pids.append(int(f.read().strip()))
+        except (OSError, ValueError):
+            pass
+    return pids
+
+
+def alive(pid):
+    """True while the process runs (a zombie counts as gone)."""
+    try:
+        with open(f"/proc/{pid}/stat") as f:
+            return f.read().split(") ")[1].split()[0] != "Z"
+    except (OSError, IndexError):
+        return False
+
+
+def stop_and_wait(repo, cluster_dir, timeout=15):
+    """Stops the cluster and waits for its daemons to exit: stop returns once their pid files
+    are gone, and slurmctld may take a moment longer (it saves its state) on a loaded machine.
+    Returns stop's result, the daemons still alive after `timeout` s, and the seconds waited."""
+    pids = daemon_pids(cluster_dir)
+    r = cluster(repo, cluster_dir, "stop")
+    t0 = time.monotonic()
+    while any(alive(p) for p in pids) and time.monotonic() - t0 < timeout:
+        time.sleep(0.1)
+    return r, [p for p in pids if alive(p)], time.monotonic() - t0

@@ -21,7 +21,8 @@ import sys
 import tempfile
 import time
 
-from cluster_support import SKIP, cluster, slurm_env, start_cluster
+from cluster_support import (SKIP, cluster, daemon_pids, slurm_env, start_cluster,  # noqa: E402
+                             stop_and_wait)
 
 mode, repo, render, proxy_gen, data_dir, scenes_dir, work = sys.argv[1:8]
 spec = importlib.util.spec_from_file_location(
@@ -232,33 +233,17 @@ def on_cluster(scene):
         print(f"timing: failing job (--wait): {r.seconds:.1f} s")
         print("ok: a failed job's exit status 2 is passed on")
 
-        pids = []
-        for name in ("munged", "slurmctld", "slurmd"):
-            with open(os.path.join(cluster_dir, "run", f"{name}.pid")) as f:
-                pids.append(int(f.read().strip()))
-        r = cluster(repo, cluster_dir, "stop")
+        check(len(daemon_pids(cluster_dir)) == 3, "pid files of the three daemons")
+        r, left, waited = stop_and_wait(repo, cluster_dir)
         started = False
         check(r.returncode == 0, f"stop: exit {r.returncode}: {r.stderr}")
-        # stop returns once the daemons' pid files are gone; they may take a moment longer to
-        # exit (slurmctld saves its state) on a loaded machine.
-        t0 = time.monotonic()
-        while any(alive(p) for p in pids) and time.monotonic() - t0 < 15:
-            time.sleep(0.1)
-        check(not any(alive(p) for p in pids), f"daemons alive 15 s after stop: {pids}")
-        print(f"timing: daemons gone {time.monotonic() - t0:.1f} s after stop returned")
+        check(not left, f"daemons alive 15 s after stop: {left}")
+        print(f"timing: daemons gone {waited:.1f} s after stop returned")
         return 0
     finally:
         if started:
             cluster(repo, cluster_dir, "stop")
         shutil.rmtree(tmp, ignore_errors=True)
-
-
-def alive(pid):
-    try:
-        with open(f"/proc/{pid}/stat") as f:
-            return f.read().split(") ")[1].split()[0] != "Z"
-    except (OSError, IndexError):
-        return False
 
 
 def main():

@@ -18,7 +18,7 @@ import sys
 import tempfile
 import time
 
-from cluster_support import SKIP, cluster, start_cluster
+from cluster_support import SKIP, cluster, daemon_pids, start_cluster, stop_and_wait
 
 UNITS = 8
 # Passed through the generated job scripts unchanged: spaces, quotes, $ and a glob.
@@ -171,24 +171,6 @@ def refuse_second_submission(repo, env, work):
     # stop cancels the sleeping units
 
 
-def daemon_pids(cluster_dir):
-    pids = []
-    for name in ("munged", "slurmctld", "slurmd"):
-        try:
-            pids.append(int(read(os.path.join(cluster_dir, "run", f"{name}.pid")).strip()))
-        except (OSError, ValueError):
-            pass
-    return pids
-
-
-def alive(pid):
-    try:
-        with open(f"/proc/{pid}/stat") as f:
-            return f.read().split(") ")[1].split()[0] != "Z"
-    except (OSError, IndexError):
-        return False
-
-
 def main():
     repo, mode = sys.argv[1], sys.argv[2]
     work = tempfile.mkdtemp(prefix="proxyvis-slurm-test-")
@@ -210,11 +192,10 @@ def main():
             refuse_second_submission(repo, env, work)
             pids = daemon_pids(cluster_dir)
             check(len(pids) == 3, f"pid files of the three daemons: {pids}")
-            r = cluster(repo, cluster_dir, "stop")
+            r, left, _ = stop_and_wait(repo, cluster_dir)
             started = False
             check(r.returncode == 0, f"stop: exit {r.returncode}: {r.stderr}")
-            time.sleep(0.2)
-            check(not any(alive(p) for p in pids), f"daemons alive after stop: {pids}")
+            check(not left, f"daemons alive 15 s after stop: {left}")
         print("PASS")
         return 0
     except (TestFailure, subprocess.TimeoutExpired) as e:
