@@ -134,13 +134,10 @@ int runDataParallelStudy(CompareOptions& o, const DataParallelFlags& flags, bool
     });
     const double cost_us =
         flags.forward_cost_us >= 0 ? flags.forward_cost_us : kDefaultForwardCostUs;
-    DistributedSceneOptions scene_options;
-    const RenderSceneOptions render_options = o.render.sceneOptions(o.common.quiet);
-    scene_options.instance_build = render_options.instance_build;
-    scene_options.memory_budget_bytes = render_options.memory_budget_bytes;
-    scene_options.proxies =
+    const bool proxies =
         std::find(policies.begin(), policies.end(), Forwarding::kProxies) != policies.end();
-    const auto scene = DistributedScene::load(desc, scene_options, comm);
+    const auto scene =
+        DistributedScene::load(desc, distributedSceneOptions(o.render, proxies), comm);
 
     auto settingsFor = [&](const std::string& estimator, Forwarding f, int spp, uint64_t seed) {
       DataParallelSettings s;

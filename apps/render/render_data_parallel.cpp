@@ -71,13 +71,8 @@ int runDataParallelRender(DataParallelRenderRequest& o) {
       o.render.applyTo(desc);
     });
 
-    DistributedSceneOptions options;
-    const RenderSceneOptions scene_options = o.render.sceneOptions(o.common.quiet);
-    options.instance_build = scene_options.instance_build;
-    options.memory_budget_bytes = scene_options.memory_budget_bytes;
-    options.proxies = forwarding == Forwarding::kProxies;
-    options.quiet = o.common.quiet;
-    const auto scene = DistributedScene::load(desc, options, comm);
+    const auto scene = DistributedScene::load(
+        desc, distributedSceneOptions(o.render, forwarding == Forwarding::kProxies), comm);
     maybeDieForTest(comm.rank());
 
     DataParallelSettings settings;

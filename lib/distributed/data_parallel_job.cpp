@@ -38,6 +38,15 @@ void addDataParallelFlags(CLI::App& app, DataParallelFlags& flags, bool list) {
       ->group(group);
 }
 
+DistributedSceneOptions distributedSceneOptions(const RenderFlags& flags, bool proxies) {
+  const RenderSceneOptions render = flags.sceneOptions(true);
+  DistributedSceneOptions options;
+  options.instance_build = render.instance_build;
+  options.memory_budget_bytes = render.memory_budget_bytes;
+  options.proxies = proxies;
+  return options;
+}
+
 std::vector<RankFacts> gatherRankFacts(const DistributedScene& scene,
                                        const DataParallelStats& stats, const MpiComm& comm) {
   const DistributedScene::Facts& f = scene.facts();

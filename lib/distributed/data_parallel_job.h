@@ -10,6 +10,7 @@
 
 #include "distributed/data_parallel_render.h"
 #include "distributed/distributed_scene.h"
+#include "render/render_options.h"
 
 namespace proxyvis {
 
@@ -24,6 +25,10 @@ struct DataParallelFlags {
 // Adds --data-parallel, --forwarding, --passes-per-round, --forward-cost-us, --local-cost-us.
 // `list`: --forwarding takes a comma-separated list (render-compare).
 void addDataParallelFlags(CLI::App& app, DataParallelFlags& flags, bool list);
+
+// The scene options of a data-parallel run: the same BVH build choice as the single-process
+// renderer's flags make (--build, --memory-budget), and proxy forwarding when `proxies`.
+DistributedSceneOptions distributedSceneOptions(const RenderFlags& flags, bool proxies);
 
 // One rank's share, for the report (gathered on rank 0).
 struct RankFacts {

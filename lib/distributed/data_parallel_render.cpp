@@ -53,19 +53,15 @@ struct RoundEntries {
   std::vector<uint32_t> region;
 };
 
-struct AnswerContext {
-  const DistributedScene* scene;
-};
-
-// A forwarded segment's answer: 1 if this rank's own originals block it.
+// A forwarded segment's answer: 1 if this rank's own originals block it. `context` is the scene.
 void answerRequests(void* context, const uint8_t* requests, size_t count, uint8_t* answers) {
-  const auto* ctx = static_cast<const AnswerContext*>(context);
+  const auto* scene = static_cast<const DistributedScene*>(context);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 256),
                     [&](const tbb::blocked_range<size_t>& range) {
                       for (size_t i = range.begin(); i != range.end(); ++i) {
                         Segment s;
                         std::memcpy(&s, requests + i * sizeof(Segment), sizeof(Segment));
-                        answers[i] = ctx->scene->ownOccluded(s) ? 1 : 0;
+                        answers[i] = scene->ownOccluded(s) ? 1 : 0;
                       }
                     });
 }
@@ -155,7 +151,6 @@ DataParallelResult renderDataParallel(const DistributedScene& scene,
       uint64_t((settings.spp + settings.passes_per_round - 1) / settings.passes_per_round);
   Progress progress("render (data-parallel)", total_rounds, settings.quiet || rank != 0);
   RoundEntries r;
-  const AnswerContext answer_context{&scene};
   for (int start = 0; start < settings.spp; start += settings.passes_per_round) {
     const int count = std::min(settings.passes_per_round, settings.spp - start);
     const size_t n = owned.size() * size_t(count);
@@ -237,7 +232,7 @@ DataParallelResult renderDataParallel(const DistributedScene& scene,
       MpiComm::RoundStats round;
       timed([&] {
         round = comm.exchange(outbox, sizeof(Segment), answerRequests,
-                              const_cast<AnswerContext*>(&answer_context), replies);
+                              const_cast<DistributedScene*>(&scene), replies);
       });
       mpi_cpu -= round.answer_cpu_seconds;  // answering is compute
       exchange_seconds += round.seconds;

@@ -45,7 +45,6 @@ struct DistributedSceneOptions {
   // class proved for its file (recorded sha256 equal to the file's) and the lights outside them.
   // The box policies only use proxies to place objects.
   bool proxies = true;
-  bool quiet = false;
 };
 
 // What a shadow segment needs after the local trace.
