@@ -3,10 +3,14 @@
 // distance to the input, the first admissible one is kept. A step is admissible when no face
 // of the star flips, the input test allows the new star, and no new face crosses a face of the
 // mesh that shares no corner with it (a linear scan over face boxes: the meshes are small).
+// Between vertex passes, edges are flipped where the flip removes volume under the same tests:
+// at a few hundred faces the triangulation, not only the vertex positions, decides how closely
+// thin parts (legs, horns, handles) are hugged, and edge collapses alone leave it as it fell.
 #include "proxies/shared/internal/relax_toward_input.h"
 
 #include <CGAL/intersections.h>
 
+#include <algorithm>
 #include <array>
 #include <vector>
 
@@ -106,17 +110,26 @@ class Relaxer {
       new_star.push_back({x, b, c});
     }
     if (!bound_.allows(old_star, new_star)) return false;
-    for (size_t i = 0; i < star.size(); ++i) {
-      const Tri& t = new_star[i];
+    std::vector<Triangle> corners;
+    for (uint32_t f : star) corners.push_back(mesh_.triangles[f]);
+    return crossesNothing(new_star, corners);
+  }
+
+  // No new face crosses a face of the mesh that shares no corner with it (the star itself and
+  // its neighbours are skipped: they meet it at a corner or an edge).
+  bool crossesNothing(const std::vector<Tri>& new_faces,
+                      const std::vector<Triangle>& new_corners) const {
+    for (size_t i = 0; i < new_faces.size(); ++i) {
+      const Tri& t = new_faces[i];
       const Box box = boxOf(t);
-      const Triangle& corners = mesh_.triangles[star[i]];
+      const Triangle& corners = new_corners[i];
       const Kernel::Triangle_3 moved(toPoint(t[0]), toPoint(t[1]), toPoint(t[2]));
       for (size_t f = 0; f < mesh_.triangles.size(); ++f) {
         if (!box.overlaps(boxes_[f])) continue;
         const Triangle& g = mesh_.triangles[f];
         bool shares = false;
         for (uint32_t a : g) shares |= a == corners[0] || a == corners[1] || a == corners[2];
-        if (shares) continue;  // the star itself and its neighbours
+        if (shares) continue;
         const Tri o = tri(f);
         if (CGAL::do_intersect(moved,
                                Kernel::Triangle_3(toPoint(o[0]), toPoint(o[1]), toPoint(o[2]))))
@@ -125,6 +138,60 @@ class Relaxer {
     }
     return true;
   }
+
+ public:
+  // Flips the edge from corner k to corner k+1 of face f: (a, b, c) and its neighbour (b, a, d)
+  // become (c, a, d) and (d, b, c) when that removes volume, creates no edge that exists, folds
+  // neither face and the input and self-intersection tests allow it. Returns the volume removed.
+  double flip(uint32_t f, int k) {
+    const Triangle tf = mesh_.triangles[f];
+    const uint32_t a = tf[k], b = tf[(k + 1) % 3], c = tf[(k + 2) % 3];
+    uint32_t g = kNone, d = kNone;
+    for (uint32_t h : faces_of_[a]) {
+      if (h == f) continue;
+      const Triangle& th = mesh_.triangles[h];
+      for (int j = 0; j < 3; ++j)
+        if (th[j] == b && th[(j + 1) % 3] == a) g = h, d = th[(j + 2) % 3];
+    }
+    if (g == kNone || d == c) return 0;
+    for (uint32_t h : faces_of_[c])
+      for (uint32_t w : mesh_.triangles[h])
+        if (w == d) return 0;  // edge (c, d) exists: the flip would make it non-manifold
+    const Vec3d pa(mesh_.vertices[a]), pb(mesh_.vertices[b]), pc(mesh_.vertices[c]),
+        pd(mesh_.vertices[d]);
+    auto volume = [](const Vec3d& x, const Vec3d& y, const Vec3d& z) {
+      return dot(x, cross(y, z)) / 6.0;
+    };
+    const double gain =
+        volume(pa, pb, pc) + volume(pb, pa, pd) - volume(pc, pa, pd) - volume(pd, pb, pc);
+    if (!(gain > 0)) return 0;
+    const Vec3d n_old = cross(pb - pa, pc - pa) + cross(pa - pb, pd - pb);
+    for (const Vec3d n : {cross(pa - pc, pd - pc), cross(pb - pd, pc - pd)}) {
+      const double len = length(n), len_old = length(n_old);
+      if (!(len > 1e-12 * len_old) || dot(n, n_old) <= 0.2 * len * len_old) return 0;
+    }
+    const std::vector<Tri> old_star{{pa, pb, pc}, {pb, pa, pd}};
+    const std::vector<Tri> new_star{{pc, pa, pd}, {pd, pb, pc}};
+    if (!bound_.allows(old_star, new_star)) return 0;
+    // Both old faces and the new ones share corners; the rest of the mesh must not be crossed.
+    if (!crossesNothing(new_star, {Triangle{c, a, d}, Triangle{d, b, c}})) return 0;
+    mesh_.triangles[f] = {c, a, d};
+    mesh_.triangles[g] = {d, b, c};
+    auto drop = [&](uint32_t v, uint32_t face) {
+      auto& list = faces_of_[v];
+      list.erase(std::remove(list.begin(), list.end(), face), list.end());
+    };
+    drop(a, g);
+    drop(b, f);
+    faces_of_[c].push_back(g);
+    faces_of_[d].push_back(f);
+    boxes_[f] = boxOf(tri(f));
+    boxes_[g] = boxOf(tri(g));
+    return gain;
+  }
+
+ private:
+  static constexpr uint32_t kNone = ~0u;
 
   TriMesh& mesh_;
   const InputBound& bound_;
@@ -147,6 +214,17 @@ size_t relaxTowardInput(TriMesh& mesh, const InputBound& bound, int sweeps,
       if (g > 0) {
         gained += g;
         ++moved;
+      }
+    }
+    for (uint32_t f = 0; f < mesh.triangles.size(); ++f) {
+      if (budget && budget->expired()) return moved;
+      for (int k = 0; k < 3; ++k) {
+        const double g = relaxer.flip(f, k);
+        if (g > 0) {
+          gained += g;
+          ++moved;
+          break;  // face f has changed
+        }
       }
     }
     if (!(gained > 1e-3 * volume)) break;
