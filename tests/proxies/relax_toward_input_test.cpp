@@ -1,0 +1,55 @@
+// The relaxation after a bounded collapse (proxies/shared/internal/relax_toward_input.h): vertex
+// moves and edge flips shrink the proxy toward the input and never let the input out. Built into
+// proxy_budget_tests, which the sanitizer build runs (the 2 % tightness targets of
+// proxy_tight_tests are numbers, run in the Release suite only).
+#include <gtest/gtest.h>
+
+#include "mesh/validation.h"
+#include "proxies/check/containment.h"
+#include "proxies/shared/internal/input_bound.h"
+#include "proxies/shared/internal/relax_toward_input.h"
+#include "tests/proxies/check_shapes.h"
+
+namespace proxyvis {
+namespace {
+
+// A box-shaped proxy whose top is a non-planar quad split along its ridge (corners 4 and 6 high,
+// 5 and 7 low), around a smaller box. The relaxation moves the corners onto the input and flips
+// edges where that removes volume: the top's diagonal, which no vertex move can change, ends up
+// as the valley 5-7; every step keeps the input inside.
+TEST(RelaxTowardInput, HugsTheInputAndFlipsTheRidgeWithoutLettingTheInputOut) {
+  TriMesh tent;
+  tent.source = "tent";
+  tent.vertices = {{0, 0, 0}, {1, 0, 0},    {1, 1, 0}, {0, 1, 0},      // bottom
+                   {0, 0, 1}, {1, 0, 0.6f}, {1, 1, 1}, {0, 1, 0.6f}};  // top: ridge 4-6
+  tent.triangles = {{0, 2, 1}, {0, 3, 2},                              // bottom, facing -z
+                    {4, 5, 6}, {4, 6, 7},                              // top, split along 4-6
+                    {0, 1, 5}, {0, 5, 4}, {1, 2, 6}, {1, 6, 5},
+                    {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
+  ASSERT_GT(tent.signedVolume(), 0);
+  const TriMesh input = test::makeBox({0.3f, 0.3f, 0.1f}, {0.7f, 0.7f, 0.4f}, "input");
+  ASSERT_EQ(checkContainment(input, tent).verdict, ContainmentVerdict::kContains);
+
+  const cgal::InputBound bound(input);
+  TriMesh relaxed = tent;
+  EXPECT_GT(cgal::relaxTowardInput(relaxed, bound, 8, nullptr), 0u);
+  EXPECT_EQ(checkContainment(input, relaxed).verdict, ContainmentVerdict::kContains);
+  const MeshReport v = validateMesh(relaxed);
+  EXPECT_TRUE(v.closed);
+  EXPECT_TRUE(v.manifold);
+  EXPECT_EQ(relaxed.numTriangles(), tent.numTriangles());
+  auto hasEdge = [&](uint32_t a, uint32_t b) {
+    for (const Triangle& t : relaxed.triangles)
+      for (int k = 0; k < 3; ++k)
+        if ((t[k] == a && t[(k + 1) % 3] == b) || (t[k] == b && t[(k + 1) % 3] == a)) return true;
+    return false;
+  };
+  EXPECT_TRUE(hasEdge(5, 7)) << "the ridge was not flipped";
+  EXPECT_FALSE(hasEdge(4, 6));
+  // The proxy of 12 faces can be the input box itself, up to the float rounding of the moves.
+  EXPECT_LT(relaxed.signedVolume(), 1.01 * input.signedVolume());
+  EXPECT_GT(relaxed.signedVolume(), input.signedVolume());
+}
+
+}  // namespace
+}  // namespace proxyvis
