@@ -96,8 +96,15 @@ Slot g_slots[kSlots];
 static_assert(std::atomic<int>::is_always_lock_free, "the signal handler reads these");
 
 // Only system calls: this runs in a signal handler. Removes the files directly in `path`, then
-// the folder itself.
+// the folder itself. Other threads keep running while the handler does: one that writes into the
+// folder could create a file after a pass and make the folder's removal fail, so the folder is
+// first renamed away ("<path>.gone", still a temporary's name), where no path-based write lands.
 void removeFlatFolder(const char* path) {
+  char moved[kMaxPath + 8];
+  const size_t length = std::strlen(path);
+  std::memcpy(moved, path, length);
+  std::memcpy(moved + length, ".gone", 6);
+  if (::rename(path, moved) == 0) path = moved;
   for (int pass = 0; pass < 3; ++pass) {
     const int fd = ::open(path, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
     if (fd < 0) return;

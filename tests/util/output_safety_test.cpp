@@ -9,11 +9,13 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <filesystem>
 #include <fstream>
 #include <future>
 #include <iterator>
 #include <string>
+#include <thread>
 
 #include "util/atomic_write.h"
 #include "util/error.h"
@@ -241,7 +243,33 @@ TEST(TemporaryFiles, LiveOnesAreRemovedByTheHandler) {
   removeLiveTemporariesForTesting();
   EXPECT_FALSE(fs::exists(d / ".a.tmp1_0.json"));
   EXPECT_FALSE(fs::exists(d / ".f.tmp1_1"));
+  EXPECT_FALSE(fs::exists(d / ".f.tmp1_1.gone"));
   EXPECT_TRUE(fs::exists(d / "kept.json"));
+}
+
+// The handler runs while the other threads go on: a writer that keeps creating files in the folder
+// must not make its removal fail.
+TEST(TemporaryFiles, FolderIsRemovedWhileAnotherThreadWritesIntoIt) {
+  const fs::path d = freshDir("busy");
+  const fs::path folder = d / ".b.tmp1_0";
+  fs::create_directories(folder);
+  LiveTemporary live(folder, true);
+  std::atomic<bool> stop{false};
+  std::atomic<int> written{0};
+  std::thread writer([&] {
+    for (int i = 0; !stop.load(); ++i) {
+      std::ofstream(folder / ("f" + std::to_string(i % 64) + ".png")) << "x";
+      written.fetch_add(1);
+    }
+  });
+  while (written.load() < 200) std::this_thread::yield();
+  removeLiveTemporariesForTesting();
+  const bool folder_left = fs::exists(folder), moved_left = fs::exists(d / ".b.tmp1_0.gone");
+  stop = true;
+  writer.join();
+  live.release();
+  EXPECT_FALSE(folder_left);
+  EXPECT_FALSE(moved_left);
 }
 
 TEST(TemporaryFiles, TerminatingSignalRemovesThemAndStillKills) {
