@@ -5,6 +5,10 @@
 #   ./setup.sh demo     install + build + the main job on the bundled dragon-plane scene:
 #                       proxy-gen -> proxy-check -> render-compare (MSE table + HTML report)
 #   ./setup.sh test     install + build + the whole test suite (ctest)
+#   ./setup.sh test --changed
+#                       install + build + only the tests of the areas whose files changed since
+#                       the last commit (PROXYVIS_CHANGED_BASE=REF: since REF); a quick check
+#                       while working, never a substitute for the whole suite
 #   ./setup.sh test-sanitize
 #                       install + a second build tree (build-asan) with AddressSanitizer and
 #                       UndefinedBehaviorSanitizer, then the whole test suite under them
@@ -53,12 +57,17 @@ install_pkgs() {
   $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 }
 
+# build [TARGET...]: configure, then build the targets given (default: everything, tests and
+# benches included). The demo builds only the programs it runs.
 build() {
   cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release
-  cmake --build "$BUILD_DIR" -j "$JOBS"
+  local targets=()
+  [ $# -eq 0 ] || targets=(--target "$@")
+  cmake --build "$BUILD_DIR" -j "$JOBS" "${targets[@]}"
 }
 
-# The sanitizer build: -O1 -g (readable stacks at tolerable speed), NDEBUG like Release so the
+# The sanitizer build: -O1 -g1 (line tables: readable stacks at tolerable speed, and CGAL's
+# translation units compile and link faster than with full -g), NDEBUG like Release so the
 # same code is tested, benches off. Any UBSan finding aborts (no recovery), so a test with one
 # fails; ASan leak checking is on. Suppressions of third-party findings live in .ci/.
 sanitize_env() {
@@ -79,11 +88,11 @@ build_sanitize() {
   local warn="-Wno-maybe-uninitialized"
   sanitize_env  # gtest discovery runs the test executables at build time
   cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g -DNDEBUG" -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g -DNDEBUG" \
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
     -DCMAKE_CXX_FLAGS="$flags $warn" -DCMAKE_C_FLAGS="$flags $warn" \
     -DCMAKE_EXE_LINKER_FLAGS="$flags" -DCMAKE_SHARED_LINKER_FLAGS="$flags" \
     -DCMAKE_MODULE_LINKER_FLAGS="$flags" \
-    -DPROXYVIS_BUILD_BENCH=OFF -DPROXYVIS_PRELOAD_OIIO_MODULE=ON
+    -DPROXYVIS_BUILD_BENCH=OFF -DPROXYVIS_PRELOAD_OIIO_MODULE=ON -DPROXYVIS_TESTS_PER_EXECUTABLE=ON
   cmake --build "$dir" -j "$JOBS"
   # Tests labelled not_sanitized are too slow under ASan (see their definition for why).
   ctest --test-dir "$dir" --output-on-failure -j "$JOBS" -LE not_sanitized
@@ -101,6 +110,49 @@ fuzz_build() {
   cmake --build "$dir" -j "$JOBS" --target "${targets[@]}"
 }
 
+# The ctest label expression for `test --changed`: tests/<area> mirrors lib/<area>, so a file
+# under lib/<area>/ or tests/<area>/ selects <area>; proxies/ selects proxies, apps/ the programs'
+# tests and the bad-input corpus, lib/distributed its MPI jobs too. What everything depends on (lib/util, the build files, data,
+# scenes) selects every test.
+changed_labels() {
+  local base=${PROXYVIS_CHANGED_BASE:-HEAD} files f area labels=()
+  files=$( (git diff --name-only "$base"; git ls-files --others --exclude-standard) | sort -u)
+  [ -n "$files" ] || { echo "none"; return; }
+  for f in $files; do
+    case "$f" in
+      lib/util/* | CMakeLists.txt | */CMakeLists.txt | *.cmake | setup.sh | data/* | scenes/*)
+        echo "all"; return ;;
+      lib/distributed/*) labels+=(distributed mpi); continue ;;
+      lib/* | tests/*) area=${f#*/}; area=${area%%/*} ;;
+      proxies/*) area=proxies ;;
+      apps/*) labels+=(apps bad_inputs); continue ;;
+      docs/* | README.md) area=docs ;;
+      *) continue ;;
+    esac
+    labels+=("$area")
+  done
+  [ ${#labels[@]} -gt 0 ] || { echo "none"; return; }
+  printf '%s\n' "${labels[@]}" | sort -u | sed 's/.*/^&$/' | paste -sd'|'
+}
+
+run_tests() {
+  if [ "${1:-}" = "--changed" ]; then
+    local expr
+    expr=$(changed_labels)
+    case "$expr" in
+      none) echo "setup: no changed file selects a test area"; return ;;
+      all) echo "setup: a change everything depends on: the whole suite" ;;
+      *) echo "setup: the tests labelled $expr"
+         ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$JOBS" -L "$expr"
+         return ;;
+    esac
+  elif [ -n "${1:-}" ]; then
+    echo "usage: $0 test [--changed]" >&2
+    exit 2
+  fi
+  ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$JOBS"
+}
+
 demo() {
   local bin="$BUILD_DIR/bin" out=out/dragon-plane
   mkdir -p "$out"
@@ -115,8 +167,8 @@ demo() {
 case "${1:-install}" in
   install) install_deps ;;
   build) install_deps; build ;;
-  demo) install_deps; build; demo ;;
-  test) install_deps; build; ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$JOBS" ;;
+  demo) install_deps; build proxy-gen proxy-check render-compare; demo ;;
+  test) install_deps; build; run_tests "${2:-}" ;;
   fuzz) install_deps; install_pkgs "${FUZZ_PKGS[@]}"; fuzz_build ;;
   test-sanitize) install_deps; build_sanitize ;;
   *) echo "usage: $0 [install|build|demo|test|test-sanitize|fuzz]" >&2; exit 2 ;;

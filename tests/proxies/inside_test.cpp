@@ -23,6 +23,7 @@ using Case = gen_test::ContainmentCase;
 class InsideContainment : public testing::TestWithParam<Case> {};
 
 TEST_P(InsideContainment, ExactCheckProvesContainment) {
+  if (gen_test::tooLargeForSanitizers(GetParam().mesh)) GTEST_SKIP() << "Release suite only";
   const auto [o, r] = gen_test::runContainmentCase(
       GetParam(), ProxyClass::kInside, &ProxyGenOptions::offset, ContainmentVerdict::kContained);
   if (o.max_faces > 0 && r.report["budget_reached"].get<bool>()) {
