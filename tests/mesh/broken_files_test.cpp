@@ -110,6 +110,15 @@ TEST_F(BrokenFiles, TruncatedAsciiOffAndDraco) {
   expectBroken("short.drc", drc.substr(0, drc.size() / 2), "Draco");
 }
 
+// An OFF file that ends on its counts' line has no vertex or face line at all (the check once
+// walked the records only from the next newline on, and let these through to OpenMesh).
+TEST_F(BrokenFiles, OffEndingOnItsCountsLineIsTruncated) {
+  expectBroken("counts_only.off", "CNOFF # c\n# comment line\n4 2 0 # counts",
+               "file ends after 0 of 6 vertex and face lines");
+  expectBroken("one_line.off", "OFF\n3 1 0 0 0 0 1 0 0 0 1 0 3 0 1 2",
+               "file ends after 0 of 4 vertex and face lines");
+}
+
 TEST_F(BrokenFiles, NanAndInfCoordinates) {
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const float inf = std::numeric_limits<float>::infinity();

@@ -12,9 +12,14 @@ namespace proxyvis::detail {
 // more elements than the file could hold, or malformed syntax. `ext` is "ply", "off" or "obj".
 void checkDeclaredCounts(const std::string& bytes, const std::string& ext, const std::string& file);
 
+// The checks by format, one walk over the file each (ply_check.cpp, off_check.cpp, obj_check.cpp).
+void checkPly(const std::string& bytes, const std::string& file);
+void checkOff(const std::string& bytes, const std::string& file);  // ASCII only: binary is refused
+void checkObj(const std::string& bytes, const std::string& file);
+
 // Replaces '#' comments of an ASCII OFF file by spaces (line numbers stay). OFF allows comments
 // anywhere, OpenMesh's reader skips them only in the header: in the body "#" failed its stream
-// and it went on with uninitialised values. Binary OFF is left alone.
+// and it went on with uninitialised values. For a file checkOff accepted (it refuses binary OFF).
 void blankOffComments(std::string& bytes);
 
 }  // namespace proxyvis::detail
