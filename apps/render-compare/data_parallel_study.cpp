@@ -306,8 +306,8 @@ int runDataParallelStudy(CompareOptions& o, const DataParallelFlags& flags, bool
     printHumanReport(o.common, table + "\n" + model_note + "\n" +
                                    "report: " + (folder.target() / "report.html").string() + "\n");
     return kExitOk;
-  } catch (const ReportedOnAnotherRank& e) {
-    return e.exitCode();
+  } catch (const ReportedOnAnotherRank&) {
+    return kExitOk;  // rank 0 reports the job's error and exit code (see ReportedOnAnotherRank)
   }
 }
 

@@ -3,8 +3,10 @@
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 
+#include <chrono>
 #include <csignal>
 #include <cstdlib>
+#include <thread>
 
 #include "distributed/data_parallel_render.h"
 #include "distributed/distributed_scene.h"
@@ -28,6 +30,13 @@ namespace {
 void maybeDieForTest(int rank) {
   const char* k = std::getenv("PROXYVIS_TEST_KILL_RANK");
   if (k && std::atoi(k) == rank) std::raise(SIGKILL);
+}
+
+// Fault injection for the tests: with PROXYVIS_TEST_SLOW_ERROR=S, rank 0 waits S seconds before
+// it reports the job's error, as a loaded machine made it: no other rank may end the job first.
+void maybeSlowErrorForTest(int rank) {
+  const char* s = std::getenv("PROXYVIS_TEST_SLOW_ERROR");
+  if (s && rank == 0) std::this_thread::sleep_for(std::chrono::duration<double>(std::atof(s)));
 }
 
 Image dataParallelExr(const DataParallelResult& r) {
@@ -131,8 +140,11 @@ int runDataParallelRender(DataParallelRenderRequest& o) {
                     s.forward_messages, s.rounds, s.blocked_locally, s.blocked_by_inside,
                     s.undecided, rankFactsText(facts)));
     return kExitOk;
-  } catch (const ReportedOnAnotherRank& e) {
-    return e.exitCode();
+  } catch (const ReportedOnAnotherRank&) {
+    return kExitOk;  // rank 0 reports the job's error and exit code (see ReportedOnAnotherRank)
+  } catch (const Error&) {
+    maybeSlowErrorForTest(comm.rank());
+    throw;
   }
 }
 

@@ -12,8 +12,10 @@
 
 namespace proxyvis {
 
-// An error another rank reported (rank 0 prints it): the program exits with its code without
-// printing it again (the programs catch it before runApp would).
+// An error another rank reported: rank 0 prints it and exits with its code. The programs catch
+// this before runApp would and return kExitOk on this rank: a non-zero exit here made mpirun
+// abort the job, and when this rank was faster, rank 0 was killed before its message reached the
+// terminal (the job's exit code is rank 0's either way). exitCode() is the job's code.
 class ReportedOnAnotherRank : public Error {
  public:
   explicit ReportedOnAnotherRank(int code) : Error("", "reported by rank 0"), code_(code) {}
