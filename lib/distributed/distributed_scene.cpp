@@ -72,208 +72,257 @@ DistributedScene::DistributedScene(const SceneDesc& desc)
     : desc_(desc), camera_(desc_.camera), lights_(desc_.lights) {}
 DistributedScene::~DistributedScene() = default;
 
-std::unique_ptr<DistributedScene> DistributedScene::load(const SceneDesc& desc,
-                                                         const DistributedSceneOptions& options,
-                                                         const MpiComm& comm) {
-  std::unique_ptr<DistributedScene> scene(new DistributedScene(desc));
-  DistributedScene& ds = *scene;
-  ds.rank_ = comm.rank();
-  ds.ranks_ = comm.size();
-  const size_t num_meshes = desc.meshes.size();
-
-  // Objects in the single-process renderer's order, with the proxy it would choose.
-  std::vector<int> chosen(num_meshes), outside(num_meshes), inside(num_meshes);
-  std::vector<bool> used(num_meshes, false);
-  for (size_t m = 0; m < num_meshes; ++m) {
-    chosen[m] = chooseProxy(desc.meshes[m], RenderSceneOptions{});
-    outside[m] = proxyOfKind(desc.meshes[m], "outside");
-    inside[m] = proxyOfKind(desc.meshes[m], "inside");
+// load()'s steps, in order; the collective ones run under MpiComm::collectively().
+class DistributedSceneLoader {
+ public:
+  DistributedSceneLoader(const SceneDesc& desc, const DistributedSceneOptions& options,
+                         const MpiComm& comm)
+      : scene_(new DistributedScene(desc)),
+        ds_(*scene_),
+        desc_(desc),
+        options_(options),
+        comm_(comm),
+        num_meshes_(desc.meshes.size()) {
+    ds_.rank_ = comm.rank();
+    ds_.ranks_ = comm.size();
   }
-  comm.collectively([&] { ds.objects_ = renderObjects(desc, chosen); });
-  for (const RenderObject& o : ds.objects_) used[o.mesh] = true;
-  const std::vector<RenderObject>& objects = ds.objects_;
+
+  std::unique_ptr<DistributedScene> load() {
+    chooseObjects();
+    loadProxies();
+    assignOwners();
+    loadOriginals();
+    chooseBuild();
+    buildTraceScenes();
+    measureEpsilon();
+    indexBoxes();
+    if (options_.proxies) checkLightsOutsideProxies();
+    countFacts();
+    return std::move(scene_);
+  }
+
+ private:
+  // Objects in the single-process renderer's order, with the proxy it would choose.
+  void chooseObjects() {
+    chosen_.resize(num_meshes_);
+    outside_.resize(num_meshes_);
+    inside_.resize(num_meshes_);
+    used_.assign(num_meshes_, false);
+    for (size_t m = 0; m < num_meshes_; ++m) {
+      chosen_[m] = chooseProxy(desc_.meshes[m], RenderSceneOptions{});
+      outside_[m] = proxyOfKind(desc_.meshes[m], "outside");
+      inside_[m] = proxyOfKind(desc_.meshes[m], "inside");
+    }
+    comm_.collectively([&] { ds_.objects_ = renderObjects(desc_, chosen_); });
+    for (const RenderObject& o : ds_.objects_) used_[o.mesh] = true;
+  }
 
   // Every proxy of every used mesh, on every rank; the classes forwarding relies on, proved.
-  std::vector<std::vector<TriMesh>> proxies(num_meshes);
-  comm.collectively([&] {
-    for (size_t m = 0; m < num_meshes; ++m) {
-      if (!used[m]) continue;
-      const SceneMeshDesc& mesh = desc.meshes[m];
-      for (const ProxyRef& ref : mesh.proxies) proxies[m].push_back(loadMesh(ref.file));
-      if (!options.proxies) continue;
-      if (outside[m] >= 0)
-        requireProvedClass(mesh, mesh.proxies[size_t(outside[m])], ProxyClass::kOutside);
-      if (inside[m] >= 0)
-        requireProvedClass(mesh, mesh.proxies[size_t(inside[m])], ProxyClass::kInside);
-    }
-  });
+  void loadProxies() {
+    proxies_.resize(num_meshes_);
+    comm_.collectively([&] {
+      for (size_t m = 0; m < num_meshes_; ++m) {
+        if (!used_[m]) continue;
+        const SceneMeshDesc& mesh = desc_.meshes[m];
+        for (const ProxyRef& ref : mesh.proxies) proxies_[m].push_back(loadMesh(ref.file));
+        if (!options_.proxies) continue;
+        if (outside_[m] >= 0)
+          requireProvedClass(mesh, mesh.proxies[size_t(outside_[m])], ProxyClass::kOutside);
+        if (inside_[m] >= 0)
+          requireProvedClass(mesh, mesh.proxies[size_t(inside_[m])], ProxyClass::kInside);
+      }
+    });
+  }
+
+  const TriMesh& outsideProxy(const RenderObject& o) const {
+    return proxies_[o.mesh][size_t(outside_[o.mesh])];
+  }
 
   // Owners: objects whose mesh has an outside proxy are split into spatial domains, located by
   // that proxy (it contains the original) and weighed by the original file's bytes (a stat, not
   // a read: the file belongs to one rank only).
-  ds.owners_.assign(objects.size(), -1);
-  std::vector<uint32_t> distributed;
-  std::vector<PartitionItem> items;
-  comm.collectively([&] {
+  void assignOwners() {
+    const std::vector<RenderObject>& objects = ds_.objects_;
+    ds_.owners_.assign(objects.size(), -1);
+    std::vector<uint32_t> distributed;
+    std::vector<PartitionItem> items;
+    comm_.collectively([&] {
+      for (uint32_t id = 0; id < objects.size(); ++id) {
+        const RenderObject& o = objects[id];
+        if (outside_[o.mesh] < 0) continue;
+        PartitionItem item;
+        item.bounds = transformedBounds(outsideProxy(o).bounds(), o.to_world);
+        std::error_code ec;
+        const auto bytes = std::filesystem::file_size(desc_.meshes[o.mesh].file, ec);
+        if (ec)
+          throw Error(desc_.meshes[o.mesh].file.string(), "cannot read the file's size",
+                      ec.message(), "check that every rank sees the scene's files");
+        item.weight = double(bytes);
+        items.push_back(item);
+        distributed.push_back(id);
+      }
+    });
+    const std::vector<int> owner = partitionByDomains(items, ds_.ranks_);
+    for (size_t i = 0; i < distributed.size(); ++i) ds_.owners_[distributed[i]] = owner[i];
+    mine_.assign(objects.size(), false);
+    replicated_.assign(objects.size(), false);
+    distributed_.assign(objects.size(), false);
     for (uint32_t id = 0; id < objects.size(); ++id) {
-      const RenderObject& o = objects[id];
-      if (outside[o.mesh] < 0) continue;
-      PartitionItem item;
-      item.bounds =
-          transformedBounds(proxies[o.mesh][size_t(outside[o.mesh])].bounds(), o.to_world);
-      std::error_code ec;
-      const auto bytes = std::filesystem::file_size(desc.meshes[o.mesh].file, ec);
-      if (ec)
-        throw Error(desc.meshes[o.mesh].file.string(), "cannot read the file's size", ec.message(),
-                    "check that every rank sees the scene's files");
-      item.weight = double(bytes);
-      items.push_back(item);
-      distributed.push_back(id);
+      const int r = ds_.owners_[id];
+      mine_[id] = r == ds_.rank_;
+      replicated_[id] = r < 0;
+      distributed_[id] = r >= 0;
     }
-  });
-  const std::vector<int> owner = partitionByDomains(items, ds.ranks_);
-  for (size_t i = 0; i < distributed.size(); ++i) ds.owners_[distributed[i]] = owner[i];
-
-  // This rank's originals: its own meshes and the replicated ones.
-  std::vector<bool> mine(objects.size(), false), replicated(objects.size(), false);
-  std::vector<bool> load(num_meshes, false);
-  for (uint32_t id = 0; id < objects.size(); ++id) {
-    const int r = ds.owners_[id];
-    mine[id] = r == ds.rank_;
-    replicated[id] = r < 0;
-    if (mine[id] || replicated[id]) load[objects[id].mesh] = true;
   }
-  std::vector<TriMesh> originals(num_meshes);
-  comm.collectively([&] {
-    for (size_t m = 0; m < num_meshes; ++m) {
-      if (!load[m]) continue;
-      originals[m] = loadMesh(desc.meshes[m].file);
-      ds.facts_.originals_opened.push_back(desc.meshes[m].file);
-    }
-  });
 
-  // The single-process build decision, from every mesh's triangle count (each counted by a rank
-  // that loaded it) and the proxies it would use.
-  std::vector<uint64_t> triangles(num_meshes, 0);
-  for (size_t m = 0; m < num_meshes; ++m)
-    if (load[m]) triangles[m] = originals[m].numTriangles();
-  comm.max(triangles);
-  std::vector<int> render_proxy = chosen;
-  for (size_t m = 0; m < num_meshes; ++m)
-    if (render_proxy[m] >= 0 && proxies[m][size_t(render_proxy[m])].numTriangles() >= triangles[m])
-      render_proxy[m] = -1;  // loadRenderScene skips a proxy that is not cheaper
-  bool any_proxy = false;
-  for (const RenderObject& o : objects) any_proxy |= render_proxy[o.mesh] >= 0;
-  uint64_t flat_triangles = 0;
-  for (const RenderObject& o : objects)
-    flat_triangles +=
-        triangles[o.mesh] +
-        (any_proxy ? (render_proxy[o.mesh] >= 0
-                          ? proxies[o.mesh][size_t(render_proxy[o.mesh])].numTriangles()
-                          : triangles[o.mesh])
-                   : 0);
-  ds.build_ = chooseBuild(options.instance_build, !desc.instances.empty(), flat_triangles,
-                          options.memory_budget_bytes);
-  uint8_t flat = ds.build_.flat ? 1 : 0;  // rank 0's decision: budgets may differ between nodes
-  comm.broadcast(std::span<uint8_t>(&flat, 1), 0);
-  ds.build_.flat = flat != 0;
+  // This rank's originals: its own meshes and the replicated ones. Then every mesh's triangle
+  // count, each counted by a rank that loaded it.
+  void loadOriginals() {
+    const std::vector<RenderObject>& objects = ds_.objects_;
+    load_.assign(num_meshes_, false);
+    for (uint32_t id = 0; id < objects.size(); ++id)
+      if (mine_[id] || replicated_[id]) load_[objects[id].mesh] = true;
+    originals_.resize(num_meshes_);
+    comm_.collectively([&] {
+      for (size_t m = 0; m < num_meshes_; ++m) {
+        if (!load_[m]) continue;
+        originals_[m] = loadMesh(desc_.meshes[m].file);
+        ds_.facts_.originals_opened.push_back(desc_.meshes[m].file);
+      }
+    });
+    triangles_.assign(num_meshes_, 0);
+    for (size_t m = 0; m < num_meshes_; ++m)
+      if (load_[m]) triangles_[m] = originals_[m].numTriangles();
+    comm_.max(triangles_);
+  }
 
-  // Embree scenes.
-  ds.device_ = std::make_unique<TraceDevice>();
-  TraceSceneBuilder builder(*ds.device_);
-  std::vector<const TriMesh*> original_ptrs(num_meshes, nullptr);
-  for (size_t m = 0; m < num_meshes; ++m)
-    if (load[m]) original_ptrs[m] = &originals[m];
-  comm.collectively([&] {
-    addRenderObjects(builder, objects, original_ptrs, ds.build_.flat, &mine);
-    ds.own_ = builder.build();
-    addRenderObjects(builder, objects, original_ptrs, ds.build_.flat, &replicated);
-    ds.replicated_ = builder.build();
-    std::vector<bool> all_distributed(objects.size());
-    for (size_t id = 0; id < objects.size(); ++id) all_distributed[id] = ds.owners_[id] >= 0;
-    if (options.proxies) {
+  // The single-process build decision, from the triangle counts and the proxies it would use.
+  void chooseBuild() {
+    std::vector<int> render_proxy = chosen_;
+    for (size_t m = 0; m < num_meshes_; ++m)
+      if (render_proxy[m] >= 0 &&
+          proxies_[m][size_t(render_proxy[m])].numTriangles() >= triangles_[m])
+        render_proxy[m] = -1;  // loadRenderScene skips a proxy that is not cheaper
+    bool any_proxy = false;
+    for (const RenderObject& o : ds_.objects_) any_proxy |= render_proxy[o.mesh] >= 0;
+    uint64_t flat_triangles = 0;
+    for (const RenderObject& o : ds_.objects_)
+      flat_triangles +=
+          triangles_[o.mesh] +
+          (any_proxy ? (render_proxy[o.mesh] >= 0
+                            ? proxies_[o.mesh][size_t(render_proxy[o.mesh])].numTriangles()
+                            : triangles_[o.mesh])
+                     : 0);
+    ds_.build_ = proxyvis::chooseBuild(options_.instance_build, !desc_.instances.empty(),
+                                       flat_triangles, options_.memory_budget_bytes);
+    uint8_t flat = ds_.build_.flat ? 1 : 0;  // rank 0's decision: budgets may differ between nodes
+    comm_.broadcast(std::span<uint8_t>(&flat, 1), 0);
+    ds_.build_.flat = flat != 0;
+  }
+
+  // Embree scenes: own and replicated originals; with proxies, every distributed object's
+  // outside proxy (robust tracing) and inside proxy.
+  void buildTraceScenes() {
+    ds_.device_ = std::make_unique<TraceDevice>();
+    TraceSceneBuilder builder(*ds_.device_);
+    const std::vector<RenderObject>& objects = ds_.objects_;
+    const bool flat = ds_.build_.flat;
+    std::vector<const TriMesh*> original_ptrs(num_meshes_, nullptr);
+    for (size_t m = 0; m < num_meshes_; ++m)
+      if (load_[m]) original_ptrs[m] = &originals_[m];
+    comm_.collectively([&] {
+      addRenderObjects(builder, objects, original_ptrs, flat, &mine_);
+      ds_.own_ = builder.build();
+      addRenderObjects(builder, objects, original_ptrs, flat, &replicated_);
+      ds_.replicated_ = builder.build();
+      if (!options_.proxies) return;
       // Robust (watertight) tracing: a segment that crosses an outside proxy must never slip
       // through between two of its triangles, or its owner would not be asked.
       TraceSceneOptions robust;
       robust.robust = true;
-      TraceSceneBuilder robust_builder(*ds.device_, robust);
-      std::vector<const TriMesh*> outside_ptrs(num_meshes, nullptr),
-          inside_ptrs(num_meshes, nullptr);
-      for (size_t m = 0; m < num_meshes; ++m) {
-        if (!used[m]) continue;
-        if (outside[m] >= 0) outside_ptrs[m] = &proxies[m][size_t(outside[m])];
-        if (inside[m] >= 0) inside_ptrs[m] = &proxies[m][size_t(inside[m])];
+      TraceSceneBuilder robust_builder(*ds_.device_, robust);
+      std::vector<const TriMesh*> outside_ptrs(num_meshes_, nullptr),
+          inside_ptrs(num_meshes_, nullptr);
+      for (size_t m = 0; m < num_meshes_; ++m) {
+        if (!used_[m]) continue;
+        if (outside_[m] >= 0) outside_ptrs[m] = &proxies_[m][size_t(outside_[m])];
+        if (inside_[m] >= 0) inside_ptrs[m] = &proxies_[m][size_t(inside_[m])];
       }
-      addRenderObjects(robust_builder, objects, outside_ptrs, ds.build_.flat, &all_distributed);
-      ds.outside_ = robust_builder.build();
-      addRenderObjects(builder, objects, inside_ptrs, ds.build_.flat, &all_distributed);
-      ds.inside_ = builder.build();
-    }
-  });
+      addRenderObjects(robust_builder, objects, outside_ptrs, flat, &distributed_);
+      ds_.outside_ = robust_builder.build();
+      addRenderObjects(builder, objects, inside_ptrs, flat, &distributed_);
+      ds_.inside_ = builder.build();
+    });
+  }
 
   // The single-process epsilon: from the bounds of all originals, the union of every rank's.
-  Bounds3f local = ds.own_->bounds();
-  local.extend(ds.replicated_->bounds());
-  std::vector<float> lo = {local.lo.x, local.lo.y, local.lo.z};
-  std::vector<float> hi = {local.hi.x, local.hi.y, local.hi.z};
-  comm.min(lo);
-  comm.max(hi);
-  Bounds3f all;
-  all.lo = {lo[0], lo[1], lo[2]};
-  all.hi = {hi[0], hi[1], hi[2]};
-  ds.epsilon_ = rayEpsilon(all);
+  void measureEpsilon() {
+    Bounds3f local = ds_.own_->bounds();
+    local.extend(ds_.replicated_->bounds());
+    std::vector<float> lo = {local.lo.x, local.lo.y, local.lo.z};
+    std::vector<float> hi = {local.hi.x, local.hi.y, local.hi.z};
+    comm_.min(lo);
+    comm_.max(hi);
+    Bounds3f all;
+    all.lo = {lo[0], lo[1], lo[2]};
+    all.hi = {hi[0], hi[1], hi[2]};
+    ds_.epsilon_ = rayEpsilon(all);
+  }
 
-  // Replicated instance boxes: each owner measures its objects' originals.
-  const size_t n = objects.size();
-  std::vector<float> box_lo(3 * n, std::numeric_limits<float>::max());
-  std::vector<float> box_hi(3 * n, std::numeric_limits<float>::lowest());
-  for (size_t id = 0; id < n; ++id) {
-    if (!mine[id]) continue;
-    const Bounds3f b =
-        transformedBounds(originals[objects[id].mesh].bounds(), objects[id].to_world);
-    for (int a = 0; a < 3; ++a)
-      box_lo[3 * id + size_t(a)] = b.lo[a], box_hi[3 * id + size_t(a)] = b.hi[a];
+  // Replicated instance boxes (each owner measures its objects' originals) and the rank
+  // domains they make up.
+  void indexBoxes() {
+    const std::vector<RenderObject>& objects = ds_.objects_;
+    const size_t n = objects.size();
+    std::vector<float> box_lo(3 * n, std::numeric_limits<float>::max());
+    std::vector<float> box_hi(3 * n, std::numeric_limits<float>::lowest());
+    for (size_t id = 0; id < n; ++id) {
+      if (!mine_[id]) continue;
+      const Bounds3f b =
+          transformedBounds(originals_[objects[id].mesh].bounds(), objects[id].to_world);
+      for (int a = 0; a < 3; ++a)
+        box_lo[3 * id + size_t(a)] = b.lo[a], box_hi[3 * id + size_t(a)] = b.hi[a];
+    }
+    comm_.min(box_lo);
+    comm_.max(box_hi);
+    std::vector<LabelledBox> boxes;
+    std::vector<Bounds3f> domains(size_t(ds_.ranks_));
+    for (size_t id = 0; id < n; ++id) {
+      if (ds_.owners_[id] < 0) continue;
+      LabelledBox lb;
+      lb.box.lo = {box_lo[3 * id], box_lo[3 * id + 1], box_lo[3 * id + 2]};
+      lb.box.hi = {box_hi[3 * id], box_hi[3 * id + 1], box_hi[3 * id + 2]};
+      lb.label = uint32_t(ds_.owners_[id]);
+      domains[size_t(lb.label)].extend(lb.box);
+      boxes.push_back(lb);
+    }
+    std::vector<LabelledBox> domain_boxes;
+    for (int r = 0; r < ds_.ranks_; ++r)
+      if (!domains[size_t(r)].empty()) domain_boxes.push_back({domains[size_t(r)], uint32_t(r)});
+    // Boxes grow by the shadow-ray offset: far above float rounding, far below any gap that
+    // matters for which ranks are asked.
+    ds_.instance_boxes_ = std::make_unique<BoxIndex>(*ds_.device_, std::move(boxes), ds_.epsilon_);
+    ds_.domain_boxes_ =
+        std::make_unique<BoxIndex>(*ds_.device_, std::move(domain_boxes), ds_.epsilon_);
   }
-  comm.min(box_lo);
-  comm.max(box_hi);
-  std::vector<LabelledBox> boxes;
-  std::vector<Bounds3f> domains(size_t(ds.ranks_));
-  for (size_t id = 0; id < n; ++id) {
-    if (ds.owners_[id] < 0) continue;
-    LabelledBox lb;
-    lb.box.lo = {box_lo[3 * id], box_lo[3 * id + 1], box_lo[3 * id + 2]};
-    lb.box.hi = {box_hi[3 * id], box_hi[3 * id + 1], box_hi[3 * id + 2]};
-    lb.label = uint32_t(ds.owners_[id]);
-    domains[size_t(lb.label)].extend(lb.box);
-    boxes.push_back(lb);
-  }
-  std::vector<LabelledBox> domain_boxes;
-  for (int r = 0; r < ds.ranks_; ++r)
-    if (!domains[size_t(r)].empty()) domain_boxes.push_back({domains[size_t(r)], uint32_t(r)});
-  // Boxes grow by the shadow-ray offset: far above float rounding, far below any gap that
-  // matters for which ranks are asked.
-  ds.instance_boxes_ = std::make_unique<BoxIndex>(*ds.device_, std::move(boxes), ds.epsilon_);
-  ds.domain_boxes_ = std::make_unique<BoxIndex>(*ds.device_, std::move(domain_boxes), ds.epsilon_);
 
   // Pitfall 2 of docs/design.md: both guarantees need the light outside the original, the
   // outside one outside the proxy too. Checked against the outside proxy's world box, which
   // holds the original.
-  if (options.proxies) {
-    comm.collectively([&] {
-      for (size_t l = 0; l < desc.lights.size(); ++l) {
+  void checkLightsOutsideProxies() {
+    comm_.collectively([&] {
+      for (size_t l = 0; l < desc_.lights.size(); ++l) {
         Bounds3f lb;
-        for (const auto& t : desc.lights[l].triangles)
+        for (const auto& t : desc_.lights[l].triangles)
           for (const Vec3f& v : t) lb.extend(v);
-        for (size_t id = 0; id < n; ++id) {
-          const RenderObject& o = objects[id];
-          if (ds.owners_[id] < 0) continue;
-          const Bounds3f pb =
-              transformedBounds(proxies[o.mesh][size_t(outside[o.mesh])].bounds(), o.to_world);
-          if (overlaps(pb, lb))
+        for (size_t id = 0; id < ds_.objects_.size(); ++id) {
+          const RenderObject& o = ds_.objects_[id];
+          if (ds_.owners_[id] < 0) continue;
+          if (overlaps(transformedBounds(outsideProxy(o).bounds(), o.to_world), lb))
             throw Error(
-                desc.path.string(),
+                desc_.path.string(),
                 fmt::format("light {} may lie inside the outside proxy of mesh '{}'", l,
-                            desc.meshes[o.mesh].name),
+                            desc_.meshes[o.mesh].name),
                 "a proxy decides rays only for lights outside it (docs/design.md, pitfall 2)",
                 "move the light, or use --forwarding instance-boxes");
         }
@@ -281,22 +330,47 @@ std::unique_ptr<DistributedScene> DistributedScene::load(const SceneDesc& desc,
     });
   }
 
-  Facts& f = ds.facts_;
-  for (size_t id = 0; id < n; ++id) {
-    if (ds.owners_[id] < 0) {
-      ++f.replicated_objects;
-      f.replicated_triangles += triangles[objects[id].mesh];
-    } else {
-      ++f.distributed_objects;
-      if (mine[id]) {
-        ++f.own_objects;
-        f.own_triangles += triangles[objects[id].mesh];
+  void countFacts() {
+    DistributedScene::Facts& f = ds_.facts_;
+    for (size_t id = 0; id < ds_.objects_.size(); ++id) {
+      const uint64_t triangles = triangles_[ds_.objects_[id].mesh];
+      if (ds_.owners_[id] < 0) {
+        ++f.replicated_objects;
+        f.replicated_triangles += triangles;
+      } else {
+        ++f.distributed_objects;
+        if (mine_[id]) {
+          ++f.own_objects;
+          f.own_triangles += triangles;
+        }
       }
     }
+    for (size_t m = 0; m < num_meshes_; ++m)
+      for (const TriMesh& p : proxies_[m]) f.proxy_triangles += p.numTriangles();
   }
-  for (size_t m = 0; m < num_meshes; ++m)
-    for (const TriMesh& p : proxies[m]) f.proxy_triangles += p.numTriangles();
-  return scene;
+
+  std::unique_ptr<DistributedScene> scene_;
+  DistributedScene& ds_;
+  const SceneDesc& desc_;
+  const DistributedSceneOptions& options_;
+  const MpiComm& comm_;
+  const size_t num_meshes_;
+  // Per mesh: the proxy the single-process renderer would choose, the outside and inside proxy
+  // (indices into the mesh's proxies, -1: none), whether an object uses it, whether this rank
+  // loads it, the loaded proxies and originals, the triangle counts.
+  std::vector<int> chosen_, outside_, inside_;
+  std::vector<bool> used_, load_;
+  std::vector<std::vector<TriMesh>> proxies_;
+  std::vector<TriMesh> originals_;
+  std::vector<uint64_t> triangles_;
+  // Per object: owned by this rank, replicated on every rank, owned by some rank.
+  std::vector<bool> mine_, replicated_, distributed_;
+};
+
+std::unique_ptr<DistributedScene> DistributedScene::load(const SceneDesc& desc,
+                                                         const DistributedSceneOptions& options,
+                                                         const MpiComm& comm) {
+  return DistributedSceneLoader(desc, options, comm).load();
 }
 
 bool DistributedScene::locallyOccluded(const Segment& s) const {

@@ -100,6 +100,7 @@ class DistributedScene {
   const Facts& facts() const { return facts_; }
 
  private:
+  friend class DistributedSceneLoader;  // load()'s steps (distributed_scene.cpp)
   explicit DistributedScene(const SceneDesc& desc);
 
   SceneDesc desc_;
