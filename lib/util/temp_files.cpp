@@ -4,6 +4,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/syscall.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -133,12 +134,31 @@ void removeLiveTemporaries() {
   }
 }
 
+// 0: no terminating signal yet; 1: one thread removes the temporaries; 2: done.
+std::atomic<int> g_cleanup{0};
+static_assert(std::atomic<int>::is_always_lock_free, "the signal handler uses it");
+
+// A process often gets the signal twice (timeout(1) and systemd signal the process and then its
+// group): the second lands on another thread. With the default action back in place it ended the
+// process in the middle of the first one's removal, so the handler stays installed, the first
+// call removes, and any other waits for it to finish.
 extern "C" void onTerminatingSignal(int sig) {
   const int saved_errno = errno;
-  removeLiveTemporaries();
+  int expected = 0;
+  if (g_cleanup.compare_exchange_strong(expected, 1)) {
+    removeLiveTemporaries();
+    g_cleanup.store(2);
+  } else {
+    const struct timespec pause { 0, 1000000 };
+    while (g_cleanup.load() != 2) ::nanosleep(&pause, nullptr);
+  }
   errno = saved_errno;
-  // SA_RESETHAND restored the default action; the signal stays blocked until we return, then
-  // ends the process as if we had never caught it.
+  // The default action, then the signal again: it stays blocked until we return, then ends the
+  // process as if we had never caught it.
+  struct sigaction default_action {};
+  default_action.sa_handler = SIG_DFL;
+  sigemptyset(&default_action.sa_mask);
+  ::sigaction(sig, &default_action, nullptr);
   ::raise(sig);
 }
 
@@ -181,8 +201,9 @@ void removeTemporariesOnTerminatingSignals() {
       if (::sigaction(sig, nullptr, &old) == 0 && old.sa_handler == SIG_IGN) continue;
       struct sigaction action {};
       action.sa_handler = onTerminatingSignal;
+      // No other terminating signal on this thread while it removes (it would wait for itself).
       sigemptyset(&action.sa_mask);
-      action.sa_flags = SA_RESETHAND;
+      for (int blocked : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&action.sa_mask, blocked);
       ::sigaction(sig, &action, nullptr);
     }
   });

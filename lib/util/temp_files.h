@@ -55,7 +55,8 @@ class LiveTemporary {
 
 // Installs the handler for SIGINT, SIGTERM and SIGHUP (signals already ignored stay ignored): it
 // removes every live temporary, then re-raises the signal with its default action, so the exit
-// status still says which signal ended the process.
+// status still says which signal ended the process. Signals that arrive during the removal (on
+// any thread) wait for it to finish.
 void removeTemporariesOnTerminatingSignals();
 
 // What the handler does, callable from tests: removes every live temporary now.

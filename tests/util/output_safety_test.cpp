@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <future>
@@ -258,7 +259,7 @@ TEST(TemporaryFiles, FolderIsRemovedWhileAnotherThreadWritesIntoIt) {
   std::atomic<int> written{0};
   std::thread writer([&] {
     for (int i = 0; !stop.load(); ++i) {
-      std::ofstream(folder / ("f" + std::to_string(i % 64) + ".png")) << "x";
+      std::ofstream(folder / (std::to_string(i % 64) + ".png")) << "x";
       written.fetch_add(1);
     }
   });
@@ -270,6 +271,46 @@ TEST(TemporaryFiles, FolderIsRemovedWhileAnotherThreadWritesIntoIt) {
   live.release();
   EXPECT_FALSE(folder_left);
   EXPECT_FALSE(moved_left);
+}
+
+// timeout(1) signals the process and then its whole group: a second SIGTERM right after the first,
+// delivered to another thread. It must not end the process before the first one's removal is done.
+TEST(TemporaryFiles, SecondSignalWaitsForTheRemoval) {
+  // Many files make the removal long enough to be caught in it; tmpfs creates them quickly.
+  const fs::path shm = "/dev/shm";
+  const fs::path d = fs::is_directory(shm)
+                         ? shm / ("proxyvis_double_signal_" + std::to_string(::getpid()))
+                         : freshDir("double_signal");
+  fs::remove_all(d);
+  fs::create_directories(d);
+  const fs::path folder = d / ".big.tmp1_0";
+  int ready[2];
+  ASSERT_EQ(::pipe(ready), 0);
+  const pid_t child = ::fork();
+  if (child == 0) {
+    ::close(ready[0]);
+    removeTemporariesOnTerminatingSignals();
+    fs::create_directories(folder);
+    for (int i = 0; i < 20000; ++i) std::ofstream(folder / (std::to_string(i) + ".f"));
+    LiveTemporary live(folder, true);
+    std::thread other([] { ::pause(); });  // a thread that takes the second signal
+    ::write(ready[1], "x", 1);
+    other.join();
+    ::_exit(0);  // not reached
+  }
+  ::close(ready[1]);
+  char byte = 0;
+  ASSERT_EQ(::read(ready[0], &byte, 1), 1);
+  ::close(ready[0]);
+  // The second one while the first one's handler removes the 20,000 files.
+  ::kill(child, SIGTERM);
+  std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  ::kill(child, SIGTERM);
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) << status;
+  EXPECT_EQ(entries(d), 0u);
+  fs::remove_all(d);
 }
 
 TEST(TemporaryFiles, TerminatingSignalRemovesThemAndStillKills) {
