@@ -277,18 +277,8 @@ int runScene(const Args& a, const CommonOptions& common, const CLI::App& app) {
   return result.code;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  CLI::App app{
-      "proxy-gen: builds an outside (hull, wrap), inside (wrap, erode) or general (qem, cgal-sms, "
-      "meshopt) "
-      "proxy of a mesh, or of every mesh of a scene (SCENE.json), verifies its guarantee exactly "
-      "and "
-      "writes it. Sizes are fractions of the bounding-box diagonal.",
-      "proxy-gen"};
-  Args a;
-  CommonOptions common;
+// The mesh and the proxy: input, kind, method, outputs, sizes and budgets.
+void addProxyOptions(CLI::App& app, Args& a) {
   app.add_option("input", a.input, "Mesh (.obj .ply .off .drc) or scene (.json)")->required();
   app.add_option("--kind", a.kind, "outside | inside | general")
       ->check(CLI::IsMember({"outside", "inside", "general"}))
@@ -347,6 +337,10 @@ int main(int argc, char** argv) {
       "--fill-holes", a.fill_holes,
       "inside: fill the holes of an open input first; the proxy is then written as class general "
       "(a ray through a hole can reach it), see docs/proxy_classes.md");
+}
+
+// Scene input: the cache, shards and their merge, plans for Slurm.
+void addSceneOptions(CLI::App& app, Args& a) {
   auto* cache_opt =
       app.add_option("--cache", a.cache_dir,
                      "Scene input: the proxy cache folder (default "
@@ -382,6 +376,22 @@ int main(int argc, char** argv) {
                  "With --shard: write this file after every output is in place and the shard "
                  "succeeded (a plan unit's marker)")
       ->needs(shard_opt);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "proxy-gen: builds an outside (hull, wrap), inside (wrap, erode) or general (qem, cgal-sms, "
+      "meshopt) "
+      "proxy of a mesh, or of every mesh of a scene (SCENE.json), verifies its guarantee exactly "
+      "and "
+      "writes it. Sizes are fractions of the bounding-box diagonal.",
+      "proxy-gen"};
+  Args a;
+  CommonOptions common;
+  addProxyOptions(app, a);
+  addSceneOptions(app, a);
   addCommonOptions(app, common);
   // Under Slurm a shard uses only the CPUs it was given.
   app.parse_complete_callback([&] {

@@ -108,12 +108,12 @@ json shardManifest(const ShardSpec& shard, const SceneDesc& scene, const json& s
           {"meshes", meshes}};
 }
 
-int mergeShards(const MergeRequest& r, const CommonOptions& common) {
-  const SceneDesc scene = loadSceneDesc(r.scene);
-  const size_t n_meshes = scene.meshes.size();
-  const std::vector<std::string> stems = meshStems(scene);
-  // Before anything is read or written: no output may replace an input (the scene, its files,
-  // any file of a shard).
+namespace {
+
+// Before anything is read or written: no output may replace an input (the scene, its files,
+// any file of a shard).
+std::vector<std::string> mergeInputs(const MergeRequest& r, const SceneDesc& scene,
+                                     const std::vector<std::string>& stems) {
   std::vector<std::string> inputs{r.scene, scene.instances_file.string()};
   for (const SceneMeshDesc& mesh : scene.meshes) inputs.push_back(mesh.file.string());
   for (const std::string& dir : r.shard_dirs) {
@@ -125,22 +125,21 @@ int mergeShards(const MergeRequest& r, const CommonOptions& common) {
       inputs.push_back(p.string() + ".sha256");
     }
   }
-  std::vector<fs::path> proxy_files;
-  std::vector<OutputFlag> planned;
-  for (const std::string& stem : stems) {
-    proxy_files.push_back(proxyFilePath(r.out_dir, stem, r.kind));
-    planned.push_back({"--out-dir", proxy_files.back().string()});
-  }
-  const fs::path scene_out = fs::path(r.out_dir) / "scene.json";
-  planned.push_back({"--out-dir", scene_out.string()});
-  planned.push_back({"--json", common.json_path});
-  checkOutputs(inputs, planned);
+  return inputs;
+}
 
-  const std::string scene_hash = sceneHash(scene);
-  const json settings = shardSettings(r.base, r.cache_dir);
+// The shards of one --shard i/n split, each once, none missing.
+struct ShardSet {
   std::vector<Shard> shards;
   std::map<uint64_t, size_t> by_index;  // shard index -> position in `shards`
-  uint64_t count = 0;
+  uint64_t count = 0;                   // n
+};
+
+ShardSet readShardSet(const MergeRequest& r, const std::string& scene_hash, const json& settings) {
+  ShardSet set;
+  std::vector<Shard>& shards = set.shards;
+  std::map<uint64_t, size_t>& by_index = set.by_index;
+  uint64_t& count = set.count;
   for (const std::string& dir : r.shard_dirs) {
     Shard s = readShard(dir, scene_hash, settings);
     const std::string file = s.manifest_path.string();
@@ -166,6 +165,31 @@ int mergeShards(const MergeRequest& r, const CommonOptions& common) {
       throw Error(r.scene, fmt::format("shard {}/{} is missing from the merge", i, count),
                   fmt::format("{} of {} shard folders were given", shards.size(), count),
                   "give the folder of every shard 0..n-1");
+  return set;
+}
+
+}  // namespace
+
+int mergeShards(const MergeRequest& r, const CommonOptions& common) {
+  const SceneDesc scene = loadSceneDesc(r.scene);
+  const size_t n_meshes = scene.meshes.size();
+  const std::vector<std::string> stems = meshStems(scene);
+  std::vector<fs::path> proxy_files;
+  std::vector<OutputFlag> planned;
+  for (const std::string& stem : stems) {
+    proxy_files.push_back(proxyFilePath(r.out_dir, stem, r.kind));
+    planned.push_back({"--out-dir", proxy_files.back().string()});
+  }
+  const fs::path scene_out = fs::path(r.out_dir) / "scene.json";
+  planned.push_back({"--out-dir", scene_out.string()});
+  planned.push_back({"--json", common.json_path});
+  checkOutputs(mergeInputs(r, scene, stems), planned);
+
+  const std::string scene_hash = sceneHash(scene);
+  const json settings = shardSettings(r.base, r.cache_dir);
+  const ShardSet set = readShardSet(r, scene_hash, settings);
+  const std::vector<Shard>& shards = set.shards;
+  const uint64_t count = set.count;
 
   // Each mesh from the one shard it belongs to; its proxy file as that shard recorded it.
   std::vector<MeshOutcome> outcomes(n_meshes);
@@ -206,9 +230,10 @@ int mergeShards(const MergeRequest& r, const CommonOptions& common) {
   }
   for (size_t i = 0; i < n_meshes; ++i)
     if (!seen[i])
-      throw Error(shards[by_index[shardOfMesh(scene.meshes[i].name, count)]].manifest_path.string(),
-                  fmt::format("mesh '{}' is missing from its shard", scene.meshes[i].name),
-                  "the manifest does not match the scene's split", "run that shard again");
+      throw Error(
+          shards[set.by_index.at(shardOfMesh(scene.meshes[i].name, count))].manifest_path.string(),
+          fmt::format("mesh '{}' is missing from its shard", scene.meshes[i].name),
+          "the manifest does not match the scene's split", "run that shard again");
 
   // Only now, with every input checked, is anything staged (the output folder included): the
   // proxies first, then the scene that lists them and the report, as the whole run.

@@ -141,6 +141,56 @@ Report makeReport(const CompareOptions& o, const SceneDesc& desc, const SceneFac
   return report;
 }
 
+// Images and heat-maps; one colour scale per kind of map and table, so the maps of the
+// estimators in one table compare.
+HtmlReportLayout writeStudyImages(const CompareOptions& o, const SceneDesc& desc,
+                                  const Reference& ref, const Report& report,
+                                  std::vector<CellResult>& cells,
+                                  const std::vector<std::string>& stems, const fs::path& dir) {
+  float exposure = autoExposure(ref.radiance);
+  const std::string reference_png = "reference.png";
+  const std::string reference_exr = ref.file.filename().string();
+  ImageWriteOptions reference_png_options;
+  reference_png_options.exposure = exposure;
+  reference_png_options.attributes =
+      referenceAttributes(desc, ref, "radiance of the exact reference, tone-mapped");
+  writeImage(ref.radiance, dir / reference_png, reference_png_options);
+  writeColorBar(dir);
+  HtmlReportLayout layout;
+  layout.plots.push_back(mseTimePlot(report.rows));
+  std::vector<TableImages> tables;
+  auto addTable = [&](std::string_view table, double spp, const std::string& title) {
+    std::vector<CellImages> images;
+    std::vector<const std::vector<float>*> error_maps, cost_ptrs;
+    std::vector<std::vector<float>> cost_maps;
+    for (size_t i = 0; i < cells.size(); ++i) {
+      const ReportRow& row = cells[i].row;
+      if (row.table != table || (table == kEqualSppTable && row.spp != spp)) continue;
+      images.push_back({stems[i], &cells[i]});
+      error_maps.push_back(&cells[i].error_map);
+      cost_maps.push_back(raysPerPixel(cells[i].first.cost));
+    }
+    for (const auto& m : cost_maps) cost_ptrs.push_back(&m);
+    HeatMapRange error_range = sharedLogRange(error_maps), cost_range = sharedLogRange(cost_ptrs);
+    tables.push_back({images, error_range, cost_range});  // written below, all in parallel
+    return cellGalleries(title, reference_png, reference_exr, images, error_range, cost_range);
+  };
+  auto add = [&](const std::vector<HtmlGallery>& g, bool shown) {
+    if (shown) layout.galleries.insert(layout.galleries.end(), g.begin(), g.end());
+  };
+  if (o.equal_time > 0)
+    add(addTable(kEqualTimeTable, 0, fmt::format("Equal time ({:g} s)", o.equal_time)), true);
+  // Every equal-spp cell gets its files; the HTML shows the largest spp.
+  for (int spp : o.spp_list)
+    add(addTable(kEqualSppTable, spp, fmt::format("Equal samples ({} spp)", spp)),
+        spp == o.spp_list.back());
+  writeReportImages(tables, desc, dir, exposure);
+  std::vector<CellImages> all_cells;
+  for (size_t i = 0; i < cells.size(); ++i) all_cells.push_back({stems[i], &cells[i]});
+  layout.files = runFileGroups(reference_png, reference_exr, all_cells);
+  return layout;
+}
+
 // The report from the study's unit results (shared by the single-machine run and --merge, so
 // that the two cannot drift): cells assembled in unit order, scored against the reference, the
 // tables, images and HTML written to `folder`, which is committed.
@@ -185,49 +235,7 @@ int reportStudy(const CompareOptions& o, const SceneDesc& desc, const StudyPlan&
   requireFiniteRows(report.rows, desc.path);
   for (size_t i = 0; i < cells.size(); ++i) cells[i].row = report.rows[i];
 
-  // Images and heat-maps; one colour scale per kind of map and table, so the maps of the
-  // estimators in one table compare.
-  float exposure = autoExposure(ref.radiance);
-  const std::string reference_png = "reference.png";
-  const std::string reference_exr = ref.file.filename().string();
-  ImageWriteOptions reference_png_options;
-  reference_png_options.exposure = exposure;
-  reference_png_options.attributes =
-      referenceAttributes(desc, ref, "radiance of the exact reference, tone-mapped");
-  writeImage(ref.radiance, dir / reference_png, reference_png_options);
-  writeColorBar(dir);
-  HtmlReportLayout layout;
-  layout.plots.push_back(mseTimePlot(report.rows));
-  std::vector<TableImages> tables;
-  auto addTable = [&](std::string_view table, double spp, const std::string& title) {
-    std::vector<CellImages> images;
-    std::vector<const std::vector<float>*> error_maps, cost_ptrs;
-    std::vector<std::vector<float>> cost_maps;
-    for (size_t i = 0; i < cells.size(); ++i) {
-      const ReportRow& row = cells[i].row;
-      if (row.table != table || (table == kEqualSppTable && row.spp != spp)) continue;
-      images.push_back({stems[i], &cells[i]});
-      error_maps.push_back(&cells[i].error_map);
-      cost_maps.push_back(raysPerPixel(cells[i].first.cost));
-    }
-    for (const auto& m : cost_maps) cost_ptrs.push_back(&m);
-    HeatMapRange error_range = sharedLogRange(error_maps), cost_range = sharedLogRange(cost_ptrs);
-    tables.push_back({images, error_range, cost_range});  // written below, all in parallel
-    return cellGalleries(title, reference_png, reference_exr, images, error_range, cost_range);
-  };
-  auto add = [&](const std::vector<HtmlGallery>& g, bool shown) {
-    if (shown) layout.galleries.insert(layout.galleries.end(), g.begin(), g.end());
-  };
-  if (o.equal_time > 0)
-    add(addTable(kEqualTimeTable, 0, fmt::format("Equal time ({:g} s)", o.equal_time)), true);
-  // Every equal-spp cell gets its files; the HTML shows the largest spp.
-  for (int spp : o.spp_list)
-    add(addTable(kEqualSppTable, spp, fmt::format("Equal samples ({} spp)", spp)),
-        spp == o.spp_list.back());
-  writeReportImages(tables, desc, dir, exposure);
-  std::vector<CellImages> all_cells;
-  for (size_t i = 0; i < cells.size(); ++i) all_cells.push_back({stems[i], &cells[i]});
-  layout.files = runFileGroups(reference_png, reference_exr, all_cells);
+  const HtmlReportLayout layout = writeStudyImages(o, desc, ref, report, cells, stems, dir);
 
   nlohmann::json json = reportToJson(report);
   const std::string json_text = json.dump(2) + "\n";

@@ -153,6 +153,84 @@ std::string escapeHtml(const std::string& text) {
   return out;
 }
 
+namespace {
+
+// Grid lines (decades, and 2..9 x decade lighter) and tick labels.
+std::string gridSvg(const LogAxis& xa, const LogAxis& ya, double left, double right, double top,
+                    double bottom) {
+  std::string svg;
+  const bool x_mid_labels = xa.hi() / xa.lo() <= 100.5, y_mid_labels = ya.hi() / ya.lo() <= 100.5;
+  for (double v : gridValues(xa)) {
+    bool decade = isDecade(v);
+    svg += fmt::format("<line x1=\"{0:.1f}\" y1=\"{1}\" x2=\"{0:.1f}\" y2=\"{2}\" stroke=\"{3}\"/>",
+                       xa.map(v), top, bottom, decade ? "#d4d4d4" : "#efefef");
+    if (decade || (x_mid_labels && isMidLabel(v)))
+      svg +=
+          fmt::format("<text x=\"{:.1f}\" y=\"{}\" text-anchor=\"middle\" fill=\"#444\">{}</text>",
+                      xa.map(v), bottom + 16, tickLabel(v));
+    svg += "\n";
+  }
+  for (double v : gridValues(ya)) {
+    bool decade = isDecade(v);
+    svg += fmt::format("<line x1=\"{1}\" y1=\"{0:.1f}\" x2=\"{2}\" y2=\"{0:.1f}\" stroke=\"{3}\"/>",
+                       ya.map(v), left, right, decade ? "#d4d4d4" : "#efefef");
+    if (decade || (y_mid_labels && isMidLabel(v)))
+      svg += fmt::format("<text x=\"{}\" y=\"{:.1f}\" text-anchor=\"end\" fill=\"#444\">{}</text>",
+                         left - 6, ya.map(v) + 4, tickLabel(v));
+    svg += "\n";
+  }
+  return svg;
+}
+
+// One series: error bars, the line through the points in x order (even a single point, so a
+// reader can count series), markers with tooltips, and a legend entry with line and marker.
+std::string seriesSvg(const PlotSeries& s, size_t i, const LogAxis& xa, const LogAxis& ya,
+                      double top, double right) {
+  std::string svg;
+  std::vector<PlotPoint> pts;
+  for (const PlotPoint& p : s.points)
+    if (drawable(p)) pts.push_back(p);
+  std::stable_sort(pts.begin(), pts.end(), [](auto& a, auto& b) { return a.x < b.x; });
+  const std::string color = seriesColor(i);
+  const MarkerShape shape = seriesMarker(i);
+  std::string name = escapeHtml(s.name);
+  svg += fmt::format("<g class=\"series\" data-series=\"{}\">\n", name);
+  for (const PlotPoint& p : pts) {
+    double err = errorOf(p);
+    if (!(err > 0)) continue;
+    double x = xa.map(p.x), y_hi = ya.map(p.y + err);
+    double y_lo = ya.map(p.y - err > ya.lo() ? p.y - err : ya.lo());
+    svg += fmt::format(
+        "<path class=\"error-bar\" d=\"M{0:.1f} {1:.1f}V{2:.1f}M{3:.1f} {1:.1f}H{4:.1f}M{3:.1f} "
+        "{2:.1f}H{4:.1f}\" stroke=\"{5}\" stroke-width=\"1.2\" fill=\"none\"/>\n",
+        x, y_lo, y_hi, x - 4, x + 4, color);
+  }
+  std::string coords;
+  for (const PlotPoint& p : pts) coords += fmt::format("{:.1f},{:.1f} ", xa.map(p.x), ya.map(p.y));
+  svg += fmt::format(
+      "<polyline points=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.8\" "
+      "stroke-opacity=\"0.85\"/>\n",
+      coords, color);
+  for (const PlotPoint& p : pts) {
+    std::string tip =
+        fmt::format("{}: {}x = {:.3g}, y = {:.3g}", name,
+                    p.label.empty() ? std::string() : escapeHtml(p.label) + ", ", p.x, p.y);
+    if (errorOf(p) > 0) tip += fmt::format(" ± {:.2g}", p.y_err);
+    svg += fmt::format("<g><title>{}</title>{}</g>\n", tip,
+                       markerSvg(shape, xa.map(p.x), ya.map(p.y), 4.5, color));
+  }
+  double ly = top + 10 + 20.0 * double(i);
+  svg += fmt::format(
+      "<g class=\"legend\"><line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" "
+      "stroke=\"{3}\" stroke-width=\"1.8\"/>{4}<text x=\"{5}\" y=\"{6:.1f}\">{7}</text></g>\n",
+      right + 12, ly, right + 40, color, markerSvg(shape, right + 26, ly, 4.5, color), right + 46,
+      ly + 4, name);
+  svg += "</g>\n";
+  return svg;
+}
+
+}  // namespace
+
 std::string logLogPlotSvg(const LogLogPlot& plot) {
   const double w = plot.width, h = plot.height;
   std::string svg = fmt::format(
@@ -181,27 +259,7 @@ std::string logLogPlotSvg(const LogLogPlot& plot) {
   LogAxis xa = LogAxis::covering(x_min, x_max, left, right);
   LogAxis ya = LogAxis::covering(y_min, y_max, bottom, top);
 
-  // Grid (decades, and 2..9 × decade lighter), tick labels and axis titles.
-  const bool x_mid_labels = xa.hi() / xa.lo() <= 100.5, y_mid_labels = ya.hi() / ya.lo() <= 100.5;
-  for (double v : gridValues(xa)) {
-    bool decade = isDecade(v);
-    svg += fmt::format("<line x1=\"{0:.1f}\" y1=\"{1}\" x2=\"{0:.1f}\" y2=\"{2}\" stroke=\"{3}\"/>",
-                       xa.map(v), top, bottom, decade ? "#d4d4d4" : "#efefef");
-    if (decade || (x_mid_labels && isMidLabel(v)))
-      svg +=
-          fmt::format("<text x=\"{:.1f}\" y=\"{}\" text-anchor=\"middle\" fill=\"#444\">{}</text>",
-                      xa.map(v), bottom + 16, tickLabel(v));
-    svg += "\n";
-  }
-  for (double v : gridValues(ya)) {
-    bool decade = isDecade(v);
-    svg += fmt::format("<line x1=\"{1}\" y1=\"{0:.1f}\" x2=\"{2}\" y2=\"{0:.1f}\" stroke=\"{3}\"/>",
-                       ya.map(v), left, right, decade ? "#d4d4d4" : "#efefef");
-    if (decade || (y_mid_labels && isMidLabel(v)))
-      svg += fmt::format("<text x=\"{}\" y=\"{:.1f}\" text-anchor=\"end\" fill=\"#444\">{}</text>",
-                         left - 6, ya.map(v) + 4, tickLabel(v));
-    svg += "\n";
-  }
+  svg += gridSvg(xa, ya, left, right, top, bottom);
   svg += fmt::format(
       "<rect x=\"{0}\" y=\"{1}\" width=\"{2}\" height=\"{3}\" fill=\"none\" stroke=\"#888\"/>\n"
       "<text x=\"{4}\" y=\"{5}\" text-anchor=\"middle\">{6}</text>\n"
@@ -209,51 +267,8 @@ std::string logLogPlotSvg(const LogLogPlot& plot) {
       left, top, right - left, bottom - top, (left + right) / 2, h - 12, escapeHtml(plot.x_label),
       (top + bottom) / 2, escapeHtml(plot.y_label));
 
-  // Per series: error bars, the line through the points in x order (even a single point, so a
-  // reader can count series), markers with tooltips, and a legend entry with line and marker.
-  for (size_t i = 0; i < plot.series.size(); ++i) {
-    const PlotSeries& s = plot.series[i];
-    std::vector<PlotPoint> pts;
-    for (const PlotPoint& p : s.points)
-      if (drawable(p)) pts.push_back(p);
-    std::stable_sort(pts.begin(), pts.end(), [](auto& a, auto& b) { return a.x < b.x; });
-    const std::string color = seriesColor(i);
-    const MarkerShape shape = seriesMarker(i);
-    std::string name = escapeHtml(s.name);
-    svg += fmt::format("<g class=\"series\" data-series=\"{}\">\n", name);
-    for (const PlotPoint& p : pts) {
-      double err = errorOf(p);
-      if (!(err > 0)) continue;
-      double x = xa.map(p.x), y_hi = ya.map(p.y + err);
-      double y_lo = ya.map(p.y - err > ya.lo() ? p.y - err : ya.lo());
-      svg += fmt::format(
-          "<path class=\"error-bar\" d=\"M{0:.1f} {1:.1f}V{2:.1f}M{3:.1f} {1:.1f}H{4:.1f}M{3:.1f} "
-          "{2:.1f}H{4:.1f}\" stroke=\"{5}\" stroke-width=\"1.2\" fill=\"none\"/>\n",
-          x, y_lo, y_hi, x - 4, x + 4, color);
-    }
-    std::string coords;
-    for (const PlotPoint& p : pts)
-      coords += fmt::format("{:.1f},{:.1f} ", xa.map(p.x), ya.map(p.y));
-    svg += fmt::format(
-        "<polyline points=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.8\" "
-        "stroke-opacity=\"0.85\"/>\n",
-        coords, color);
-    for (const PlotPoint& p : pts) {
-      std::string tip =
-          fmt::format("{}: {}x = {:.3g}, y = {:.3g}", name,
-                      p.label.empty() ? std::string() : escapeHtml(p.label) + ", ", p.x, p.y);
-      if (errorOf(p) > 0) tip += fmt::format(" ± {:.2g}", p.y_err);
-      svg += fmt::format("<g><title>{}</title>{}</g>\n", tip,
-                         markerSvg(shape, xa.map(p.x), ya.map(p.y), 4.5, color));
-    }
-    double ly = top + 10 + 20.0 * double(i);
-    svg += fmt::format(
-        "<g class=\"legend\"><line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" "
-        "stroke=\"{3}\" stroke-width=\"1.8\"/>{4}<text x=\"{5}\" y=\"{6:.1f}\">{7}</text></g>\n",
-        right + 12, ly, right + 40, color, markerSvg(shape, right + 26, ly, 4.5, color), right + 46,
-        ly + 4, name);
-    svg += "</g>\n";
-  }
+  for (size_t i = 0; i < plot.series.size(); ++i)
+    svg += seriesSvg(plot.series[i], i, xa, ya, top, right);
   svg += "</svg>\n";
   return svg;
 }

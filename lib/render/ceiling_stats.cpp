@@ -51,6 +51,44 @@ uint64_t timed(F&& trace, bool& visible) {
   return best;
 }
 
+// The renderer's own learning region of a sample.
+CeilingRegionStats& regionOf(CeilingMeasurement& out, const RenderScene& scene, int tile,
+                             uint32_t light, uint32_t object) {
+  return out.regions[learningRegion(scene, object, uint32_t(tile), light)];
+}
+
+// Each sample's share of its pixel's variance, unbiased over the n passes: n/(n-1) times its
+// squared deviation from the pixel's mean (f V per RGB channel; V alone for the unweighted one).
+void addPixelVariances(const RenderScene& scene, const Tiling& tiling,
+                       const std::vector<ShadingPoint>& points,
+                       const std::vector<SampleRecord>& records, int passes,
+                       CeilingMeasurement& out) {
+  const size_t num_pixels = points.size();
+  tbb::parallel_for(0, tiling.count(), [&](int t) {
+    tiling.forEachPixel(t, [&](int, int, uint32_t pixel) {
+      if (!points[pixel].valid) return;
+      Vec3d mean_fv{0, 0, 0};
+      double v_sum = 0, v_n = 0;
+      for (int p = 0; p < passes; ++p) {
+        const SampleRecord& r = records[size_t(p) * num_pixels + pixel];
+        if (r.visible) mean_fv += Vec3d(r.weight);
+        if (r.segment) v_sum += r.visible, v_n += 1;
+      }
+      mean_fv *= 1.0 / passes;
+      const double n = passes, correction = n / (n - 1);
+      const double v_mean = v_n > 0 ? v_sum / v_n : 0;
+      const double v_var = v_n > 1 ? v_n / (v_n - 1) * v_mean * (1 - v_mean) : 0;
+      for (int p = 0; p < passes; ++p) {
+        const SampleRecord& r = records[size_t(p) * num_pixels + pixel];
+        CeilingRegionStats& s = regionOf(out, scene, t, r.light, points[pixel].object);
+        const Vec3d fv = r.visible ? Vec3d(r.weight) : Vec3d{0, 0, 0};
+        s.var_fv += correction * meanSquare(fv - mean_fv);
+        if (r.segment) s.visibility_var += v_var;
+      }
+    });
+  });
+}
+
 }  // namespace
 
 CeilingMeasurement measureCeilingStats(const RenderScene& scene, const RenderSettings& settings,
@@ -68,10 +106,6 @@ CeilingMeasurement measureCeilingStats(const RenderScene& scene, const RenderSet
   out.regions.resize(size_t(tiling.count()) * num_lights * 2);
   for (size_t r = 0; r < out.regions.size(); ++r)
     out.regions[r].light = uint32_t(r / 2 % num_lights);
-  // The renderer's own learning region of a sample.
-  auto regionOf = [&](int tile, uint32_t light, uint32_t object) -> CeilingRegionStats& {
-    return out.regions[learningRegion(scene, object, uint32_t(tile), light)];
-  };
 
   const std::vector<ShadingPoint> points = shadingPoints(scene, tiling);
   std::vector<SampleRecord> records;
@@ -105,7 +139,7 @@ CeilingMeasurement measureCeilingStats(const RenderScene& scene, const RenderSet
           tp = timed([&] { return tracer.proxyVisible(ps.segment); }, vp);
         }
         r.visible = v;
-        CeilingRegionStats& s = regionOf(t, ps.light, sp.object);
+        CeilingRegionStats& s = regionOf(out, scene, t, ps.light, sp.object);
         const size_t index = size_t(&s - out.regions.data()) * 2 + (vp ? 1 : 0);
         s.segments += 1;
         s.blocked += vp ? 0 : 1;
@@ -117,31 +151,7 @@ CeilingMeasurement measureCeilingStats(const RenderScene& scene, const RenderSet
     });
   }
 
-  // Each sample's share of its pixel's variance, unbiased over the n passes: n/(n-1) times its
-  // squared deviation from the pixel's mean (f V per RGB channel; V alone for the unweighted one).
-  tbb::parallel_for(0, tiling.count(), [&](int t) {
-    tiling.forEachPixel(t, [&](int, int, uint32_t pixel) {
-      if (!points[pixel].valid) return;
-      Vec3d mean_fv{0, 0, 0};
-      double v_sum = 0, v_n = 0;
-      for (int p = 0; p < passes; ++p) {
-        const SampleRecord& r = records[size_t(p) * num_pixels + pixel];
-        if (r.visible) mean_fv += Vec3d(r.weight);
-        if (r.segment) v_sum += r.visible, v_n += 1;
-      }
-      mean_fv *= 1.0 / passes;
-      const double n = passes, correction = n / (n - 1);
-      const double v_mean = v_n > 0 ? v_sum / v_n : 0;
-      const double v_var = v_n > 1 ? v_n / (v_n - 1) * v_mean * (1 - v_mean) : 0;
-      for (int p = 0; p < passes; ++p) {
-        const SampleRecord& r = records[size_t(p) * num_pixels + pixel];
-        CeilingRegionStats& s = regionOf(t, r.light, points[pixel].object);
-        const Vec3d fv = r.visible ? Vec3d(r.weight) : Vec3d{0, 0, 0};
-        s.var_fv += correction * meanSquare(fv - mean_fv);
-        if (r.segment) s.visibility_var += v_var;
-      }
-    });
-  });
+  addPixelVariances(scene, tiling, points, records, passes, out);
 
   out.passes = passes;
   out.seconds = clock.seconds();

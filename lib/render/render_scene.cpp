@@ -24,6 +24,66 @@ bool overlaps(const Bounds3f& a, const Bounds3f& b) {
          a.lo.z <= b.hi.z && b.lo.z <= a.hi.z;
 }
 
+// The class the estimators may rely on, after the light checks of docs/design.md, pitfall 2.
+struct ProxyClassDecision {
+  bool uses_proxies = false;
+  std::optional<ProxyClass> proxy_class;  // when every proxy in use has this class
+  std::vector<std::string> warnings;
+};
+
+ProxyClassDecision decideProxyClass(const SceneDesc& desc, const std::vector<RenderObject>& objects,
+                                    const std::vector<TriMesh>& originals,
+                                    const std::vector<TriMesh>& proxies) {
+  const size_t num_meshes = desc.meshes.size();
+  ProxyClassDecision d;
+  std::vector<Bounds3f> light_bounds;
+  for (const AreaLightDesc& l : desc.lights) {
+    Bounds3f b;
+    for (const auto& t : l.triangles)
+      for (const Vec3f& v : t) b.extend(v);
+    light_bounds.push_back(b);
+  }
+  std::optional<ProxyClass> common;
+  bool mixed = false;
+  std::vector<bool> warned(num_meshes, false);
+  for (const RenderObject& o : objects) {
+    if (o.proxy < 0) continue;
+    d.uses_proxies = true;
+    const SceneMeshDesc& mesh = desc.meshes[o.mesh];
+    const ProxyRef& ref = mesh.proxies[size_t(o.proxy)];
+    ProxyClass c = ref.verified_class.value_or(ProxyClass::kGeneral);
+    if (!ref.verified_class && !warned[o.mesh]) {
+      d.warnings.push_back(
+          fmt::format("mesh '{}': proxy {} has no verified class; treated as general", mesh.name,
+                      ref.file.filename().string()));
+    }
+    if (c != ProxyClass::kGeneral) {
+      // Outside: the light must be outside the proxy. Inside: outside the original.
+      const TriMesh& guard = c == ProxyClass::kOutside ? proxies[o.mesh] : originals[o.mesh];
+      const Bounds3f world = transformedBounds(guard.bounds(), o.to_world);
+      for (size_t l = 0; l < light_bounds.size(); ++l) {
+        if (!overlaps(world, light_bounds[l])) continue;
+        if (!warned[o.mesh])
+          d.warnings.push_back(fmt::format(
+              "mesh '{}': light {} may reach inside the bounds of its {} {}; the {} guarantee "
+              "needs the light outside (docs/design.md, pitfall 2): treated as general",
+              mesh.name, l, c == ProxyClass::kOutside ? "proxy" : "original",
+              ref.file.filename().string(), proxyClassName(c)));
+        c = ProxyClass::kGeneral;
+        break;
+      }
+    }
+    warned[o.mesh] = true;
+    if (common && *common != c) mixed = true;
+    common = c;
+  }
+  if (common && !mixed) d.proxy_class = *common;
+  if (mixed)
+    d.warnings.push_back(
+        "meshes use proxies of different classes: the estimators treat them as general");
+  return d;
+}
+
 }  // namespace
 
 std::vector<RenderObject> renderObjects(const SceneDesc& desc, const std::vector<int>& chosen) {
@@ -164,52 +224,10 @@ std::unique_ptr<RenderScene> loadRenderScene(const SceneDesc& desc,
   }
   scene->epsilon_ = rayEpsilon(scene->originals_->bounds());
 
-  // The class the estimators may rely on, after the light checks of docs/design.md, pitfall 2.
-  std::vector<Bounds3f> light_bounds;
-  for (const AreaLightDesc& l : desc.lights) {
-    Bounds3f b;
-    for (const auto& t : l.triangles)
-      for (const Vec3f& v : t) b.extend(v);
-    light_bounds.push_back(b);
-  }
-  std::optional<ProxyClass> common;
-  bool mixed = false;
-  std::vector<bool> warned(num_meshes, false);
-  for (const RenderObject& o : objects) {
-    if (o.proxy < 0) continue;
-    scene->uses_proxies_ = true;
-    const SceneMeshDesc& mesh = desc.meshes[o.mesh];
-    const ProxyRef& ref = mesh.proxies[size_t(o.proxy)];
-    ProxyClass c = ref.verified_class.value_or(ProxyClass::kGeneral);
-    if (!ref.verified_class && !warned[o.mesh]) {
-      scene->warnings_.push_back(
-          fmt::format("mesh '{}': proxy {} has no verified class; treated as general", mesh.name,
-                      ref.file.filename().string()));
-    }
-    if (c != ProxyClass::kGeneral) {
-      // Outside: the light must be outside the proxy. Inside: outside the original.
-      const TriMesh& guard = c == ProxyClass::kOutside ? proxies[o.mesh] : originals[o.mesh];
-      const Bounds3f world = transformedBounds(guard.bounds(), o.to_world);
-      for (size_t l = 0; l < light_bounds.size(); ++l) {
-        if (!overlaps(world, light_bounds[l])) continue;
-        if (!warned[o.mesh])
-          scene->warnings_.push_back(fmt::format(
-              "mesh '{}': light {} may reach inside the bounds of its {} {}; the {} guarantee "
-              "needs the light outside (docs/design.md, pitfall 2): treated as general",
-              mesh.name, l, c == ProxyClass::kOutside ? "proxy" : "original",
-              ref.file.filename().string(), proxyClassName(c)));
-        c = ProxyClass::kGeneral;
-        break;
-      }
-    }
-    warned[o.mesh] = true;
-    if (common && *common != c) mixed = true;
-    common = c;
-  }
-  if (common && !mixed) scene->proxy_class_ = *common;
-  if (mixed)
-    scene->warnings_.push_back(
-        "meshes use proxies of different classes: the estimators treat them as general");
+  ProxyClassDecision decision = decideProxyClass(desc, objects, originals, proxies);
+  scene->uses_proxies_ = decision.uses_proxies;
+  if (decision.proxy_class) scene->proxy_class_ = *decision.proxy_class;
+  for (std::string& w : decision.warnings) scene->warnings_.push_back(std::move(w));
   if (!options.quiet)
     for (const std::string& w : scene->warnings_)
       std::fprintf(stderr, "%s: warning: %s\n", desc.path.filename().string().c_str(), w.c_str());

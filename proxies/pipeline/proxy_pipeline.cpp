@@ -151,6 +151,133 @@ const std::vector<std::string>& proxyMethods(ProxyClass kind) {
   return kind == ProxyClass::kOutside ? outside : kind == ProxyClass::kInside ? inside : general;
 }
 
+namespace {
+
+// The input's facts in the report.
+json inputJson(const TriMesh& input, const MeshReport& r) {
+  return {{"path", input.source},   {"faces", r.faces},
+          {"closed", r.closed},     {"watertight", r.watertight},
+          {"manifold", r.manifold}, {"boundary_edges", r.boundary_edges}};
+}
+
+// The face budget the proxy is reduced to (0: none): the user's --max-faces or --ratio, the
+// general simplifier's own target, or, when a bounded proxy came out with more faces than its
+// input, the input's count (such a proxy saves nothing: a wrapped 2-triangle ground quad has
+// thousands).
+size_t budgetFaces(const TriMesh& input, const ProxyGenOptions& options, const Built& built,
+                   json& params) {
+  size_t max_faces = options.max_faces;
+  if (built.bounded && max_faces == 0 && options.ratio) {
+    // Outside/inside with --ratio: a budget relative to the input (a scene's meshes differ).
+    max_faces = std::max<size_t>(12, size_t(*options.ratio * double(input.numTriangles())));
+    params["max_faces_from_ratio"] = max_faces;
+  }
+  if (built.bounded && max_faces == 0 && built.mesh.numTriangles() > input.numTriangles()) {
+    max_faces = std::max<size_t>(input.numTriangles(), 12);
+    params["max_faces_auto"] = max_faces;
+  }
+  if (options.kind == ProxyClass::kGeneral) {
+    GeneralOptions g;
+    g.max_faces = options.max_faces;
+    g.ratio = options.ratio.value_or(g.ratio);
+    max_faces = generalTargetFaces(input, g);
+  }
+  return max_faces;
+}
+
+// The verified candidate closest to the budget. Only a budget the user gave (--max-faces,
+// --ratio) fails the run when it is not met; the automatic ones (the input's count, general's
+// default ratio) are goals, and soft budgets keep the smallest verified proxy.
+VerifiedCandidate chooseWithinBudget(BudgetContext& ctx, VerifiedCandidate chosen) {
+  const ProxyGenOptions& options = ctx.options;
+  if (ctx.max_faces == 0) return chosen;
+  const bool user_budget = options.max_faces > 0 || options.ratio.has_value();
+  LadderResult ladder = climbBudgetLadder(ctx, chosen);
+  if (!ladder.within && ladder.smallest && user_budget && options.hard_budget)
+    throwBudgetNotMet(ctx, ladder.smallest->faces());
+  std::optional<VerifiedCandidate>& better = ladder.within ? ladder.within : ladder.smallest;
+  if (better && (better->faces() <= chosen.faces() || !chosen.ok)) {
+    if (better->source != chosen.source) ctx.report["budget_fallback"] = better->source;
+    chosen = std::move(*better);
+  }
+  ctx.report["budget_reached"] = chosen.faces() <= ctx.max_faces;
+  return chosen;
+}
+
+ContainmentVerdict expectedVerdict(ProxyClass kind) {
+  return kind == ProxyClass::kOutside ? ContainmentVerdict::kContains
+                                      : ContainmentVerdict::kContained;
+}
+
+// The checks of the chosen proxy in the report; true when they all hold.
+bool recordChecks(json& report, const VerifiedCandidate& chosen, ProxyClass kind) {
+  const MeshReport& r = chosen.report;
+  const uint64_t si = r.self_intersecting_pairs.value_or(0);
+  report["checks"] = {
+      {"closed", r.closed}, {"manifold", r.manifold}, {"self_intersecting_pairs", si}};
+  bool verified = r.closed && r.manifold && si == 0;
+  if (chosen.containment) {
+    report["checks"]["containment"] = containmentName(chosen.containment->verdict);
+    report["checks"]["containment_detail"] = chosen.containment->detail;
+    verified = verified && chosen.containment->verdict == expectedVerdict(kind);
+  }
+  return verified;
+}
+
+// Volume ratio and sampled Hausdorff distances against the reference.
+void recordMetrics(json& report, const TriMesh& proxy, const MeshReport& proxy_report,
+                   const TriMesh& reference, const MeshReport& in_report, bool stand_in,
+                   const ProxyGenOptions& options) {
+  const double diag = reference.diagonal();
+  // A closed manifold input's own signed volume (cheap); by ray parity for a watertight
+  // non-manifold input or the hole-filled stand-in (proxies/shared/parity_solid.h).
+  const std::optional<double> ref_volume = !(in_report.watertight || stand_in) ? std::nullopt
+                                           : in_report.closed
+                                               ? std::optional<double>(reference.signedVolume())
+                                               : parityVolume(reference);
+  report["volume_ratio"] = (ref_volume && proxy_report.closed && *ref_volume > 0)
+                               ? json(proxy.signedVolume() / *ref_volume)
+                               : json(nullptr);
+  HausdorffDistances h;
+  h.proxy_to_original =
+      sampledOneSidedDistance(proxy, reference, options.hausdorff_samples, options.seed);
+  h.original_to_proxy =
+      sampledOneSidedDistance(reference, proxy, options.hausdorff_samples, options.seed + 1);
+  h.diagonal = diag;
+  // Fractions of the diagonal (the unit of --alpha and --offset); "hausdorff" adds scene units.
+  report["hausdorff_proxy_to_original"] = h.proxy_to_original / diag;
+  report["hausdorff_original_to_proxy"] = h.original_to_proxy / diag;
+  report["hausdorff"] = hausdorffJson(h);
+}
+
+[[noreturn]] void throwNotVerified(const TriMesh& input, const ProxyGenOptions& options,
+                                   const std::string& method, const VerifiedCandidate& chosen) {
+  const MeshReport& r = chosen.report;
+  const uint64_t si = r.self_intersecting_pairs.value_or(0);
+  std::string what;
+  if (!r.closed)
+    what = "the proxy is not closed";
+  else if (!r.manifold)
+    what = "the proxy is not manifold";
+  else if (si > 0)
+    what = fmt::format("the proxy has {} self-intersecting face pairs", si);
+  else
+    what = fmt::format("containment is '{}', not '{}': {}",
+                       containmentName(chosen.containment->verdict),
+                       containmentName(expectedVerdict(options.kind)), chosen.containment->detail);
+  throw CheckFailed(input.source,
+                    fmt::format("the {} {} proxy failed its guarantee: {}", method,
+                                proxyClassName(options.kind), what),
+                    inputIsTheProblem(chosen)
+                        ? "it is not written: the input bounds no consistent volume "
+                          "(non-manifold or self-intersecting parts)"
+                        : "it is not written",
+                    inputIsTheProblem(chosen) ? "repair the mesh, or use --kind outside"
+                                              : failureAdvice(options.kind, method));
+}
+
+}  // namespace
+
 ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& options) {
   const Stopwatch whole;
   const std::string method = resolveMethod(options);
@@ -165,10 +292,7 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
       options.max_seconds > 0 ? TimeBudget(options.max_seconds, input.source) : TimeBudget();
 
   const MeshReport in_report = timer.run("validate_input", [&] { return validateMesh(input); });
-  report["input"] = {
-      {"path", input.source},           {"faces", in_report.faces},
-      {"closed", in_report.closed},     {"watertight", in_report.watertight},
-      {"manifold", in_report.manifold}, {"boundary_edges", in_report.boundary_edges}};
+  report["input"] = inputJson(input, in_report);
   report["kind"] = proxyClassName(options.kind);
   report["method"] = method;
   json& params = report["parameters"] = {
@@ -205,114 +329,28 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
   budget.check("building the proxy");
   report.update(built.extra);
   report["faces_before_budget"] = built.mesh.numTriangles();
-  // A proxy with more faces than its original saves nothing (a wrapped 2-triangle ground quad
-  // has thousands): without an explicit budget, such a proxy is reduced to the input's count.
-  size_t max_faces = options.max_faces;
-  if (built.bounded && max_faces == 0 && options.ratio) {
-    // Outside/inside with --ratio: a budget relative to the input (a scene's meshes differ).
-    max_faces = std::max<size_t>(12, size_t(*options.ratio * double(input.numTriangles())));
-    params["max_faces_from_ratio"] = max_faces;
-  }
-  if (built.bounded && max_faces == 0 && built.mesh.numTriangles() > input.numTriangles()) {
-    max_faces = std::max<size_t>(input.numTriangles(), 12);
-    params["max_faces_auto"] = max_faces;
-  }
-
-  // General proxies: the simplifier's own target is the budget.
-  if (options.kind == ProxyClass::kGeneral) {
-    GeneralOptions g;
-    g.max_faces = options.max_faces;
-    g.ratio = options.ratio.value_or(g.ratio);
-    max_faces = generalTargetFaces(input, g);
-  }
-  // Only a budget the user gave (--max-faces, --ratio) fails the run when it is not met; the
-  // automatic ones (the input's count, general's default ratio) are goals.
-  const bool user_budget = options.max_faces > 0 || options.ratio.has_value();
+  const size_t max_faces = budgetFaces(input, options, built, params);
   params["budget"] = options.hard_budget ? "hard" : "soft";
 
   BudgetContext ctx{input, reference, options, method, max_faces, budget, timer, report, rebuild};
-  VerifiedCandidate chosen = options.kind == ProxyClass::kGeneral
-                                 ? verifyCandidate(ctx, std::move(built.mesh), method)
-                                 : reduceAndVerify(ctx, built.mesh, method, true);
-  if (max_faces > 0) {
-    LadderResult ladder = climbBudgetLadder(ctx, chosen);
-    if (!ladder.within && ladder.smallest && user_budget && options.hard_budget)
-      throwBudgetNotMet(ctx, ladder.smallest->faces());
-    // Soft or automatic budgets keep the smallest verified proxy when none meets them.
-    std::optional<VerifiedCandidate>& better = ladder.within ? ladder.within : ladder.smallest;
-    if (better && (better->faces() <= chosen.faces() || !chosen.ok)) {
-      if (better->source != chosen.source) report["budget_fallback"] = better->source;
-      chosen = std::move(*better);
-    }
-  }
-  if (max_faces > 0) report["budget_reached"] = chosen.faces() <= max_faces;
-  const TriMesh& proxy = chosen.mesh;
-  const MeshReport& p_report = chosen.report;
-  const std::optional<ContainmentResult>& containment = chosen.containment;
-  const ContainmentVerdict expected = options.kind == ProxyClass::kOutside
-                                          ? ContainmentVerdict::kContains
-                                          : ContainmentVerdict::kContained;
-
-  const uint64_t si = p_report.self_intersecting_pairs.value_or(0);
-  report["checks"] = {{"closed", p_report.closed},
-                      {"manifold", p_report.manifold},
-                      {"self_intersecting_pairs", si}};
-  bool verified = p_report.closed && p_report.manifold && si == 0;
-  if (containment) {
-    report["checks"]["containment"] = containmentName(containment->verdict);
-    report["checks"]["containment_detail"] = containment->detail;
-    verified = verified && containment->verdict == expected;
-  }
-  report["faces"] = proxy.numTriangles();
+  VerifiedCandidate chosen =
+      chooseWithinBudget(ctx, options.kind == ProxyClass::kGeneral
+                                  ? verifyCandidate(ctx, std::move(built.mesh), method)
+                                  : reduceAndVerify(ctx, built.mesh, method, true));
+  const bool verified = recordChecks(report, chosen, options.kind);
+  report["faces"] = chosen.mesh.numTriangles();
   report["verified"] = verified;
   setWrittenClass(report, options.kind, verified, stand_in);
-  if (stand_in && containment) report["checks"]["containment_against"] = "the hole-filled input";
-
+  if (stand_in && chosen.containment)
+    report["checks"]["containment_against"] = "the hole-filled input";
   timer.run("metrics", [&] {
-    const double diag = reference.diagonal();
-    // A closed manifold input's own signed volume (cheap); by ray parity for a watertight
-    // non-manifold input or the hole-filled stand-in (proxies/shared/parity_solid.h).
-    const std::optional<double> ref_volume = !(in_report.watertight || stand_in) ? std::nullopt
-                                             : in_report.closed
-                                                 ? std::optional<double>(reference.signedVolume())
-                                                 : parityVolume(reference);
-    report["volume_ratio"] = (ref_volume && p_report.closed && *ref_volume > 0)
-                                 ? json(proxy.signedVolume() / *ref_volume)
-                                 : json(nullptr);
-    HausdorffDistances h;
-    h.proxy_to_original =
-        sampledOneSidedDistance(proxy, reference, options.hausdorff_samples, options.seed);
-    h.original_to_proxy =
-        sampledOneSidedDistance(reference, proxy, options.hausdorff_samples, options.seed + 1);
-    h.diagonal = diag;
-    // Fractions of the diagonal (the unit of --alpha and --offset); "hausdorff" adds scene units.
-    report["hausdorff_proxy_to_original"] = h.proxy_to_original / diag;
-    report["hausdorff_original_to_proxy"] = h.original_to_proxy / diag;
-    report["hausdorff"] = hausdorffJson(h);
+    recordMetrics(report, chosen.mesh, chosen.report, reference, in_report, stand_in.has_value(),
+                  options);
   });
   seconds["total"] = whole.seconds();
 
-  if (options.kind != ProxyClass::kGeneral && !verified) {
-    std::string what;
-    if (!p_report.closed)
-      what = "the proxy is not closed";
-    else if (!p_report.manifold)
-      what = "the proxy is not manifold";
-    else if (si > 0)
-      what = fmt::format("the proxy has {} self-intersecting face pairs", si);
-    else
-      what = fmt::format("containment is '{}', not '{}': {}", containmentName(containment->verdict),
-                         containmentName(expected), containment->detail);
-    throw CheckFailed(input.source,
-                      fmt::format("the {} {} proxy failed its guarantee: {}", method,
-                                  proxyClassName(options.kind), what),
-                      inputIsTheProblem(chosen)
-                          ? "it is not written: the input bounds no consistent volume "
-                            "(non-manifold or self-intersecting parts)"
-                          : "it is not written",
-                      inputIsTheProblem(chosen) ? "repair the mesh, or use --kind outside"
-                                                : failureAdvice(options.kind, method));
-  }
+  if (options.kind != ProxyClass::kGeneral && !verified)
+    throwNotVerified(input, options, method, chosen);
   return {std::move(chosen.mesh), verified, std::move(report)};
 }
 
