@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "metrics/color_map.h"
+#include "image/color_map.h"
 #include "parallel_in_order.h"
-#include "render/image_io.h"
+#include "image/image_io.h"
 #include "render/image_metadata.h"
 
 namespace proxyvis {

@@ -8,7 +8,7 @@
 #include "metrics/heat_map.h"
 #include "metrics/html_report.h"
 #include "reference.h"
-#include "render/image_io.h"  // autoExposure: the same for every image so they compare
+#include "image/image_io.h"  // autoExposure: the same for every image so they compare
 #include "runs.h"
 
 namespace proxyvis {

@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "metrics/image_variance.h"
-#include "render/image_io.h"
+#include "image/image_io.h"
 #include "render/image_metadata.h"
 #include "runs.h"
 #include "util/atomic_write.h"

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "render/image_io.h"
+#include "image/image_io.h"
 #include "render/renderer.h"
 #include "scene/scene_desc.h"
 

@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
-#include "render/image_io.h"
+#include "image/image_io.h"
 
 namespace proxyvis {
 

@@ -9,9 +9,9 @@
 #include <cstdio>
 
 #include "proxies/check/class_trust.h"
-#include "render/image_io.h"
+#include "image/image_io.h"
 #include "render/image_metadata.h"
-#include "render/oiio_module.h"
+#include "image/oiio_module.h"
 #include "render/render_options.h"
 #include "render/render_scene.h"
 #include "render/renderer.h"

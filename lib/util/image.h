@@ -1,5 +1,5 @@
 #pragma once
-// A float image: what the renderer produces, image files hold (render/image_io.h) and the
+// A float image: what the renderer produces, image files hold (image/image_io.h) and the
 // metrics compare. Plain data, so reading or writing images needs no renderer.
 #include <cstddef>
 #include <vector>

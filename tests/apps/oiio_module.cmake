@@ -1,4 +1,4 @@
-# OpenImageIO loaded on first use (lib/render/oiio_module.h): not linked by render and
+# OpenImageIO loaded on first use (lib/image/oiio_module.h): not linked by render and
 # render-compare, never loaded by a plan or a unit, a missing module refused with one line.
 # Not in a build that links the module into the programs (PROXYVIS_PRELOAD_OIIO_MODULE, the
 # sanitizer build): there every process loads it at start, which is what this test rules out.

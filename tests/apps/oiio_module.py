@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""OpenImageIO is loaded only by processes that touch an image (lib/render/oiio_module.h):
+"""OpenImageIO is loaded only by processes that touch an image (lib/image/oiio_module.h):
 
 - render and render-compare do not link it (no NEEDED entry naming OpenImageIO);
 - render-compare's plan and its units never load it, the merge (which writes the report's

@@ -1,11 +1,11 @@
 // Image files through OpenImageIO: the metadata every rendered image carries and the AOV layer
 // names, read back from the written EXR; errors raised inside the OIIO module (loaded on first
-// use, render/oiio_module.h) reach the caller as the same error types.
+// use, image/oiio_module.h) reach the caller as the same error types.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 
-#include "render/image_io.h"
+#include "image/image_io.h"
 #include "render/image_metadata.h"
 #include "util/error.h"
 #include "util/input_file.h"

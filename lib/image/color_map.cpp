@@ -1,8 +1,8 @@
-#include "metrics/color_map.h"
+#include "image/color_map.h"
 
 #include <algorithm>
 
-#include "render/oiio_module.h"
+#include "image/oiio_module.h"
 
 namespace proxyvis {
 

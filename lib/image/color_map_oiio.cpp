@@ -1,4 +1,4 @@
-#include "metrics/color_map_oiio.h"
+#include "image/color_map_oiio.h"
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>

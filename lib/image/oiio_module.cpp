@@ -1,4 +1,4 @@
-#include "render/oiio_module.h"
+#include "image/oiio_module.h"
 
 #include <dlfcn.h>
 

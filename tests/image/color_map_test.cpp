@@ -1,4 +1,4 @@
-#include "metrics/color_map.h"
+#include "image/color_map.h"
 
 #include <gtest/gtest.h>
 

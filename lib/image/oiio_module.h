@@ -3,8 +3,8 @@
 // heat-map. Linked into a program it brings ~250 shared libraries (gdal, opencv, heif, ...) whose
 // symbols the dynamic loader resolves at every start: ~0.4 s of CPU that render-compare's units
 // and its plan, which never touch an image, paid for nothing. So the OIIO-backed code
-// (render/image_io.cpp, metrics/color_map_oiio.cpp) is built into a loadable module that lives
-// beside the executables, and render/image_io.h and metrics/color_map.h keep their plain function
+// (image/image_io.cpp, image/color_map_oiio.cpp) is built into a loadable module that lives
+// beside the executables, and image/image_io.h and image/color_map.h keep their plain function
 // API: each call goes through the table below.
 #include <filesystem>
 #include <functional>
@@ -12,7 +12,7 @@
 #include <string_view>
 #include <vector>
 
-#include "render/image_io.h"
+#include "image/image_io.h"
 
 namespace proxyvis {
 

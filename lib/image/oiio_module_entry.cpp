@@ -1,7 +1,7 @@
-// The entry point of the OIIO module (libpv_oiio.so; render/oiio_module.h): built into the module
+// The entry point of the OIIO module (libpv_oiio.so; image/oiio_module.h): built into the module
 // only, never into a program.
-#include "metrics/color_map_oiio.h"
-#include "render/oiio_module.h"
+#include "image/color_map_oiio.h"
+#include "image/oiio_module.h"
 #include "util/atomic_write.h"
 
 namespace proxyvis {

@@ -1,8 +1,8 @@
 // image_io.h's file functions as programs and tests link them: each call goes to the OIIO module,
-// loaded on the first one (render/oiio_module.h), so a process that never touches an image file
+// loaded on the first one (image/oiio_module.h), so a process that never touches an image file
 // never loads OpenImageIO. The module itself links image_io.cpp instead of this file.
-#include "render/image_io.h"
-#include "render/oiio_module.h"
+#include "image/image_io.h"
+#include "image/oiio_module.h"
 
 namespace proxyvis {
 

@@ -1,6 +1,6 @@
 #pragma once
-// colorMapRgb's OpenImageIO implementation (metrics/color_map.h), built into the OIIO module
-// (render/oiio_module.h) and reached through it.
+// colorMapRgb's OpenImageIO implementation (image/color_map.h), built into the OIIO module
+// (image/oiio_module.h) and reached through it.
 #include <span>
 #include <string_view>
 #include <vector>

@@ -1,9 +1,9 @@
-// The parts of render/image_io.h that need no OpenImageIO: linked into the programs and into the
-// OIIO module (render/oiio_module.h), whose PNG writer tone-maps with linearToSrgb.
+// The parts of image/image_io.h that need no OpenImageIO: linked into the programs and into the
+// OIIO module (image/oiio_module.h), whose PNG writer tone-maps with linearToSrgb.
 #include <algorithm>
 #include <cmath>
 
-#include "render/image_io.h"
+#include "image/image_io.h"
 
 namespace proxyvis {
 

@@ -1,7 +1,7 @@
 #pragma once
 // Colours of heat-maps and of their colour bars, from OpenImageIO's perceptually uniform colour
 // maps (library pv_color_map: the only part of metrics that uses OIIO, through the OIIO module
-// loaded on first use, render/oiio_module.h).
+// loaded on first use, image/oiio_module.h).
 #include <span>
 #include <string_view>
 #include <vector>
