@@ -6,8 +6,8 @@
 #include <cmath>
 
 #include "image/color_map.h"
-#include "parallel_in_order.h"
 #include "image/image_io.h"
+#include "parallel_in_order.h"
 #include "render/image_metadata.h"
 
 namespace proxyvis {

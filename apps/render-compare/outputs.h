@@ -5,10 +5,10 @@
 #include <string>
 #include <vector>
 
+#include "image/image_io.h"  // autoExposure: the same for every image so they compare
 #include "metrics/heat_map.h"
 #include "metrics/html_report.h"
 #include "reference.h"
-#include "image/image_io.h"  // autoExposure: the same for every image so they compare
 #include "runs.h"
 
 namespace proxyvis {

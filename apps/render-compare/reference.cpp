@@ -5,8 +5,8 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "metrics/image_variance.h"
 #include "image/image_io.h"
+#include "metrics/image_variance.h"
 #include "render/image_metadata.h"
 #include "runs.h"
 #include "util/atomic_write.h"

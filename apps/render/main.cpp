@@ -8,10 +8,10 @@
 #include <climits>
 #include <cstdio>
 
-#include "proxies/check/class_trust.h"
 #include "image/image_io.h"
-#include "render/image_metadata.h"
 #include "image/oiio_module.h"
+#include "proxies/check/class_trust.h"
+#include "render/image_metadata.h"
 #include "render/render_options.h"
 #include "render/render_scene.h"
 #include "render/renderer.h"
