@@ -86,7 +86,7 @@ build_sanitize() {
   # GCC's -Wmaybe-uninitialized gives false positives on sanitizer-instrumented code (seen in
   # OpenMesh's Property.hh); the Release build keeps the warning.
   local warn="-Wno-maybe-uninitialized"
-  sanitize_env  # gtest discovery runs the test executables at build time
+  sanitize_env  # the options the tests run under
   cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
     -DCMAKE_CXX_FLAGS="$flags $warn" -DCMAKE_C_FLAGS="$flags $warn" \
@@ -112,8 +112,8 @@ fuzz_build() {
 
 # The ctest label expression for `test --changed`: tests/<area> mirrors lib/<area>, so a file
 # under lib/<area>/ or tests/<area>/ selects <area>; proxies/ selects proxies, apps/ the programs'
-# tests and the bad-input corpus, lib/distributed its MPI jobs too. What everything depends on (lib/util, the build files, data,
-# scenes) selects every test.
+# tests and the bad-input corpus, lib/distributed its MPI jobs too. What everything depends on
+# (lib/util, the build files, data, scenes) selects every test.
 changed_labels() {
   local base=${PROXYVIS_CHANGED_BASE:-HEAD} files f area labels=()
   files=$( (git diff --name-only "$base"; git ls-files --others --exclude-standard) | sort -u)

@@ -18,11 +18,6 @@ namespace proxyvis {
 
 namespace {
 
-bool overlaps(const Bounds3f& a, const Bounds3f& b) {
-  return a.lo.x <= b.hi.x && b.lo.x <= a.hi.x && a.lo.y <= b.hi.y && b.lo.y <= a.hi.y &&
-         a.lo.z <= b.hi.z && b.lo.z <= a.hi.z;
-}
-
 int proxyOfKind(const SceneMeshDesc& mesh, const std::string& kind) {
   for (size_t i = 0; i < mesh.proxies.size(); ++i)
     if (mesh.proxies[i].kind == kind) return int(i);
@@ -92,7 +87,7 @@ class DistributedSceneLoader {
     loadProxies();
     assignOwners();
     loadOriginals();
-    chooseBuild();
+    decideBuild();
     buildTraceScenes();
     measureEpsilon();
     indexBoxes();
@@ -197,7 +192,7 @@ class DistributedSceneLoader {
   }
 
   // The single-process build decision, from the triangle counts and the proxies it would use.
-  void chooseBuild() {
+  void decideBuild() {
     std::vector<int> render_proxy = chosen_;
     for (size_t m = 0; m < num_meshes_; ++m)
       if (render_proxy[m] >= 0 &&
@@ -213,8 +208,8 @@ class DistributedSceneLoader {
                             ? proxies_[o.mesh][size_t(render_proxy[o.mesh])].numTriangles()
                             : triangles_[o.mesh])
                      : 0);
-    ds_.build_ = proxyvis::chooseBuild(options_.instance_build, !desc_.instances.empty(),
-                                       flat_triangles, options_.memory_budget_bytes);
+    ds_.build_ = chooseBuild(options_.instance_build, !desc_.instances.empty(), flat_triangles,
+                             options_.memory_budget_bytes);
     uint8_t flat = ds_.build_.flat ? 1 : 0;  // rank 0's decision: budgets may differ between nodes
     comm_.broadcast(std::span<uint8_t>(&flat, 1), 0);
     ds_.build_.flat = flat != 0;
@@ -312,13 +307,11 @@ class DistributedSceneLoader {
   void checkLightsOutsideProxies() {
     comm_.collectively([&] {
       for (size_t l = 0; l < desc_.lights.size(); ++l) {
-        Bounds3f lb;
-        for (const auto& t : desc_.lights[l].triangles)
-          for (const Vec3f& v : t) lb.extend(v);
+        const Bounds3f lb = desc_.lights[l].bounds();
         for (size_t id = 0; id < ds_.objects_.size(); ++id) {
           const RenderObject& o = ds_.objects_[id];
           if (ds_.owners_[id] < 0) continue;
-          if (overlaps(transformedBounds(outsideProxy(o).bounds(), o.to_world), lb))
+          if (transformedBounds(outsideProxy(o).bounds(), o.to_world).overlaps(lb))
             throw Error(
                 desc_.path.string(),
                 fmt::format("light {} may lie inside the outside proxy of mesh '{}'", l,

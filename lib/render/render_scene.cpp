@@ -19,11 +19,6 @@ namespace {
 constexpr float kRayEpsilonOfDiagonal = 2e-5f;
 constexpr float kMinRayEpsilon = 1e-6f;
 
-bool overlaps(const Bounds3f& a, const Bounds3f& b) {
-  return a.lo.x <= b.hi.x && b.lo.x <= a.hi.x && a.lo.y <= b.hi.y && b.lo.y <= a.hi.y &&
-         a.lo.z <= b.hi.z && b.lo.z <= a.hi.z;
-}
-
 // The class the estimators may rely on, after the light checks of docs/design.md, pitfall 2.
 struct ProxyClassDecision {
   bool uses_proxies = false;
@@ -37,12 +32,7 @@ ProxyClassDecision decideProxyClass(const SceneDesc& desc, const std::vector<Ren
   const size_t num_meshes = desc.meshes.size();
   ProxyClassDecision d;
   std::vector<Bounds3f> light_bounds;
-  for (const AreaLightDesc& l : desc.lights) {
-    Bounds3f b;
-    for (const auto& t : l.triangles)
-      for (const Vec3f& v : t) b.extend(v);
-    light_bounds.push_back(b);
-  }
+  for (const AreaLightDesc& l : desc.lights) light_bounds.push_back(l.bounds());
   std::optional<ProxyClass> common;
   bool mixed = false;
   std::vector<bool> warned(num_meshes, false);
@@ -62,7 +52,7 @@ ProxyClassDecision decideProxyClass(const SceneDesc& desc, const std::vector<Ren
       const TriMesh& guard = c == ProxyClass::kOutside ? proxies[o.mesh] : originals[o.mesh];
       const Bounds3f world = transformedBounds(guard.bounds(), o.to_world);
       for (size_t l = 0; l < light_bounds.size(); ++l) {
-        if (!overlaps(world, light_bounds[l])) continue;
+        if (!world.overlaps(light_bounds[l])) continue;
         if (!warned[o.mesh])
           d.warnings.push_back(fmt::format(
               "mesh '{}': light {} may reach inside the bounds of its {} {}; the {} guarantee "

@@ -62,6 +62,12 @@ struct CameraDesc {
 struct AreaLightDesc {
   std::vector<std::array<Vec3f, 3>> triangles;  // a quad is two triangles
   Vec3f radiance{1, 1, 1};
+  Bounds3f bounds() const {
+    Bounds3f b;
+    for (const auto& t : triangles)
+      for (const Vec3f& v : t) b.extend(v);
+    return b;
+  }
 };
 
 struct ProxyRef {

@@ -96,6 +96,11 @@ struct Bounds3 {
     lo = min(lo, b.lo);
     hi = max(hi, b.hi);
   }
+  // True when the two boxes share a point (touching counts).
+  bool overlaps(const Bounds3& b) const {
+    return lo.x <= b.hi.x && b.lo.x <= hi.x && lo.y <= b.hi.y && b.lo.y <= hi.y && lo.z <= b.hi.z &&
+           b.lo.z <= hi.z;
+  }
   Vec3<T> center() const { return (lo + hi) * T(0.5); }
   Vec3<T> extent() const { return hi - lo; }
   T diagonal() const { return empty() ? T(0) : length(hi - lo); }

@@ -76,6 +76,14 @@ std::string failureAdvice(ProxyClass kind, const std::string& method) {
                        : fmt::format("try other {}, or a larger --max-faces", flags);
 }
 
+// A general proxy's simplifier settings from the flags (its budget is the caller's).
+GeneralOptions generalOptions(const ProxyGenOptions& o) {
+  GeneralOptions g;
+  g.max_faces = o.max_faces;
+  g.ratio = o.ratio.value_or(g.ratio);
+  return g;
+}
+
 struct Built {
   TriMesh mesh;          // before the budget
   bool bounded = false;  // reduce with simplifyBounded (outside/inside) rather than not at all
@@ -128,9 +136,7 @@ Built build(const TriMesh& reference, const ProxyGenOptions& o, const std::strin
       b.extra["voxels"] = stats.voxels;
     }
   } else {
-    GeneralOptions g;
-    g.max_faces = o.max_faces;
-    g.ratio = o.ratio.value_or(g.ratio);
+    GeneralOptions g = generalOptions(o);
     g.budget = budget;
     params["ratio"] = g.ratio;
     if (method == "qem")
@@ -176,12 +182,8 @@ size_t budgetFaces(const TriMesh& input, const ProxyGenOptions& options, const B
     max_faces = std::max<size_t>(input.numTriangles(), 12);
     params["max_faces_auto"] = max_faces;
   }
-  if (options.kind == ProxyClass::kGeneral) {
-    GeneralOptions g;
-    g.max_faces = options.max_faces;
-    g.ratio = options.ratio.value_or(g.ratio);
-    max_faces = generalTargetFaces(input, g);
-  }
+  if (options.kind == ProxyClass::kGeneral)
+    max_faces = generalTargetFaces(input, generalOptions(options));
   return max_faces;
 }
 

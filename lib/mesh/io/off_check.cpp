@@ -15,12 +15,26 @@
 namespace proxyvis::detail {
 namespace {
 
+// What the keyword says about a vertex line: its leading values (positions, then normals with N,
+// then texture coordinates with ST) and whether colours (C) follow them, so that its length
+// varies.
+struct OffVertexLayout {
+  size_t values = 3;
+  bool colours = false;
+};
+
 // The keyword is [ST][C][N][4][n]OFF, nothing else: a first word that only ended in "4OFF" after
 // binary bytes made OpenMesh read 84 million empty faces from 490 bytes (fuzz_off).
-void checkKeyword(const std::string& magic, const std::string& file) {
+OffVertexLayout checkKeyword(const std::string& magic, const std::string& file) {
+  OffVertexLayout layout;
   size_t k = 0;
-  for (const char* prefix : {"ST", "C", "N"})
-    if (magic.compare(k, std::strlen(prefix), prefix) == 0) k += std::strlen(prefix);
+  for (const char* prefix : {"ST", "C", "N"}) {
+    if (magic.compare(k, std::strlen(prefix), prefix) != 0) continue;
+    k += std::strlen(prefix);
+    if (prefix[0] == 'S') layout.values += 2;
+    if (prefix[0] == 'C') layout.colours = true;
+    if (prefix[0] == 'N') layout.values += 3;
+  }
   const bool higher_dimension = k < magic.size() && (magic[k] == '4' || magic[k] == 'n');
   if (magic.compare(k + (higher_dimension ? 1 : 0), std::string::npos, "OFF") != 0)
     throw Error(file, "not an OFF file", "the first word is not OFF (or COFF, NOFF, STOFF, ...)",
@@ -28,6 +42,7 @@ void checkKeyword(const std::string& magic, const std::string& file) {
   if (higher_dimension)
     throw Error(file, "4D or n-dimensional OFF ('" + magic + "')",
                 "only 3D positions can be loaded", "convert the mesh to plain OFF");
+  return layout;
 }
 
 // OpenMesh takes the counts from after the keyword's line and ignores the rest of that line:
@@ -140,13 +155,13 @@ class RecordLines {
 // hide a face value. Fed the tokens after the face count; the first is the edge count.
 class FaceValues {
  public:
-  FaceValues(const std::string& magic, uint64_t vertices, size_t file_size, const std::string& file)
-      : vertices_(vertices), file_size_(file_size), file_(file) {
-    const bool colours = magic.find('C') != std::string::npos;
-    const uint64_t per_vertex = 3 + (magic.find('N') != std::string::npos ? 3 : 0) +
-                                (magic.compare(0, 2, "ST") == 0 ? 2 : 0);
-    vertex_values_ = colours ? std::numeric_limits<uint64_t>::max() : vertices * per_vertex;
-  }
+  FaceValues(const OffVertexLayout& layout, uint64_t vertices, size_t file_size,
+             const std::string& file)
+      : vertices_(vertices),
+        file_size_(file_size),
+        file_(file),
+        vertex_values_(layout.colours ? std::numeric_limits<uint64_t>::max()
+                                      : vertices * layout.values) {}
 
   void add(const std::string& token, size_t line, size_t end) {
     if (!edge_seen_) {
@@ -183,7 +198,7 @@ class FaceValues {
 void checkOff(const std::string& bytes, const std::string& file) {
   TextTokens tokens(bytes, 0, false);
   const std::string magic = tokens.next() ? tokens.token() : std::string();
-  checkKeyword(magic, file);
+  const OffVertexLayout layout = checkKeyword(magic, file);
   const size_t keyword_line_end = std::min(bytes.find('\n', tokens.end()), bytes.size());
   checkKeywordLine(bytes.substr(tokens.end(), keyword_line_end - tokens.end()), file);
 
@@ -202,12 +217,8 @@ void checkOff(const std::string& bytes, const std::string& file) {
     tooMany(file, std::to_string(nv) + " vertices and " + std::to_string(nf) + " faces", need,
             bytes.size());
 
-  // Positions, then normals (N), then texture coordinates (ST) come first on a vertex line.
-  const std::string prefix = magic.substr(0, magic.size() - 3);
-  const size_t min_vertex_values = 3 + (prefix.find('N') != std::string::npos ? 3 : 0) +
-                                   (prefix.find("ST") != std::string::npos ? 2 : 0);
-  RecordLines records(nv, nf, min_vertex_values, file);
-  FaceValues faces(magic, nv, bytes.size(), file);
+  RecordLines records(nv, nf, layout.values, file);
+  FaceValues faces(layout, nv, bytes.size(), file);
   const size_t counts_line = tokens.line();
   // OpenMesh's stream fails on a token that is not a number and it goes on with uninitialised
   // values, so every token is one; then the records' and the faces' checks.

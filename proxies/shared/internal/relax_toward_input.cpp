@@ -15,21 +15,14 @@
 #include <vector>
 
 #include "mesh/cgal_bridge.h"
+#include "util/vec3.h"
 
 namespace proxyvis::cgal {
 namespace {
 
 using Tri = std::array<Vec3d, 3>;
 
-struct Box {
-  Vec3d lo, hi;
-  bool overlaps(const Box& o) const {
-    return lo.x <= o.hi.x && o.lo.x <= hi.x && lo.y <= o.hi.y && o.lo.y <= hi.y && lo.z <= o.hi.z &&
-           o.lo.z <= hi.z;
-  }
-};
-
-Box boxOf(const Tri& t) {
+Bounds3d boxOf(const Tri& t) {
   return {min(min(t[0], t[1]), t[2]), max(max(t[0], t[1]), t[2])};
 }
 
@@ -121,7 +114,7 @@ class Relaxer {
                       const std::vector<Triangle>& new_corners) const {
     for (size_t i = 0; i < new_faces.size(); ++i) {
       const Tri& t = new_faces[i];
-      const Box box = boxOf(t);
+      const Bounds3d box = boxOf(t);
       const Triangle& corners = new_corners[i];
       const Kernel::Triangle_3 moved(toPoint(t[0]), toPoint(t[1]), toPoint(t[2]));
       for (size_t f = 0; f < mesh_.triangles.size(); ++f) {
@@ -196,7 +189,7 @@ class Relaxer {
   TriMesh& mesh_;
   const InputBound& bound_;
   std::vector<std::vector<uint32_t>> faces_of_;
-  std::vector<Box> boxes_;
+  std::vector<Bounds3d> boxes_;
 };
 
 }  // namespace
