@@ -24,7 +24,7 @@ PKGS=(
   libcgal-dev libgmp-dev libmpfr-dev libeigen3-dev
   libopenmesh-dev libembree-dev libdraco-dev
   libopenimageio-dev openimageio-tools libopencv-core-dev
-  libmeshoptimizer-dev libtbb-dev
+  libmeshoptimizer-dev libtbb-dev libtinygltf-dev
   libcli11-dev libfmt-dev nlohmann-json3-dev libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   chromium  # headless: the report test opens render-compare's HTML page in it

@@ -80,7 +80,7 @@ int main(int argc, char** argv) {
     }
     if (!save_path.empty() && !isSupportedMeshExtension(save_path))
       throw Error(save_path, "unsupported output extension",
-                  "mesh-info writes .obj, .ply, .off or .drc");
+                  "mesh-info writes .obj, .ply, .off, .drc, .gltf or .glb");
     // The converted mesh and the JSON that describes it (with its hash) are written as one unit.
     OutputSet outputs(MissingFolders::kCreate);
     nlohmann::json all = nlohmann::json::array();

@@ -12,6 +12,7 @@
 
 #include "mesh/io/mesh_io.h"
 #include "output_paths.h"
+#include "proxies/pipeline/gltf_proof.h"
 #include "proxies/pipeline/proxy_cache.h"
 #include "proxies/pipeline/proxy_pipeline.h"
 #include "proxies/pipeline/written_class.h"
@@ -28,6 +29,7 @@
 #include "util/lower_case.h"
 #include "util/output_path.h"
 #include "util/output_set.h"
+#include "util/program_build_id.h"
 #include "util/progress.h"
 #include "util/rng.h"
 #include "util/sha256.h"
@@ -54,6 +56,7 @@ struct Args {
   std::string done_file;                  // --done FILE: a plan unit's marker
   std::string plan_dir;                   // --plan DIR: write the shards as a plan's units
   uint64_t plan_shards = 0;               // --shards N of the plan
+  uint64_t gltf_rays = 100000;            // --gltf-rays: segments classified for a glTF's proof
 };
 
 ProxyGenOptions toOptions(const Args& a, const CommonOptions& common) {
@@ -92,7 +95,7 @@ int runMesh(const Args& a, const CommonOptions& common) {
     throw Error("", "no output file", "a mesh input needs -o OUTPUT", "add -o proxy.ply");
   if (!isSupportedMeshExtension(a.output))
     throw Error(a.output, "unsupported output extension",
-                "proxy-gen writes .obj, .ply, .off or .drc");
+                "proxy-gen writes .obj, .ply, .off, .drc, .gltf or .glb");
   StageProgress progress(common.quiet, a.progress);
   progress.stage("load");
   const Stopwatch load_clock;
@@ -107,6 +110,13 @@ int runMesh(const Args& a, const CommonOptions& common) {
   // The file must hold the very mesh that was verified: Draco without quantization.
   SaveOptions save;
   save.draco_quantization = 0;
+  if (isGltfPath(a.output)) {
+    save.gltf_name = gltfProxyNodeName(fs::path(a.input).stem().string(), result.report);
+    json proof = gltfProofExtras(result.report, sha256OfFile(a.input), programBuildId());
+    if (a.gltf_rays > 0)
+      proof["segments"] = gltfSegmentEvidence(input, result.proxy, a.gltf_rays, options.seed);
+    save.gltf_extras = {{"proxyvis", proof}};
+  }
   addMeshOutput(outputs, result.proxy, a.output, save);
   noteWrittenClass(result.report, a.input);
   result.report["output"] = a.output;
@@ -291,7 +301,14 @@ void addProxyOptions(CLI::App& app, Args& a) {
          "0.74-0.78 on compact shapes, 0.33 on the dragon's thin parts); general: qem (default), "
          "cgal-sms, meshopt (no guarantee). See docs/proxy_tightness.md")
       ->check(CLI::IsMember({"wrap", "hull", "erode", "qem", "cgal-sms", "meshopt"}));
-  app.add_option("-o,--output", a.output, "Output mesh (mesh input)");
+  app.add_option("-o,--output", a.output,
+                 "Output mesh (mesh input): .ply, .obj, .off, .drc (lossless), or .glb/.gltf with "
+                 "the proof in the node's extras (docs/gltf.md)");
+  app.add_option("--gltf-rays", a.gltf_rays,
+                 "glTF output: segments classified against original and proxy for the proof's "
+                 "HM'/MH' counts and bounds (0 = none)")
+      ->check(integerIn(0, 100'000'000))
+      ->capture_default_str();
   app.add_option("--out-dir", a.out_dir,
                  "Output directory (scene input): DIR/<mesh>.<kind>.ply, DIR/scene.json");
   app.add_option(

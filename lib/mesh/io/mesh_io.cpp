@@ -6,6 +6,7 @@
 #include <system_error>
 
 #include "mesh/io/internal/draco_io.h"
+#include "mesh/io/internal/gltf_io.h"
 #include "mesh/io/internal/header_check.h"
 #include "mesh/io/internal/openmesh_formats.h"
 #include "mesh/io/internal/sha256_sidecar.h"
@@ -21,16 +22,18 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// "obj", "ply", "off", "drc" or "" for anything else.
+// "obj", "ply", "off", "drc", "gltf", "glb" or "" for anything else.
 std::string formatOf(const fs::path& path) {
   std::string ext = lowerExtension(path);
   if (!ext.empty()) ext.erase(0, 1);
-  return (ext == "obj" || ext == "ply" || ext == "off" || ext == "drc") ? ext : std::string();
+  for (const char* known : {"obj", "ply", "off", "drc", "gltf", "glb"})
+    if (ext == known) return ext;
+  return {};
 }
 
 Error unknownExtension(const fs::path& path) {
   return Error(path.string(), "unknown mesh file extension '" + path.extension().string() + "'",
-               "the format is chosen by the extension", "use .obj, .ply, .off or .drc");
+               "the format is chosen by the extension", "use .obj, .ply, .off, .drc, .gltf or .glb");
 }
 
 // What every loader output must satisfy before anyone uses it.
@@ -58,6 +61,11 @@ void checkLoaded(const TriMesh& mesh, const std::string& file) {
 
 }  // namespace
 
+bool isGltfPath(const fs::path& path) {
+  const std::string format = formatOf(path);
+  return format == "gltf" || format == "glb";
+}
+
 bool isSupportedMeshExtension(const fs::path& path) {
   return !formatOf(path).empty();
 }
@@ -67,10 +75,15 @@ TriMesh loadMesh(const fs::path& path) {
   if (formatOf(path).empty() && fs::is_regular_file(path, ec)) throw unknownExtension(path);
   std::string bytes = readTextFile(path);  // missing, directory, unreadable -> Error
   detail::verifySidecar(path, bytes);
-  return parseMeshBytes(std::move(bytes), path);
+  const fs::path folder = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+  return parseMeshBytesIn(std::move(bytes), path, folder);
 }
 
 TriMesh parseMeshBytes(std::string bytes, const fs::path& path) {
+  return parseMeshBytesIn(std::move(bytes), path, {});
+}
+
+TriMesh parseMeshBytesIn(std::string bytes, const fs::path& path, const fs::path& folder) {
   const std::string file = path.string();
   const std::string format = formatOf(path);
   if (format.empty()) throw unknownExtension(path);
@@ -81,6 +94,8 @@ TriMesh parseMeshBytes(std::string bytes, const fs::path& path) {
   mesh.source = file;
   if (format == "drc") {
     detail::decodeDraco(bytes, file, mesh);
+  } else if (format == "gltf" || format == "glb") {
+    detail::decodeGltf(bytes, format == "glb", folder, file, mesh);
   } else {
     detail::checkDeclaredCounts(bytes, format, file);
     if (format == "off") detail::blankOffComments(bytes);
@@ -98,6 +113,13 @@ void addMeshOutput(OutputSet& outputs, const TriMesh& mesh, const fs::path& path
   std::string bytes;
   if (format == "drc") {
     bytes = detail::encodeDraco(mesh, options.draco_quantization, options.draco_speed, file);
+  } else if (format == "gltf" || format == "glb") {
+    detail::GltfMeshOut out;
+    out.mesh = &mesh;
+    out.name = options.gltf_name.empty() ? path.stem().string() : options.gltf_name;
+    out.extras = options.gltf_extras;
+    out.hidden = options.gltf_hidden;
+    bytes = detail::encodeGltf({out}, format == "glb", nullptr, file);
   } else {
     std::ostringstream encoded(std::ios::out | std::ios::binary);
     if (!detail::writeWithOpenMesh(mesh, format, encoded, options.binary))

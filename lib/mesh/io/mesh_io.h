@@ -1,6 +1,7 @@
 #pragma once
 // Loading and saving TriMesh: OBJ, PLY (ASCII and binary), OFF through OpenMesh; Draco .drc through
-// the Draco library. The format is chosen by the extension (case-insensitive).
+// the Draco library; glTF 2.0 (.gltf, .glb) through tinygltf (a whole file as one world-space
+// mesh; mesh/io/internal/gltf_io.h). The format is chosen by the extension (case-insensitive).
 //
 // Loading never trusts a header: a PLY claiming 2^31 vertices in a 1 KB file is an Error, not an
 // 8 GB allocation. Only regular files are read (never a FIFO or device). Every failure (missing,
@@ -20,6 +21,8 @@
 #include <filesystem>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "mesh/tri_mesh.h"
 
 namespace proxyvis {
@@ -30,6 +33,11 @@ struct SaveOptions {
   bool binary = true;           // PLY only: binary_little_endian (true) or ASCII
   int draco_quantization = 16;  // .drc only: position quantization bits (0 = lossless float)
   int draco_speed = 5;          // .drc only: encoder speed 0 (best) .. 10 (fastest)
+  // .gltf/.glb only: the node's and mesh's name (default: the file's stem), its extras (the
+  // proof of a proxy, docs/gltf.md) and whether KHR_node_visibility hides it.
+  std::string gltf_name;
+  nlohmann::json gltf_extras;
+  bool gltf_hidden = false;
 };
 
 // Loads a triangle mesh; polygons are fan-triangulated. Vertex order is kept.
@@ -39,6 +47,10 @@ TriMesh loadMesh(const std::filesystem::path& path);
 // `path` only chooses the format (extension) and names the file in errors; nothing is read from
 // disk. For callers that hold the bytes (fuzzers).
 TriMesh parseMeshBytes(std::string bytes, const std::filesystem::path& path);
+
+// parseMeshBytes for a file in `folder`: a .gltf may read its external buffers from inside it.
+TriMesh parseMeshBytesIn(std::string bytes, const std::filesystem::path& path,
+                         const std::filesystem::path& folder);
 
 // Saves atomically (temporary file + rename), then its "<file>.sha256" sidecar the same way.
 // Throws WriteError when either cannot be written (and leaves neither), Error for an unknown
@@ -51,7 +63,10 @@ void saveMesh(const TriMesh& mesh, const std::filesystem::path& path,
 void addMeshOutput(OutputSet& outputs, const TriMesh& mesh, const std::filesystem::path& path,
                    const SaveOptions& options = {});
 
-// True if the extension is one loadMesh/saveMesh understands (.obj .ply .off .drc).
+// True for .gltf and .glb (case-insensitive).
+bool isGltfPath(const std::filesystem::path& path);
+
+// True if the extension is one loadMesh/saveMesh understands (.obj .ply .off .drc .gltf .glb).
 bool isSupportedMeshExtension(const std::filesystem::path& path);
 
 }  // namespace proxyvis

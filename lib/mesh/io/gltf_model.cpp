@@ -1,0 +1,282 @@
+// Parsing a glTF document with tinygltf, behind the checks tinygltf does not make: GLB chunk
+// lengths, URIs that would leave the asset's folder, required extensions we cannot honour.
+#include "mesh/io/internal/tiny_gltf.h"
+
+#include <fmt/format.h>
+#include <cstring>
+#include <regex>
+#include <set>
+#include <system_error>
+
+#include "mesh/io/internal/gltf_io.h"
+#include "mesh/io/internal/printable.h"
+#include "util/error.h"
+#include "util/input_file.h"
+
+namespace proxyvis::detail {
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace {
+
+constexpr uint32_t kGlbMagic = 0x46546C67;  // "glTF"
+constexpr uint32_t kChunkJson = 0x4E4F534A;
+constexpr uint32_t kChunkBin = 0x004E4942;
+
+// Extensions that change what a loader must do with the geometry and that we implement, and
+// those that only concern what we ignore (materials, textures, visibility, LODs).
+const std::set<std::string> kSupportedRequired = {
+    "KHR_draco_mesh_compression", "KHR_mesh_quantization", "EXT_meshopt_compression",
+    "KHR_materials_emissive_strength", "KHR_node_visibility", "KHR_texture_transform",
+    "KHR_materials_unlit"};
+
+struct GlbChunks {
+  std::string json;
+  std::string bin;
+  bool has_bin = false;
+};
+
+uint32_t readU32(const std::string& bytes, size_t at) {
+  uint32_t v;
+  std::memcpy(&v, bytes.data() + at, 4);
+  return v;  // glTF is little-endian, as every machine we build for
+}
+
+GlbChunks splitGlb(const std::string& bytes, const std::string& file) {
+  if (bytes.size() < 20)
+    throw Error(file, "truncated GLB", fmt::format("{} bytes, a GLB header alone is 20", bytes.size()),
+                "the file was not written completely; re-export it");
+  if (readU32(bytes, 0) != kGlbMagic)
+    throw Error(file, "not a GLB file", "it does not start with the magic 'glTF'",
+                "a JSON glTF file must be named .gltf");
+  if (readU32(bytes, 4) != 2)
+    throw Error(file, fmt::format("GLB version {}", readU32(bytes, 4)), "only glTF 2.0 is read",
+                "re-export as glTF 2.0");
+  const uint64_t total = readU32(bytes, 8);
+  if (total != bytes.size())
+    throw Error(file, "GLB header length lies",
+                fmt::format("the header says {} bytes, the file has {}", total, bytes.size()),
+                total > bytes.size() ? "the file is truncated; re-export it"
+                                     : "the file is corrupt; re-export it");
+  GlbChunks chunks;
+  size_t at = 12;
+  for (int index = 0; at < bytes.size(); ++index) {
+    if (bytes.size() - at < 8)
+      throw Error(file, fmt::format("GLB chunk {} header is truncated", index),
+                  fmt::format("{} bytes left at offset {}", bytes.size() - at, at),
+                  "the file is corrupt; re-export it");
+    const uint64_t length = readU32(bytes, at);
+    const uint32_t type = readU32(bytes, at + 4);
+    if (length > bytes.size() - at - 8)
+      throw Error(file, fmt::format("GLB chunk {} length lies", index),
+                  fmt::format("it claims {} bytes, {} are left", length, bytes.size() - at - 8),
+                  "the file is truncated or corrupt; re-export it");
+    std::string data = bytes.substr(at + 8, length);
+    if (index == 0) {
+      if (type != kChunkJson)
+        throw Error(file, "GLB chunk 0 is not JSON", "the first chunk must hold the document",
+                    "the file is corrupt; re-export it");
+      chunks.json = std::move(data);
+    } else if (index == 1 && type == kChunkBin) {
+      chunks.bin = std::move(data);
+      chunks.has_bin = true;
+    }  // other chunks are to be ignored (glTF 2.0, 4.4.3)
+    at += 8 + length;
+  }
+  if (chunks.json.empty())
+    throw Error(file, "GLB has no JSON chunk", "the file holds only its header",
+                "the file is corrupt; re-export it");
+  return chunks;
+}
+
+// A GLB of `json` and `bin` (padded as the format wants), for tinygltf.
+std::string joinGlb(const std::string& json_text, const GlbChunks& chunks) {
+  auto chunk = [](std::string data, uint32_t type, char pad) {
+    while (data.size() % 4) data.push_back(pad);
+    std::string out(8, '\0');
+    const uint32_t length = uint32_t(data.size());
+    std::memcpy(out.data(), &length, 4);
+    std::memcpy(out.data() + 4, &type, 4);
+    return out + data;
+  };
+  std::string body = chunk(json_text, kChunkJson, ' ');
+  if (chunks.has_bin) body += chunk(chunks.bin, kChunkBin, '\0');
+  std::string header(12, '\0');
+  const uint32_t version = 2, length = uint32_t(12 + body.size());
+  std::memcpy(header.data(), &kGlbMagic, 4);
+  std::memcpy(header.data() + 4, &version, 4);
+  std::memcpy(header.data() + 8, &length, 4);
+  return header + body;
+}
+
+std::string percentDecoded(const std::string& uri) {
+  std::string out;
+  for (size_t i = 0; i < uri.size(); ++i) {
+    if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(uint8_t(uri[i + 1])) &&
+        std::isxdigit(uint8_t(uri[i + 2]))) {
+      out.push_back(char(std::stoi(uri.substr(i + 1, 2), nullptr, 16)));
+      i += 2;
+    } else {
+      out.push_back(uri[i]);
+    }
+  }
+  return out;
+}
+
+// Why `uri` may not be read (empty when it may): only relative paths inside the asset's folder
+// and data: URIs are.
+std::string uriRefusal(const std::string& uri) {
+  if (uri.rfind("data:", 0) == 0) return {};
+  static const std::regex scheme("^[A-Za-z][A-Za-z0-9+.-]*:");
+  if (std::regex_search(uri, scheme)) return "it names a URI scheme (only data: and relative paths are read)";
+  const std::string path = percentDecoded(uri);
+  if (path.empty()) return {};
+  if (path.find('\0') != std::string::npos) return "it holds a NUL byte";
+  if (path[0] == '/' || path[0] == '\\') return "it is an absolute path";
+  size_t begin = 0;
+  while (begin <= path.size()) {
+    const size_t end = path.find_first_of("/\\", begin);
+    const std::string part = path.substr(begin, end == std::string::npos ? end : end - begin);
+    if (part == "..") return "it climbs out of the asset's folder with '..'";
+    if (end == std::string::npos) break;
+    begin = end + 1;
+  }
+  return {};
+}
+
+// The checks on the document itself; returns the JSON to hand to tinygltf (meshopt fallback
+// buffers, which hold no data, get an empty data: URI so that tinygltf does not look for them).
+std::string checkedDocument(const std::string& text, const std::string& file, bool* changed) {
+  json doc = json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (doc.is_discarded() || !doc.is_object())
+    throw Error(file, "the glTF JSON does not parse",
+                "'" + printableExcerpt(text, 40) + "...' is not a JSON object",
+                "the file is corrupt; re-export it");
+  const json required = doc.value("extensionsRequired", json::array());
+  if (!required.is_array()) throw Error(file, "extensionsRequired is not an array", "", "fix the file");
+  for (size_t i = 0; i < required.size(); ++i) {
+    const std::string name = required[i].is_string() ? required[i].get<std::string>() : "?";
+    if (!kSupportedRequired.count(name))
+      throw Error(file, fmt::format("extensionsRequired[{}] '{}' is not supported", i, printableText(name)),
+                  "the file cannot be read correctly without it",
+                  "re-export without it (proxyvis reads Draco, meshopt and quantized meshes)");
+  }
+  for (const char* array : {"buffers", "images"}) {
+    const auto it = doc.find(array);
+    if (it == doc.end() || !it->is_array()) continue;
+    for (size_t i = 0; i < it->size(); ++i) {
+      const json& item = (*it)[i];
+      if (!item.is_object() || !item.contains("uri") || !item["uri"].is_string()) continue;
+      const std::string uri = item["uri"].get<std::string>();
+      const std::string why = uriRefusal(uri);
+      if (!why.empty())
+        throw Error(file, fmt::format("{}[{}].uri '{}' leaves the asset's folder", array, i,
+                                      printableExcerpt(uri)),
+                    why, "keep buffers beside the .gltf file or inside it");
+    }
+  }
+  *changed = false;
+  if (doc.contains("buffers") && doc["buffers"].is_array()) {
+    for (json& buffer : doc["buffers"]) {
+      if (!buffer.is_object() || buffer.contains("uri")) continue;
+      const json ext = buffer.value("extensions", json::object());
+      if (ext.is_object() && ext.contains("EXT_meshopt_compression")) {
+        buffer["uri"] = "data:application/octet-stream;base64,";
+        buffer["byteLength"] = 0;
+        *changed = true;
+      }
+    }
+  }
+  return *changed ? doc.dump() : text;
+}
+
+struct FolderGuard {
+  fs::path folder;  // canonical; empty: nothing may be read
+};
+
+// Inside the guard's folder after resolving links ("never read outside it").
+bool insideFolder(const FolderGuard& guard, const std::string& path) {
+  if (guard.folder.empty()) return false;
+  std::error_code ec;
+  const fs::path real = fs::weakly_canonical(path, ec);
+  if (ec) return false;
+  const auto [folder_end, real_end] =
+      std::mismatch(guard.folder.begin(), guard.folder.end(), real.begin(), real.end());
+  return folder_end == guard.folder.end();
+}
+
+bool guardedFileExists(const std::string& path, void* user) {
+  std::error_code ec;
+  return insideFolder(*static_cast<FolderGuard*>(user), path) && fs::is_regular_file(path, ec);
+}
+
+std::string unexpandedPath(const std::string& path, void*) { return path; }  // no wordexp
+
+bool guardedReadWholeFile(std::vector<unsigned char>* out, std::string* err,
+                          const std::string& path, void* user) {
+  if (!insideFolder(*static_cast<FolderGuard*>(user), path)) {
+    *err = "outside the asset's folder";
+    return false;
+  }
+  try {
+    const std::string bytes = readTextFile(path);
+    out->assign(bytes.begin(), bytes.end());
+    return true;
+  } catch (const Error& e) {
+    *err = e.what();
+    return false;
+  }
+}
+
+bool refuseWrite(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+  *err = "reading never writes";
+  return false;
+}
+
+// Textures are not used: accept every image without decoding it.
+bool ignoreImage(tinygltf::Image*, const int, std::string*, std::string*, int, int,
+                 const unsigned char*, int, void*) {
+  return true;
+}
+
+std::string firstLine(const std::string& text) {
+  const size_t end = text.find('\n');
+  return printableText(end == std::string::npos ? text : text.substr(0, end));
+}
+
+}  // namespace
+
+tinygltf::Model parseGltfModel(const std::string& bytes, bool binary, const fs::path& folder,
+                               const std::string& file) {
+  GlbChunks chunks;
+  if (binary) chunks = splitGlb(bytes, file);
+  bool changed = false;
+  const std::string document = checkedDocument(binary ? chunks.json : bytes, file, &changed);
+
+  FolderGuard guard;
+  std::error_code ec;
+  if (!folder.empty()) guard.folder = fs::weakly_canonical(folder, ec);
+  tinygltf::TinyGLTF loader;
+  loader.SetFsCallbacks(
+      {guardedFileExists, unexpandedPath, guardedReadWholeFile, refuseWrite, &guard});
+  loader.SetImageLoader(ignoreImage, nullptr);
+  tinygltf::Model model;
+  std::string err, warn;
+  const std::string base = guard.folder.empty() ? std::string("/nonexistent") : guard.folder.string();
+  bool ok = false;
+  if (binary) {
+    const std::string glb = changed ? joinGlb(document, chunks) : bytes;
+    ok = loader.LoadBinaryFromMemory(&model, &err, &warn,
+                                     reinterpret_cast<const unsigned char*>(glb.data()),
+                                     unsigned(glb.size()), base);
+  } else {
+    ok = loader.LoadASCIIFromString(&model, &err, &warn, document.data(), unsigned(document.size()),
+                                    base);
+  }
+  if (!ok)
+    throw Error(file, "glTF file cannot be read", firstLine(err.empty() ? warn : err),
+                "the file is corrupt or needs files that are missing; re-export it");
+  return model;
+}
+
+}  // namespace proxyvis::detail

@@ -1,0 +1,66 @@
+#include "proxies/pipeline/gltf_proof.h"
+
+#include "proxies/check/check_report.h"
+#include "proxies/check/pair_check.h"
+
+namespace proxyvis {
+using json = nlohmann::json;
+
+json gltfProofExtras(const json& report, const std::string& source_sha256,
+                     const std::string& program_build) {
+  json proof;
+  proof["class"] = report.value("class", json());
+  proof["kind"] = report.value("kind", json());
+  if (report.contains("class_reason")) proof["class_reason"] = report["class_reason"];
+  proof["verified"] = report.value("verified", false);
+  proof["method"] = report.value("method", json());
+  proof["budget"] = report.contains("parameters") ? report["parameters"].value("budget", json())
+                                                  : json();
+  proof["max_faces"] = report.contains("parameters")
+                           ? report["parameters"].value("max_faces", json())
+                           : json();
+  proof["faces"] = report.value("faces", json());
+  proof["volume_ratio"] = report.value("volume_ratio", json());
+  if (report.contains("hausdorff")) proof["hausdorff"] = report["hausdorff"];
+  if (report.contains("checks")) {
+    const json& checks = report["checks"];
+    proof["containment"] = checks.value("containment", json());
+    proof["containment_detail"] = checks.value("containment_detail", json());
+    proof["closed"] = checks.value("closed", json());
+    proof["manifold"] = checks.value("manifold", json());
+    proof["self_intersecting_pairs"] = checks.value("self_intersecting_pairs", json());
+  }
+  proof["segments"] = nullptr;  // gltfSegmentEvidence, when the caller classified segments
+  proof["source_sha256"] = source_sha256;
+  proof["program_build"] = program_build;
+  return proof;
+}
+
+json gltfSegmentEvidence(const TriMesh& original, const TriMesh& proxy, uint64_t rays,
+                         uint64_t seed) {
+  PairCheckOptions options;
+  options.rays = rays;
+  options.seed = seed;
+  options.distance_samples = 1000;  // the report's own distances are the ones kept
+  options.quiet = true;
+  const json check = toJson(checkPair(original, proxy, options));
+  const json& intervals = check["intervals"];
+  return {{"distribution", "sphere"},
+          {"rays", rays},
+          {"seed", seed},
+          {"counts", check["counts"]},
+          {"HM_rate_upper_95", intervals["HM"].value("hi", json())},
+          {"MH_rate_upper_95", intervals["MH"].value("hi", json())},
+          {"sampled_class", check["sampled_class"]}};
+}
+
+std::string gltfProxyNodeName(const std::string& original, const json& report) {
+  const std::string cls = report.value("class", json()).is_string()
+                              ? report["class"].get<std::string>()
+                              : std::string("general");
+  if (cls == "inside") return original + "-occonly";
+  if (cls == "outside") return original + "-occludee";
+  return original + "-lod";
+}
+
+}  // namespace proxyvis

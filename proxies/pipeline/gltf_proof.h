@@ -1,0 +1,28 @@
+#pragma once
+// What a proxy written as glTF carries about itself: its node's name (following the engines'
+// conventions where one exists) and the proof in the node's extras (docs/gltf.md).
+#include <nlohmann/json.hpp>
+#include <cstdint>
+#include <string>
+
+#include "mesh/tri_mesh.h"
+
+namespace proxyvis {
+
+// extras.proxyvis of a proxy's node, from proxy-gen's report: class, kind, method, budget, faces,
+// volume ratio, Hausdorff distances with their unit, the exact containment verdict, the input's
+// SHA-256 and the program's build. `report` is proxy-gen's (proxies/pipeline/proxy_pipeline.h).
+nlohmann::json gltfProofExtras(const nlohmann::json& report, const std::string& source_sha256,
+                               const std::string& program_build);
+
+// extras.proxyvis.segments: `rays` segments of the sphere distribution classified against both
+// meshes (seeded): the HH/HM/MH/MM counts and the 95 % upper bounds on the HM and MH rates.
+nlohmann::json gltfSegmentEvidence(const TriMesh& original, const TriMesh& proxy, uint64_t rays,
+                                   uint64_t seed);
+
+// The node name of a proxy of `original` with the written class in `report`: "NAME-occonly" for
+// inside proxies (Godot imports such nodes as occluders only), "NAME-occludee" for outside
+// proxies (bounding volumes), "NAME-lod" for general ones.
+std::string gltfProxyNodeName(const std::string& original, const nlohmann::json& report);
+
+}  // namespace proxyvis
