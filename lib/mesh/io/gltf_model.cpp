@@ -144,8 +144,22 @@ std::string uriRefusal(const std::string& uri) {
   return {};
 }
 
-// The checks on the document itself; returns the JSON to hand to tinygltf (meshopt fallback
-// buffers, which hold no data, get an empty data: URI so that tinygltf does not look for them).
+// Calls `f` on every object of the array `key` of `parent` (when both are what they should be).
+template <typename F>
+void forEachObject(json& parent, const char* key, F&& f) {
+  if (!parent.is_object() || !parent.contains(key) || !parent[key].is_array()) return;
+  for (json& item : parent[key])
+    if (item.is_object()) f(item);
+}
+
+const json* extensionOf(const json& object, const char* name) {
+  const auto ext = object.find("extensions");
+  if (ext == object.end() || !ext->is_object()) return nullptr;
+  const auto it = ext->find(name);
+  return it == ext->end() ? nullptr : &*it;
+}
+
+// The checks on the document itself; returns the JSON to hand to tinygltf.
 std::string checkedDocument(const std::string& text, const std::string& file, bool* changed) {
   json doc = json::parse(text, nullptr, /*allow_exceptions=*/false);
   if (doc.is_discarded() || !doc.is_object())
@@ -176,17 +190,24 @@ std::string checkedDocument(const std::string& text, const std::string& file, bo
     }
   }
   *changed = false;
-  if (doc.contains("buffers") && doc["buffers"].is_array()) {
-    for (json& buffer : doc["buffers"]) {
-      if (!buffer.is_object() || buffer.contains("uri")) continue;
-      const json ext = buffer.value("extensions", json::object());
-      if (ext.is_object() && ext.contains("EXT_meshopt_compression")) {
-        buffer["uri"] = "data:application/octet-stream;base64,";
-        buffer["byteLength"] = 0;
+  // What tinygltf would refuse although glTF allows it: a meshopt fallback buffer has no data
+  // (it gets 4 zero bytes), a Draco primitive's index accessor no buffer view (the indices come
+  // from the Draco data, so the reference is dropped).
+  forEachObject(doc, "buffers", [&](json& buffer) {
+    const json* ext = extensionOf(buffer, "EXT_meshopt_compression");
+    if (ext == nullptr || buffer.contains("uri")) return;
+    buffer["uri"] = "data:application/octet-stream;base64,AAAAAA==";
+    buffer["byteLength"] = 4;
+    *changed = true;
+  });
+  forEachObject(doc, "meshes", [&](json& mesh) {
+    forEachObject(mesh, "primitives", [&](json& primitive) {
+      if (extensionOf(primitive, "KHR_draco_mesh_compression") && primitive.contains("indices")) {
+        primitive.erase("indices");
         *changed = true;
       }
-    }
-  }
+    });
+  });
   return *changed ? doc.dump() : text;
 }
 

@@ -35,8 +35,8 @@ struct SaveOptions {
   int draco_speed = 5;          // .drc only: encoder speed 0 (best) .. 10 (fastest)
   // .gltf/.glb only: the node's and mesh's name (default: the file's stem), its extras (the
   // proof of a proxy, docs/gltf.md) and whether KHR_node_visibility hides it.
-  std::string gltf_name;
-  nlohmann::json gltf_extras;
+  std::string gltf_name = {};
+  nlohmann::json gltf_extras = nullptr;
   bool gltf_hidden = false;
 };
 

@@ -1,0 +1,358 @@
+// The glTF loader on documents written here by hand (tests/mesh/gltf_builder.h): every index and
+// component type, strides, sparse accessors, quantized positions, strips and fans, node
+// transforms, Draco and meshopt compression, and the files it must refuse.
+#include <gtest/gtest.h>
+#include <meshoptimizer.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+#include "gltf_builder.h"
+#include "mesh/io/internal/draco_io.h"
+#include "mesh/io/mesh_io.h"
+#include "mesh_test_util.h"
+#include "util/error.h"
+
+namespace proxyvis::test {
+namespace {
+using json = nlohmann::json;
+
+constexpr int kByte = 5120, kUByte = 5121, kShort = 5122, kUShort = 5123, kUInt = 5125,
+              kFloat = 5126;
+
+// A unit right tetrahedron, outward-oriented (volume 1/6).
+const std::vector<float> kTetraPositions = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+const std::vector<uint32_t> kTetraIndices = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
+
+TriMesh parseGlb(const GltfBuilder& b) { return parseMeshBytes(b.glb(), "t.glb"); }
+
+std::string errorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+// A tetrahedron document with indices of component type `index_type`.
+GltfBuilder tetra(int index_type = kUInt) {
+  GltfBuilder b;
+  const int p = b.accessor(b.view(kTetraPositions), kFloat, 4, "VEC3");
+  int i = -1;
+  if (index_type == kUByte)
+    i = b.accessor(b.view(std::vector<uint8_t>(kTetraIndices.begin(), kTetraIndices.end())),
+                   kUByte, 12, "SCALAR");
+  else if (index_type == kUShort)
+    i = b.accessor(b.view(std::vector<uint16_t>(kTetraIndices.begin(), kTetraIndices.end())),
+                   kUShort, 12, "SCALAR");
+  else
+    i = b.accessor(b.view(kTetraIndices), kUInt, 12, "SCALAR");
+  b.root(b.node({{"mesh", b.mesh(p, i)}}));
+  return b;
+}
+
+TEST(GltfLoader, EveryIndexTypeGivesTheSameTetrahedron) {
+  for (int type : {kUByte, kUShort, kUInt}) {
+    const TriMesh m = parseGlb(tetra(type));
+    ASSERT_EQ(m.numVertices(), 4u) << type;
+    ASSERT_EQ(m.numTriangles(), 4u) << type;
+    EXPECT_NEAR(m.signedVolume(), 1.0 / 6.0, 1e-7) << type;
+    for (size_t k = 0; k < 12; ++k) EXPECT_EQ(m.triangles[k / 3][k % 3], kTetraIndices[k]);
+  }
+}
+
+TEST(GltfLoader, InterleavedStrideAndNoIndices) {
+  // Each position followed by 4 bytes of something else (stride 16); three vertices, no indices.
+  std::vector<float> interleaved = {0, 0, 0, 9, 1, 0, 0, 9, 0, 1, 0, 9};
+  GltfBuilder b;
+  const int p = b.accessor(b.view(interleaved, 16), kFloat, 3, "VEC3");
+  b.root(b.node({{"mesh", b.mesh(p)}}));
+  const TriMesh m = parseGlb(b);
+  ASSERT_EQ(m.numTriangles(), 1u);
+  EXPECT_EQ(m.vertices[1], Vec3f(1, 0, 0));
+  EXPECT_EQ(m.vertices[2], Vec3f(0, 1, 0));
+}
+
+// A strip and a fan over a square in z = 0: every triangle must face +z like the first.
+TEST(GltfLoader, StripsAndFansBecomeTriangleListsWithOneWinding) {
+  const std::vector<float> square = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};  // strip order
+  for (int mode : {5, 6}) {
+    GltfBuilder b;
+    const int p = b.accessor(b.view(square), kFloat, 4, "VEC3");
+    std::vector<uint16_t> idx = mode == 5 ? std::vector<uint16_t>{0, 1, 2, 3}
+                                          : std::vector<uint16_t>{0, 1, 3, 2};
+    const int i = b.accessor(b.view(idx), kUShort, 4, "SCALAR");
+    b.root(b.node({{"mesh", b.mesh(p, i, mode)}}));
+    const TriMesh m = parseGlb(b);
+    ASSERT_EQ(m.numTriangles(), 2u) << mode;
+    for (const Triangle& t : m.triangles) {
+      const Vec3d a(m.vertices[t[0]]), c1(m.vertices[t[1]]), c2(m.vertices[t[2]]);
+      EXPECT_GT(cross(c1 - a, c2 - a).z, 0) << "mode " << mode;
+    }
+  }
+}
+
+TEST(GltfLoader, PointsAndLinesAreRefusedNamingMeshAndPrimitive) {
+  for (int mode : {0, 1, 2, 3}) {
+    GltfBuilder b;
+    const int p = b.accessor(b.view(kTetraPositions), kFloat, 4, "VEC3");
+    b.root(b.node({{"mesh", b.mesh(p, -1, mode, "wires")}}));
+    const std::string e = errorOf([&] { parseGlb(b); });
+    EXPECT_NE(e.find("meshes[0].primitives[0] (mesh 'wires') draws"), std::string::npos) << e;
+  }
+}
+
+TEST(GltfLoader, SparseAccessorReplacesItsElements) {
+  GltfBuilder b = tetra();
+  // Vertex 3 moves from (0,0,1) to (0,0,2) through a sparse substitution.
+  const int idx = b.view(std::vector<uint16_t>{3});
+  const int val = b.view(std::vector<float>{0, 0, 2});
+  b.doc["accessors"][0]["sparse"] = {{"count", 1},
+                                     {"indices", {{"bufferView", idx}, {"componentType", kUShort}}},
+                                     {"values", {{"bufferView", val}}}};
+  const TriMesh m = parseGlb(b);
+  EXPECT_EQ(m.vertices[3], Vec3f(0, 0, 2));
+  EXPECT_NEAR(m.signedVolume(), 2.0 / 6.0, 1e-7);
+}
+
+TEST(GltfLoader, QuantizedPositionsAreDequantized) {
+  // KHR_mesh_quantization: normalized shorts and unsigned bytes, scaled back by the node.
+  for (int type : {kShort, kUByte, kByte, kUShort}) {
+    GltfBuilder b;
+    b.doc["extensionsUsed"] = {"KHR_mesh_quantization"};
+    b.doc["extensionsRequired"] = {"KHR_mesh_quantization"};
+    const double unit = type == kShort ? 32767 : type == kUByte ? 255 : type == kByte ? 127 : 65535;
+    std::string bytes;
+    for (float f : kTetraPositions) {
+      const long q = std::lround(f * unit);
+      if (type == kShort || type == kUShort) {
+        const uint16_t v = uint16_t(q);
+        bytes.append(reinterpret_cast<const char*>(&v), 2);
+      } else {
+        bytes.push_back(char(q));
+      }
+      if (bytes.size() % ((type == kShort || type == kUShort) ? 8 : 4) == ((type == kShort || type == kUShort) ? 6 : 3))
+        bytes.append((type == kShort || type == kUShort) ? 2 : 1, '\0');  // 4-byte aligned vertices
+    }
+    const int stride = (type == kShort || type == kUShort) ? 8 : 4;
+    const int p = b.accessor(b.view(bytes, stride), type, 4, "VEC3", /*normalized=*/true);
+    const int i = b.accessor(b.view(kTetraIndices), kUInt, 12, "SCALAR");
+    b.root(b.node({{"mesh", b.mesh(p, i)}, {"scale", {2.0, 2.0, 2.0}}}));
+    const TriMesh m = parseGlb(b);
+    EXPECT_EQ(m.vertices[1], Vec3f(2, 0, 0)) << type;
+    EXPECT_NEAR(m.signedVolume(), 8.0 / 6.0, 1e-6) << type;
+  }
+}
+
+TEST(GltfLoader, NodeTransformsComposeFromTheRoot) {
+  GltfBuilder b = tetra();
+  // Parent: translate by (10, 0, 0); child: rotate 90 degrees about z, then scale 2 (T * R * S).
+  b.doc["nodes"][0] = {{"mesh", 0},
+                       {"rotation", {0.0, 0.0, std::sqrt(0.5), std::sqrt(0.5)}},
+                       {"scale", {2.0, 2.0, 2.0}}};
+  b.doc["scenes"][0]["nodes"] = json::array();
+  const int parent = b.node({{"translation", {10.0, 0.0, 0.0}}, {"children", {0}}});
+  b.root(parent);
+  TriMesh m = parseGlb(b);
+  // (1,0,0) -> scale (2,0,0) -> rotate (0,2,0) -> translate (10,2,0).
+  EXPECT_NEAR(m.vertices[1].x, 10, 1e-5);
+  EXPECT_NEAR(m.vertices[1].y, 2, 1e-5);
+  EXPECT_NEAR(m.signedVolume(), 8.0 / 6.0, 1e-5);
+  // The same as a matrix (column-major), and a mirror: winding turned back, volume positive.
+  b.doc["nodes"][1] = {{"matrix", {-1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 5, 0, 0, 1}},
+                       {"children", {0}}};
+  b.doc["nodes"][0] = {{"mesh", 0}};
+  m = parseGlb(b);
+  EXPECT_EQ(m.vertices[1], Vec3f(4, 0, 0));
+  EXPECT_NEAR(m.signedVolume(), 1.0 / 6.0, 1e-6);
+}
+
+TEST(GltfLoader, AFileWithoutNodesGivesEveryMesh) {
+  GltfBuilder b = tetra();
+  b.doc.erase("nodes");
+  b.doc.erase("scenes");
+  b.doc.erase("scene");
+  EXPECT_EQ(parseGlb(b).numTriangles(), 4u);
+}
+
+TEST(GltfLoader, MeshoptCompressedViewsDecodeExactly) {
+  // EXT_meshopt_compression: the data lives in buffer 0, buffer 1 is the data-less fallback.
+  std::vector<float> positions = kTetraPositions;
+  std::string vtx(meshopt_encodeVertexBufferBound(4, 12), '\0');
+  vtx.resize(meshopt_encodeVertexBuffer(reinterpret_cast<unsigned char*>(vtx.data()), vtx.size(),
+                                        positions.data(), 4, 12));
+  std::string idx(meshopt_encodeIndexBufferBound(12, 4), '\0');
+  idx.resize(meshopt_encodeIndexBuffer(reinterpret_cast<unsigned char*>(idx.data()), idx.size(),
+                                       kTetraIndices.data(), 12));
+  GltfBuilder b;
+  b.doc["extensionsUsed"] = {"EXT_meshopt_compression"};
+  b.doc["extensionsRequired"] = {"EXT_meshopt_compression"};
+  b.doc["buffers"].push_back({{"byteLength", 96},
+                              {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}});
+  auto compressed = [&](const std::string& bytes, size_t stride, size_t count, const char* mode) {
+    const int v = b.view(bytes);
+    json& view = b.doc["bufferViews"][size_t(v)];
+    view["extensions"] = {{"EXT_meshopt_compression",
+                           {{"buffer", 0}, {"byteOffset", view["byteOffset"]},
+                            {"byteLength", bytes.size()}, {"byteStride", stride},
+                            {"count", count}, {"mode", mode}}}};
+    view["buffer"] = 1;
+    view["byteOffset"] = 0;
+    view["byteLength"] = stride * count;
+    if (std::string(mode) == "ATTRIBUTES") view["byteStride"] = stride;
+    return v;
+  };
+  const int p = b.accessor(compressed(vtx, 12, 4, "ATTRIBUTES"), kFloat, 4, "VEC3");
+  const int i = b.accessor(compressed(idx, 4, 12, "TRIANGLES"), kUInt, 12, "SCALAR");
+  b.root(b.node({{"mesh", b.mesh(p, i)}}));
+  const TriMesh m = parseGlb(b);
+  ASSERT_EQ(m.numTriangles(), 4u);
+  for (size_t k = 0; k < 4; ++k)
+    EXPECT_EQ(m.vertices[k], Vec3f(kTetraPositions[3 * k], kTetraPositions[3 * k + 1],
+                                   kTetraPositions[3 * k + 2]));
+  EXPECT_NEAR(m.signedVolume(), 1.0 / 6.0, 1e-7);
+  // A count that the compressed bytes cannot hold is refused before anything is allocated.
+  b.doc["bufferViews"][0]["extensions"]["EXT_meshopt_compression"]["count"] = 2000000000;
+  const std::string e = errorOf([&] { parseGlb(b); });
+  EXPECT_NE(e.find("elements of 12 bytes"), std::string::npos) << e;
+}
+
+TEST(GltfLoader, DracoPrimitiveDecodes) {
+  TriMesh cube = unitCube();
+  const std::string drc = detail::encodeDraco(cube, 0, 5, "cube.drc");
+  GltfBuilder b;
+  b.doc["extensionsUsed"] = {"KHR_draco_mesh_compression"};
+  b.doc["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+  const int view = b.view(drc);
+  const int p = b.accessor(-1, kFloat, cube.numVertices(), "VEC3");
+  const int i = b.accessor(-1, kUInt, cube.numTriangles() * 3, "SCALAR");
+  const int mesh = b.mesh(p, i);
+  b.doc["meshes"][size_t(mesh)]["primitives"][0]["extensions"] = {
+      {"KHR_draco_mesh_compression", {{"bufferView", view}, {"attributes", {{"POSITION", 0}}}}}};
+  b.root(b.node({{"mesh", mesh}}));
+  const TriMesh m = parseGlb(b);
+  EXPECT_EQ(m.numTriangles(), 12u);
+  EXPECT_NEAR(m.signedVolume(), 1.0, 1e-6);
+}
+
+TEST(GltfLoader, CorruptGlbContainersAreRefused) {
+  const std::string good = tetra().glb();
+  auto with = [&](size_t at, uint32_t value) {
+    std::string s = good;
+    std::memcpy(s.data() + at, &value, 4);
+    return s;
+  };
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {good.substr(0, 10), "truncated GLB"},
+      {good.substr(0, good.size() - 8), "GLB header length lies"},
+      {with(8, uint32_t(good.size() + 100)), "GLB header length lies"},
+      {with(12, 1u << 30), "GLB chunk 0 length lies"},
+      {with(16, 0x004E4942), "GLB chunk 0 is not JSON"},
+      {with(4, 1), "GLB version 1"},
+      {"{\"asset\":{\"version\":\"2.0\"}}", "not a GLB file"}};
+  for (const auto& [bytes, expected] : cases)
+    EXPECT_NE(errorOf([&] { parseMeshBytes(bytes, "c.glb"); }).find(expected), std::string::npos)
+        << expected;
+}
+
+TEST(GltfLoader, AccessorsAndIndicesOutsideTheirDataAreRefused) {
+  GltfBuilder b = tetra();
+  b.doc["accessors"][0]["count"] = 5;  // 60 bytes from a 48-byte view
+  EXPECT_NE(errorOf([&] { parseGlb(b); }).find("reaches past its buffer view"), std::string::npos);
+  b = tetra();
+  b.doc["bufferViews"][0]["byteLength"] = 4096;
+  EXPECT_NE(errorOf([&] { parseGlb(b); }).find("bufferViews[0] lies outside its buffer"),
+            std::string::npos);
+  b = tetra();
+  b.doc["accessors"][0].erase("bufferView");
+  b.doc["accessors"][0]["count"] = 2000000000;  // zeros that no byte of the file describes
+  EXPECT_NE(errorOf([&] { parseGlb(b); }).find("no data"), std::string::npos);
+  b = tetra(kUByte);
+  b.bin[48 + 5] = char(200);  // index 5 of the tetrahedron's index view
+  EXPECT_NE(errorOf([&] { parseGlb(b); }).find("indices[5] is 200"), std::string::npos);
+  b = tetra();
+  b.doc["accessors"][0]["type"] = "VEC2";
+  EXPECT_NE(errorOf([&] { parseGlb(b); }).find("has the wrong type"), std::string::npos);
+}
+
+TEST(GltfLoader, NodeCyclesAndSharedChildrenAreRefused) {
+  GltfBuilder b = tetra();
+  b.doc["nodes"][0]["children"] = {0};
+  EXPECT_NE(errorOf([&] { parseGlb(b); }).find("nodes[0] is reached twice"), std::string::npos);
+  b = tetra();
+  b.node({{"children", {0}}});
+  b.root(1);
+  EXPECT_NE(errorOf([&] { parseGlb(b); }).find("reached twice"), std::string::npos);
+}
+
+TEST(GltfLoader, UnsupportedRequiredExtensionIsNamed) {
+  GltfBuilder b = tetra();
+  b.doc["extensionsUsed"] = {"EXT_mesh_gpu_instancing"};
+  b.doc["extensionsRequired"] = {"EXT_mesh_gpu_instancing"};
+  EXPECT_NE(errorOf([&] { parseGlb(b); })
+                .find("extensionsRequired[0] 'EXT_mesh_gpu_instancing' is not supported"),
+            std::string::npos);
+}
+
+TEST(GltfLoader, ExternalBufferBesideTheFileIsRead) {
+  ScratchDir dir;
+  const GltfBuilder b = tetra();
+  writeBytes(dir.path() / "tetra data.bin", b.bin);
+  writeBytes(dir.path() / "t.gltf", b.gltf("tetra%20data.bin"));
+  EXPECT_EQ(loadMesh(dir.path() / "t.gltf").numTriangles(), 4u);
+  // Parsed from bytes alone there is no folder to read from.
+  EXPECT_NE(errorOf([&] { parseMeshBytes(b.gltf("tetra%20data.bin"), "t.gltf"); })
+                .find("cannot be read"),
+            std::string::npos);
+}
+
+TEST(GltfLoader, UrisThatLeaveTheFolderAreNeverRead) {
+  ScratchDir dir;
+  const GltfBuilder b = tetra();
+  std::filesystem::create_directories(dir.path() / "asset");
+  writeBytes(dir.path() / "secret.bin", b.bin);
+  const std::string abs = (dir.path() / "secret.bin").string();
+  for (const std::string& uri : {std::string("../secret.bin"), std::string("%2e%2e/secret.bin"),
+                                 abs, "file://" + abs, std::string("http://example.com/t.bin"),
+                                 std::string("sub\\..\\..\\secret.bin")}) {
+    writeBytes(dir.path() / "asset/t.gltf", b.gltf(uri));
+    const std::string e = errorOf([&] { loadMesh(dir.path() / "asset/t.gltf"); });
+    EXPECT_NE(e.find("buffers[0].uri"), std::string::npos) << uri << ": " << e;
+    EXPECT_NE(e.find("leaves the asset's folder"), std::string::npos) << uri << ": " << e;
+  }
+  // A link inside the folder that points out of it is not followed.
+  std::filesystem::create_symlink(dir.path() / "secret.bin", dir.path() / "asset/link.bin");
+  writeBytes(dir.path() / "asset/t.gltf", b.gltf("link.bin"));
+  EXPECT_NE(errorOf([&] { loadMesh(dir.path() / "asset/t.gltf"); }).find("cannot be read"),
+            std::string::npos);
+}
+
+TEST(GltfWriter, RoundTripKeepsEveryVertexAndTriangle) {
+  ScratchDir dir;
+  // A grid with more than 65535 vertices needs 32-bit indices; the cube fits 16 bits.
+  TriMesh grid;
+  const uint32_t n = 300;
+  for (uint32_t y = 0; y < n; ++y)
+    for (uint32_t x = 0; x < n; ++x) grid.vertices.push_back(Vec3f(float(x) * 0.1f, float(y) * 0.3f, float(x ^ y) * 1e-3f));
+  for (uint32_t y = 0; y + 1 < n; ++y)
+    for (uint32_t x = 0; x + 1 < n; ++x) {
+      const uint32_t v = y * n + x;
+      grid.triangles.push_back({v, v + 1, v + n});
+      grid.triangles.push_back({v + 1, v + n + 1, v + n});
+    }
+  for (const TriMesh& mesh : {unitCube(), grid})
+    for (const char* extension : {".glb", ".gltf", ".GLB"}) {
+      const std::string name = std::to_string(mesh.numVertices()) + extension;
+      saveMesh(mesh, dir.path() / name);
+      const TriMesh back = loadMesh(dir.path() / name);
+      ASSERT_EQ(back.numVertices(), mesh.numVertices()) << name;
+      ASSERT_EQ(back.numTriangles(), mesh.numTriangles()) << name;
+      EXPECT_TRUE(back.vertices == mesh.vertices) << name;
+      EXPECT_TRUE(back.triangles == mesh.triangles) << name;
+    }
+}
+
+}  // namespace
+}  // namespace proxyvis::test
