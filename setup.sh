@@ -4,7 +4,8 @@
 #   ./setup.sh build    install + configure + build (build/)
 #   ./setup.sh demo     install + build + the main job on the bundled dragon-plane scene:
 #                       proxy-gen -> proxy-check -> render-compare (MSE table + HTML report)
-#   ./setup.sh test     install + build + the whole test suite (ctest)
+#   ./setup.sh test     install (with the npm packages of tests/js) + build + the whole test
+#                       suite (ctest)
 #   ./setup.sh test --changed
 #                       install + build + only the tests of the areas whose files changed since
 #                       the last commit (PROXYVIS_CHANGED_BASE=REF: since REF); a quick check
@@ -55,6 +56,19 @@ install_pkgs() {
   export DEBIAN_FRONTEND=noninteractive
   $sudo apt-get update -qq
   $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+}
+
+# The npm packages the tests run (tests/js/package-lock.json: the Khronos glTF-Validator and the
+# glTF producers obj2gltf, gltf-pipeline, gltf-transform). Node.js comes from Debian (nodejs, npm)
+# when the machine has none. Skipped when node_modules is newer than the lock file.
+install_js_deps() {
+  command -v npm >/dev/null || install_pkgs nodejs npm
+  local stamp=tests/js/node_modules/.package-lock.json
+  if [ -f "$stamp" ] && [ "$stamp" -nt tests/js/package-lock.json ]; then
+    return
+  fi
+  echo "setup: npm ci in tests/js"
+  (cd tests/js && npm ci --no-audit --no-fund --loglevel=error)
 }
 
 # build [TARGET...]: configure, then build the targets given (default: everything, tests and
@@ -168,8 +182,8 @@ case "${1:-install}" in
   install) install_deps ;;
   build) install_deps; build ;;
   demo) install_deps; build proxy-gen proxy-check render-compare; demo ;;
-  test) install_deps; build; run_tests "${2:-}" ;;
+  test) install_deps; install_js_deps; build; run_tests "${2:-}" ;;
   fuzz) install_deps; install_pkgs "${FUZZ_PKGS[@]}"; fuzz_build ;;
-  test-sanitize) install_deps; build_sanitize ;;
+  test-sanitize) install_deps; install_js_deps; build_sanitize ;;
   *) echo "usage: $0 [install|build|demo|test|test-sanitize|fuzz]" >&2; exit 2 ;;
 esac

@@ -115,6 +115,39 @@ def draco_seeds(out, root, mesh_info):
         shutil.copy(root / "data/draco/bunny.drc", drc / "bunny.drc")
 
 
+def gltf_seeds(out, root, mesh_info):
+    """Small documents of every kind the loader reads; with mesh-info, the bundled small meshes
+    written as .glb and .gltf by it too."""
+    sys.path.insert(0, str(root / "tests/bad_inputs"))
+    from corpus_loaders import glb, tetra_gltf  # noqa: E402
+    import base64
+    doc, data = tetra_gltf()
+    for mode in (4, 5, 6):
+        d, _ = tetra_gltf(mode)
+        (out / "fuzz_glb" / f"tetra_mode{mode}.glb").write_bytes(glb(d, data))
+        embedded = json.loads(json.dumps(d))
+        embedded["buffers"][0]["uri"] = ("data:application/octet-stream;base64," +
+                                         base64.b64encode(data).decode())
+        (out / "fuzz_gltf" / f"tetra_mode{mode}.gltf").write_text(json.dumps(embedded))
+    nodes = json.loads(json.dumps(doc))
+    nodes["nodes"] = [{"children": [1], "translation": [1, 2, 3]},
+                      {"mesh": 0, "rotation": [0, 0, 0.7071, 0.7071], "scale": [2, 2, 2]}]
+    (out / "fuzz_glb" / "tetra_nodes.glb").write_bytes(glb(nodes, data))
+    sparse = json.loads(json.dumps(doc))
+    sparse["bufferViews"].append({"buffer": 0, "byteOffset": 0, "byteLength": 12})
+    sparse["accessors"][0]["sparse"] = {"count": 1,
+                                        "indices": {"bufferView": 1, "componentType": 5125},
+                                        "values": {"bufferView": 2}}
+    (out / "fuzz_glb" / "tetra_sparse.glb").write_bytes(glb(sparse, data))
+    if mesh_info:
+        for src in sorted((out / "fuzz_off").glob("*.off")):
+            for ext, target in ((".glb", "fuzz_glb"), (".gltf", "fuzz_gltf")):
+                subprocess.run([mesh_info, str(src), "--save", str(out / target / (src.stem + ext)),
+                                "--quiet"], check=True, stdout=subprocess.DEVNULL)
+        for sidecar in list((out / "fuzz_glb").glob("*.sha256")) + list((out / "fuzz_gltf").glob("*.sha256")):
+            sidecar.unlink()
+
+
 PLACEHOLDERS = {".obj": "a.obj", ".ply": "b.ply", ".off": "c.off", ".drc": "d.drc"}
 
 
@@ -161,11 +194,12 @@ def main() -> int:
     mesh_info = sys.argv[3] if len(sys.argv) > 3 else None
     if out.exists():
         shutil.rmtree(out)
-    for t in ("fuzz_ply", "fuzz_obj", "fuzz_off", "fuzz_draco", "fuzz_scene_json",
-              "fuzz_instance_list"):
+    for t in ("fuzz_ply", "fuzz_obj", "fuzz_off", "fuzz_draco", "fuzz_glb", "fuzz_gltf",
+              "fuzz_scene_json", "fuzz_instance_list"):
         (out / t).mkdir(parents=True)
     mesh_seeds(out, root)
     draco_seeds(out, root, mesh_info)
+    gltf_seeds(out, root, mesh_info)
     scene_seeds(out, root)
     for d in sorted(out.iterdir()):
         print(f"seeds: {d.name}: {sum(1 for _ in d.iterdir())} files")

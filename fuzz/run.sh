@@ -37,7 +37,7 @@ max_len_of() {
   case "$1" in
     fuzz_ply) echo 40000 ;;
     fuzz_draco) [ ${#mesh_info[@]} -gt 0 ] && echo 16384 || echo 100000 ;;
-    fuzz_obj | fuzz_off) echo 16384 ;;
+    fuzz_obj | fuzz_off | fuzz_glb | fuzz_gltf) echo 16384 ;;
     *) echo 8192 ;;
   esac
 }

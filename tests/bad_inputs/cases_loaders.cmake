@@ -59,3 +59,14 @@ bad_input_test(loaders_expect_sha256 mesh-info
   INPUTS ${L}/cube.off)
 bad_input_test(loaders_expect_sha256_malformed mesh-info "--expect-sha256 12ab ${L}/cube.off"
   REGEX "expect-sha256.*64 hex digits" INPUTS ${L}/cube.off)
+# glTF: broken containers, data outside its bounds, points, cycles, unsupported required
+# extensions and URIs that leave the asset's folder.
+loaders_case(gltf_truncated gltf_truncated.glb "GLB header length lies")
+loaders_case(gltf_chunk_lies gltf_chunk_lies.glb "GLB chunk 0 length lies")
+loaders_case(gltf_points gltf_points.glb "meshes\\[0\\].primitives\\[0\\] \\(mesh 'tetra'\\) draws points")
+loaders_case(gltf_accessor_past_view gltf_accessor_past_view.glb "accessors\\[0\\].*reaches past its buffer view")
+loaders_case(gltf_index_range gltf_index_range.glb "meshes\\[0\\].primitives\\[0\\].indices\\[5\\] is 77")
+loaders_case(gltf_cycle gltf_cycle.glb "nodes\\[0\\] is reached twice")
+loaders_case(gltf_required gltf_required.glb "extensionsRequired\\[0\\] 'KHR_materials_variants' is not supported")
+loaders_case(gltf_escape gltf_asset/escape.gltf "buffers\\[0\\].uri '../gltf_outside.bin' leaves the asset's folder")
+loaders_case(gltf_absolute gltf_asset/absolute.gltf "buffers\\[0\\].uri 'file://.*' leaves the asset's folder")

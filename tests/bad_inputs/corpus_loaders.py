@@ -2,6 +2,7 @@
 corrupted Draco files, sidecars that do not match or are not files, bytes that must not reach
 the terminal. Everything is written into the "loaders" folder of the corpus."""
 import hashlib
+import json
 import os
 import pathlib
 import struct
@@ -87,3 +88,66 @@ def build(out: pathlib.Path, data: pathlib.Path) -> None:
     os.symlink("/dev/zero", d / "dev_zero.off")
     os.mkfifo(d / "fifo.drc")
     os.mkfifo(d / "fifo.ply")
+
+    gltf_files(d)
+
+
+def glb(doc: dict, bin_chunk: bytes) -> bytes:
+    text = json.dumps(doc).encode()
+    text += b" " * (-len(text) % 4)
+    bin_chunk += b"\0" * (-len(bin_chunk) % 4)
+    body = struct.pack("<II", len(text), 0x4E4F534A) + text
+    body += struct.pack("<II", len(bin_chunk), 0x004E4942) + bin_chunk
+    return struct.pack("<III", 0x46546C67, 2, 12 + len(body)) + body
+
+
+def tetra_gltf(mode: int = 4) -> tuple:
+    """A tetrahedron document (positions then uint32 indices in buffer 0) and its bytes."""
+    positions = struct.pack("<12f", 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1)
+    indices = struct.pack("<12I", 0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3)
+    doc = {
+        "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}],
+        "meshes": [{"name": "tetra", "primitives": [
+            {"attributes": {"POSITION": 0}, "indices": 1, "mode": mode}]}],
+        "buffers": [{"byteLength": 96}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
+                        {"buffer": 0, "byteOffset": 48, "byteLength": 48}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3"},
+                      {"bufferView": 1, "componentType": 5125, "count": 12, "type": "SCALAR"}],
+    }
+    return doc, positions + indices
+
+
+def gltf_files(d: pathlib.Path) -> None:
+    """glTF and GLB files that must be refused: broken containers, data outside its bounds,
+    graphs that are not trees, URIs that leave the asset's folder."""
+    doc, data = tetra_gltf()
+    good = glb(doc, data)
+    (d / "gltf_truncated.glb").write_bytes(good[:-30])
+    lying = bytearray(good)
+    lying[12:16] = struct.pack("<I", 1 << 30)  # the JSON chunk claims 1 GB
+    (d / "gltf_chunk_lies.glb").write_bytes(bytes(lying))
+    (d / "gltf_points.glb").write_bytes(glb(tetra_gltf(mode=0)[0], data))
+    past = json.loads(json.dumps(doc))
+    past["accessors"][0]["count"] = 40000000  # 480 MB from a 48-byte view
+    (d / "gltf_accessor_past_view.glb").write_bytes(glb(past, data))
+    bad_index = bytearray(data)
+    bad_index[48 + 4 * 5:48 + 4 * 6] = struct.pack("<I", 77)
+    (d / "gltf_index_range.glb").write_bytes(glb(doc, bytes(bad_index)))
+    cycle = json.loads(json.dumps(doc))
+    cycle["nodes"] = [{"mesh": 0, "children": [1]}, {"children": [0]}]
+    (d / "gltf_cycle.glb").write_bytes(glb(cycle, data))
+    required = json.loads(json.dumps(doc))
+    required["extensionsUsed"] = required["extensionsRequired"] = ["KHR_materials_variants"]
+    (d / "gltf_required.glb").write_bytes(glb(required, data))
+    # A .gltf whose buffer is a file beside the asset's folder (reached with ../).
+    (d / "gltf_outside.bin").write_bytes(data)
+    asset = d / "gltf_asset"
+    asset.mkdir()
+    escape = json.loads(json.dumps(doc))
+    escape["buffers"][0]["uri"] = "../gltf_outside.bin"
+    (asset / "escape.gltf").write_text(json.dumps(escape))
+    absolute = json.loads(json.dumps(doc))
+    absolute["buffers"][0]["uri"] = "file://" + str((d / "gltf_outside.bin").resolve())
+    (asset / "absolute.gltf").write_text(json.dumps(absolute))

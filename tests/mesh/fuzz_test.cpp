@@ -107,7 +107,9 @@ INSTANTIATE_TEST_SUITE_P(Formats, Fuzz,
                                            std::make_pair(std::string("ply"), false),
                                            std::make_pair(std::string("obj"), false),
                                            std::make_pair(std::string("off"), false),
-                                           std::make_pair(std::string("drc"), true)),
+                                           std::make_pair(std::string("drc"), true),
+                                           std::make_pair(std::string("glb"), true),
+                                           std::make_pair(std::string("gltf"), false)),
                          [](const auto& info) {
                            return info.param.first + (info.param.second ? "_binary" : "_ascii");
                          });

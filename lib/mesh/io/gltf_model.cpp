@@ -27,6 +27,7 @@ constexpr uint32_t kChunkBin = 0x004E4942;
 // those that only concern what we ignore (materials, textures, visibility, LODs).
 const std::set<std::string> kSupportedRequired = {
     "KHR_draco_mesh_compression", "KHR_mesh_quantization", "EXT_meshopt_compression",
+    "EXT_mesh_gpu_instancing",
     "KHR_materials_emissive_strength", "KHR_node_visibility", "KHR_texture_transform",
     "KHR_materials_unlit"};
 

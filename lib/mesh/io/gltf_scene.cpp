@@ -30,6 +30,23 @@ Mat4 multiply(const Mat4& a, const Mat4& b) {
   return r;
 }
 
+Mat4 trsMatrix(const double* t, const double* r, const double* sc) {
+  Mat4 m = identity();
+  if (sc)
+    for (int i = 0; i < 3; ++i) m[i * 4 + i] = sc[i];
+  if (r) {
+    const double x = r[0], y = r[1], z = r[2], w = r[3];
+    const Mat4 rot = {1 - 2 * (y * y + z * z), 2 * (x * y + z * w), 2 * (x * z - y * w), 0,
+                      2 * (x * y - z * w), 1 - 2 * (x * x + z * z), 2 * (y * z + x * w), 0,
+                      2 * (x * z + y * w), 2 * (y * z - x * w), 1 - 2 * (x * x + y * y), 0,
+                      0, 0, 0, 1};
+    m = multiply(rot, m);
+  }
+  if (t)
+    for (int i = 0; i < 3; ++i) m[12 + i] = t[i];
+  return m;
+}
+
 // The node's local transform: its matrix, or T * R * S.
 Mat4 localTransform(const tinygltf::Node& node) {
   if (node.matrix.size() == 16) {
@@ -37,21 +54,44 @@ Mat4 localTransform(const tinygltf::Node& node) {
     std::copy(node.matrix.begin(), node.matrix.end(), m.begin());
     return m;
   }
-  Mat4 m = identity();
-  if (node.scale.size() == 3)
-    for (int i = 0; i < 3; ++i) m[i * 4 + i] = node.scale[i];
-  if (node.rotation.size() == 4) {
-    const double x = node.rotation[0], y = node.rotation[1], z = node.rotation[2],
-                 w = node.rotation[3];
-    const Mat4 r = {1 - 2 * (y * y + z * z), 2 * (x * y + z * w), 2 * (x * z - y * w), 0,
-                    2 * (x * y - z * w), 1 - 2 * (x * x + z * z), 2 * (y * z + x * w), 0,
-                    2 * (x * z + y * w), 2 * (y * z - x * w), 1 - 2 * (x * x + y * y), 0,
-                    0, 0, 0, 1};
-    m = multiply(r, m);
+  return trsMatrix(node.translation.size() == 3 ? node.translation.data() : nullptr,
+                   node.rotation.size() == 4 ? node.rotation.data() : nullptr,
+                   node.scale.size() == 3 ? node.scale.data() : nullptr);
+}
+
+// EXT_mesh_gpu_instancing: the node's mesh drawn once per instance, each with its own T * R * S
+// after the node's world transform. Empty when the node has no such extension.
+std::vector<Mat4> gpuInstances(const tinygltf::Node& node, int index, GltfAccessors& data,
+                               const std::string& file) {
+  const auto ext = node.extensions.find("EXT_mesh_gpu_instancing");
+  if (ext == node.extensions.end()) return {};
+  const std::string at = fmt::format("nodes[{}].extensions.EXT_mesh_gpu_instancing", index);
+  const tinygltf::Value& attributes = ext->second.Get("attributes");
+  std::vector<double> values[3];
+  const char* names[3] = {"TRANSLATION", "ROTATION", "SCALE"};
+  const int components[3] = {3, 4, 3};
+  size_t count = SIZE_MAX;
+  for (int k = 0; k < 3; ++k) {
+    if (!attributes.Has(names[k])) continue;
+    const tinygltf::Value& accessor = attributes.Get(names[k]);
+    values[k] = data.readValues(accessor.IsNumber() ? accessor.GetNumberAsInt() : -1,
+                                components[k], at + ".attributes." + names[k]);
+    const size_t n = values[k].size() / size_t(components[k]);
+    if (count != SIZE_MAX && n != count)
+      throw Error(file, at + " attributes differ in count",
+                  fmt::format("{} has {} instances, another {}", names[k], n, count),
+                  "the file is corrupt; re-export it");
+    count = n;
   }
-  if (node.translation.size() == 3)
-    for (int i = 0; i < 3; ++i) m[12 + i] = node.translation[i];
-  return m;
+  if (count == SIZE_MAX)
+    throw Error(file, at + " has no attributes", "instances need a translation, rotation or scale",
+                "the file is corrupt; re-export it");
+  std::vector<Mat4> out(count);
+  for (size_t i = 0; i < count; ++i)
+    out[i] = trsMatrix(values[0].empty() ? nullptr : &values[0][3 * i],
+                       values[1].empty() ? nullptr : &values[1][4 * i],
+                       values[2].empty() ? nullptr : &values[2][3 * i]);
+  return out;
 }
 
 double determinant3(const Mat4& m) {
@@ -66,7 +106,8 @@ struct Placement {
 
 // The (mesh, world transform) pairs of the default scene; every mesh once, untransformed, when
 // the file has no scene or no nodes.
-std::vector<Placement> placements(const tinygltf::Model& model, const std::string& file) {
+std::vector<Placement> placements(const tinygltf::Model& model, GltfAccessors& data,
+                                  const std::string& file) {
   std::vector<Placement> out;
   std::vector<int> roots;
   if (!model.scenes.empty()) {
@@ -103,7 +144,11 @@ std::vector<Placement> placements(const tinygltf::Model& model, const std::strin
                   "the file is corrupt; re-export it");
     const tinygltf::Node& node = model.nodes[size_t(f.node)];
     const Mat4 world = multiply(f.parent, localTransform(node));
-    if (node.mesh >= 0) out.push_back({node.mesh, world});
+    if (node.mesh >= 0) {
+      const std::vector<Mat4> instances = gpuInstances(node, f.node, data, file);
+      if (instances.empty()) out.push_back({node.mesh, world});
+      for (const Mat4& instance : instances) out.push_back({node.mesh, multiply(world, instance)});
+    }
     for (int c : node.children) stack.push_back({c, world});
   }
   return out;
@@ -177,8 +222,8 @@ void appendPrimitive(const tinygltf::Model& model, GltfAccessors& data, size_t m
 }  // namespace
 
 void gltfSceneToMesh(const tinygltf::Model& model, const std::string& file, TriMesh& out) {
-  const std::vector<Placement> placed = placements(model, file);
   GltfAccessors data(model, file);
+  const std::vector<Placement> placed = placements(model, data, file);
   std::vector<TriMesh> local(model.meshes.size());
   std::vector<bool> decoded(model.meshes.size(), false);
   size_t expanded = 0;

@@ -1,0 +1,167 @@
+#!/usr/bin/env python3
+"""glTF in and out against tools proxyvis did not write.
+
+gltf_tools.py BIN_DIR DATA_DIR JS_DIR WORK_DIR
+
+Checks, each against facts fixed outside the code under test:
+- every file proxyvis writes (mesh-info --save .glb/.gltf, proxy-gen -o .glb/.gltf for the three
+  kinds) passes the Khronos glTF-Validator with 0 errors and 0 warnings;
+- the class survives the file: proxy-check --expect KIND original proxy.glb exits 0, and the
+  proof in the node's extras says that class, the exact containment verdict of that kind, zero
+  HM' (outside) or MH' (inside) segments, and the input's SHA-256 as hashlib computes it;
+- files made by obj2gltf, gltf-pipeline -d (Draco), gltf-transform meshopt / quantize / instance
+  from the bundled meshes load as the same mesh as the OBJ they came from: triangle count, and
+  bounds and volume within the producer's quantization error.
+"""
+import hashlib
+import json
+import pathlib
+import shutil
+import struct
+import subprocess
+import sys
+
+FAILURES = []
+
+
+def check(ok: bool, what: str) -> None:
+    print(("ok   " if ok else "FAIL ") + what)
+    if not ok:
+        FAILURES.append(what)
+
+
+def run(cmd, **kw) -> subprocess.CompletedProcess:
+    return subprocess.run([str(c) for c in cmd], capture_output=True, text=True, **kw)
+
+
+def glb_json(path: pathlib.Path) -> dict:
+    data = path.read_bytes()
+    length = struct.unpack("<I", data[12:16])[0]
+    return json.loads(data[20:20 + length])
+
+
+def info(bin_dir: pathlib.Path, mesh: pathlib.Path, work: pathlib.Path) -> dict:
+    out = work / (mesh.name + ".info.json")
+    r = run([bin_dir / "mesh-info", mesh, "--json", out, "--quiet"])
+    if r.returncode != 0:
+        return {"error": r.stderr.strip()}
+    return json.loads(out.read_text())[0]
+
+
+def validate(js: pathlib.Path, files) -> None:
+    r = run(["node", js / "validate.mjs", *files])
+    for line in r.stdout.splitlines():
+        v = json.loads(line)
+        check(v["errors"] == 0 and v["warnings"] == 0,
+              f"validator: {pathlib.Path(v['file']).name}: {v['errors']} errors, "
+              f"{v['warnings']} warnings {v['messages']}")
+    check(r.returncode == 0 and len(r.stdout.splitlines()) == len(files),
+          f"validator ran on all {len(files)} files (exit {r.returncode}) {r.stderr.strip()[:200]}")
+
+
+def writers(bin_dir, data, js, work) -> None:
+    bunny = data / "bunny.off"
+    written = []
+    for ext in ("glb", "gltf"):
+        out = work / f"bunny_saved.{ext}"
+        r = run([bin_dir / "mesh-info", bunny, "--save", out, "--quiet"])
+        check(r.returncode == 0, f"mesh-info --save {out.name}: {r.stderr.strip()}")
+        written.append(out)
+    source_sha = hashlib.sha256(bunny.read_bytes()).hexdigest()
+    for kind, verdict, zero in (("outside", "contains", "HM"), ("inside", "contained", "MH"),
+                                ("general", None, None)):
+        for ext in ("glb", "gltf"):
+            out = work / f"bunny_{kind}.{ext}"
+            r = run([bin_dir / "proxy-gen", bunny, "--kind", kind, "-o", out, "--quiet",
+                     "--gltf-rays", "20000"])
+            check(r.returncode == 0, f"proxy-gen --kind {kind} -o {out.name}: {r.stderr.strip()}")
+            written.append(out)
+            r = run([bin_dir / "proxy-check", bunny, out, "--expect", kind, "--rays", "20000",
+                     "--quiet"])
+            check(r.returncode == 0, f"proxy-check --expect {kind} {out.name}: exit {r.returncode}")
+            doc = glb_json(out) if ext == "glb" else json.loads(out.read_text())
+            node = doc["nodes"][0]
+            proof = node.get("extras", {}).get("proxyvis", {})
+            check(proof.get("class") == kind, f"{out.name}: extras class {proof.get('class')}")
+            check(proof.get("source_sha256") == source_sha, f"{out.name}: extras source_sha256")
+            if verdict:
+                check(proof.get("containment") == verdict,
+                      f"{out.name}: extras containment {proof.get('containment')}")
+                counts = proof.get("segments", {}).get("counts", {})
+                check(counts.get(zero) == 0 and sum(counts.values()) == 20000,
+                      f"{out.name}: extras segment counts {counts} ({zero} must be 0)")
+            suffix = {"outside": "-occludee", "inside": "-occonly", "general": "-lod"}[kind]
+            check(node.get("name") == "bunny" + suffix, f"{out.name}: node name {node.get('name')}")
+    validate(js, written)
+
+
+def close(a: dict, b: dict, tolerance: float) -> bool:
+    """Same triangle count, bounds within `tolerance` of the diagonal, volume within 1e-3 when
+    closed."""
+    if "error" in a or "error" in b or a["faces"] != b["faces"]:
+        return False
+    lo_a, hi_a, lo_b, hi_b = a["bounds"]["min"], a["bounds"]["max"], b["bounds"]["min"], b["bounds"]["max"]
+    diag = sum((hi_a[i] - lo_a[i]) ** 2 for i in range(3)) ** 0.5
+    if any(abs(lo_a[i] - lo_b[i]) > tolerance * diag or abs(hi_a[i] - hi_b[i]) > tolerance * diag
+           for i in range(3)):
+        return False
+    if a["closed"] and b["closed"]:
+        return abs(a["volume"] - b["volume"]) <= 1e-3 * abs(a["volume"])
+    return True
+
+
+def producers(bin_dir, data, js, work) -> None:
+    tools = js / "node_modules" / ".bin"
+    sources = {"spot": data / "spot_triangulated.obj", "teapot": data / "teapot.obj"}
+    bunny_obj = work / "bunny.obj"
+    run([bin_dir / "mesh-info", data / "bunny.off", "--save", bunny_obj, "--quiet"])
+    sources["bunny"] = bunny_obj
+    for name, obj in sources.items():
+        base = info(bin_dir, obj, work)
+        plain = work / f"{name}_obj2gltf.glb"
+        made = {
+            plain: ([tools / "obj2gltf", "-i", obj, "-o", plain], 0.0),
+            work / f"{name}_draco.glb": ([tools / "gltf-pipeline", "-i", plain, "-o",
+                                          work / f"{name}_draco.glb", "-d"], 2e-4),
+            work / f"{name}_meshopt.glb": ([tools / "gltf-transform", "meshopt", plain,
+                                            work / f"{name}_meshopt.glb"], 2e-4),
+            work / f"{name}_quantize.glb": ([tools / "gltf-transform", "quantize", plain,
+                                             work / f"{name}_quantize.glb"], 2e-4),
+        }
+        for out, (cmd, tolerance) in made.items():
+            r = run(cmd)
+            check(r.returncode == 0 and out.exists(), f"{out.name} made: {r.stderr.strip()[:200]}")
+            got = info(bin_dir, out, work)
+            check(close(base, got, tolerance),
+                  f"{out.name} loads as {obj.name}: {got.get('faces')} vs {base.get('faces')} "
+                  f"faces, volume {got.get('volume')} vs {base.get('volume')} {got.get('error', '')}")
+    # Instancing: five copies placed by nodes, then the same as EXT_mesh_gpu_instancing.
+    copies, instanced = work / "copies.glb", work / "instanced.glb"
+    r = run(["node", js / "place_copies.mjs", work / "bunny_obj2gltf.glb", copies, 5])
+    check(r.returncode == 0, f"place_copies: {r.stderr.strip()[:200]}")
+    r = run([tools / "gltf-transform", "instance", copies, instanced])
+    check(r.returncode == 0, f"gltf-transform instance: {r.stderr.strip()[:200]}")
+    check("EXT_mesh_gpu_instancing" in glb_json(instanced).get("extensionsUsed", []),
+          "gltf-transform instance used EXT_mesh_gpu_instancing")
+    a, b = info(bin_dir, copies, work), info(bin_dir, instanced, work)
+    single = info(bin_dir, work / "bunny_obj2gltf.glb", work)
+    check(close(a, b, 1e-6) and a["faces"] == 5 * single["faces"],
+          f"instanced loads as the five copies: {b.get('faces')} faces, volume {b.get('volume')} "
+          f"vs {a.get('volume')} {b.get('error', '')}")
+
+
+def main() -> int:
+    bin_dir, data, js, work = (pathlib.Path(a) for a in sys.argv[1:5])
+    if not (js / "node_modules" / "gltf-validator").is_dir() or shutil.which("node") is None:
+        print(f"FAIL: node or {js}/node_modules missing: run ./setup.sh (it installs them)")
+        return 1
+    shutil.rmtree(work, ignore_errors=True)
+    work.mkdir(parents=True)
+    writers(bin_dir, data, js, work)
+    producers(bin_dir, data, js, work)
+    print(f"{len(FAILURES)} failures")
+    return 1 if FAILURES else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
