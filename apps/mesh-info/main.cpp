@@ -43,25 +43,24 @@ void checkExpectedSha256(const std::string& file, std::string expected) {
 
 int main(int argc, char** argv) {
   using namespace proxyvis;
-  CLI::App app{"mesh-info: load meshes (OBJ, PLY, OFF, Draco) and print their validation report",
+  CLI::App app{"mesh-info: load meshes (OBJ, PLY, OFF, Draco, glTF) and print their validation report",
                "mesh-info"};
   CommonOptions common;
   addCommonOptions(app, common);
   std::vector<std::string> files;
   ValidationOptions validation;
-  app.add_option("files", files, "mesh files (.obj .ply .off .drc)")->required();
+  app.add_option("files", files, "mesh files (.obj .ply .off .drc .gltf .glb)")->required();
   app.add_flag("--self-intersections", validation.self_intersections,
                "also count self-intersecting triangle pairs (CGAL; slow on large meshes)");
   std::string save_path;
   SaveOptions save;
   app.add_option("--save", save_path,
                  "write the (single) input mesh to this file (format by extension)");
-  app.add_option("--draco-bits", save.draco_quantization,
-                 "with --save *.drc: position quantization bits (0 = lossless)")
-      ->check(integerIn(0, 30));
+  std::string compress = "none";
+  addCompressionOptions(app, compress, save.draco_quantization, "(0 = lossless)");
   app.add_option("--draco-speed", save.draco_speed,
                  "with --save *.drc: encoder speed 0 (smallest) .. 10 (sequential connectivity)")
-      ->check(integerIn(0, 10));
+      ->check(integerIn(0, 10));  // with --save *.drc or --compress draco
   app.add_flag("!--ascii", save.binary, "with --save *.ply: write ASCII instead of binary");
   std::string expect_sha256;
   app.add_option("--expect-sha256", expect_sha256,
@@ -81,6 +80,7 @@ int main(int argc, char** argv) {
     if (!save_path.empty() && !isSupportedMeshExtension(save_path))
       throw Error(save_path, "unsupported output extension",
                   "mesh-info writes .obj, .ply, .off, .drc, .gltf or .glb");
+    save.gltf_compression = parseGltfCompression(compress, save_path);
     // The converted mesh and the JSON that describes it (with its hash) are written as one unit.
     OutputSet outputs(MissingFolders::kCreate);
     nlohmann::json all = nlohmann::json::array();

@@ -57,6 +57,8 @@ struct Args {
   std::string plan_dir;                   // --plan DIR: write the shards as a plan's units
   uint64_t plan_shards = 0;               // --shards N of the plan
   uint64_t gltf_rays = 100000;            // --gltf-rays: segments classified for a glTF's proof
+  std::string compress = "none";          // --compress (glTF output)
+  int draco_bits = 0;                     // --draco-bits (.drc, glTF Draco)
 };
 
 ProxyGenOptions toOptions(const Args& a, const CommonOptions& common) {
@@ -107,9 +109,10 @@ int runMesh(const Args& a, const CommonOptions& common) {
   progress.done();
   addLoadSeconds(result.report, load_seconds);
   OutputSet outputs(MissingFolders::kCreate);
-  // The file must hold the very mesh that was verified: Draco without quantization.
+  // The file holds the very mesh that was verified, or (Draco quantization) one proved again.
   SaveOptions save;
-  save.draco_quantization = 0;
+  save.draco_quantization = a.draco_bits;
+  save.gltf_compression = parseGltfCompression(a.compress, a.output);
   if (isGltfPath(a.output)) {
     save.gltf_name = gltfProxyNodeName(fs::path(a.input).stem().string(), result.report);
     json proof = gltfProofExtras(result.report, sha256OfFile(a.input), programBuildId());
@@ -117,7 +120,10 @@ int runMesh(const Args& a, const CommonOptions& common) {
       proof["segments"] = gltfSegmentEvidence(input, result.proxy, a.gltf_rays, options.seed);
     save.gltf_extras = {{"proxyvis", proof}};
   }
-  addMeshOutput(outputs, result.proxy, a.output, save);
+  const std::string bytes = encodeMesh(result.proxy, a.output, save);
+  if (movesVertices(a.output, save))
+    proveWrittenProxy(input, parseMeshBytes(bytes, a.output), result.report, a.output);
+  addEncodedMeshOutput(outputs, bytes, a.output);
   noteWrittenClass(result.report, a.input);
   result.report["output"] = a.output;
   result.report["output_sha256"] = outputs.sha256Of(a.output);
@@ -304,6 +310,9 @@ void addProxyOptions(CLI::App& app, Args& a) {
   app.add_option("-o,--output", a.output,
                  "Output mesh (mesh input): .ply, .obj, .off, .drc (lossless), or .glb/.gltf with "
                  "the proof in the node's extras (docs/gltf.md)");
+  addCompressionOptions(app, a.compress, a.draco_bits,
+                        "(0 = lossless, default; more moves vertices, so the written proxy is "
+                        "proved again against the input and nothing is written if it fails)");
   app.add_option("--gltf-rays", a.gltf_rays,
                  "glTF output: segments classified against original and proxy for the proof's "
                  "HM'/MH' counts and bounds (0 = none)")

@@ -94,6 +94,20 @@ CLI::Validator integerIn(uint64_t lo, uint64_t hi) {
       fmt::format("INT in [{}, {}]", lo, hi));
 }
 
+void addCompressionOptions(CLI::App& app, std::string& compress, int& draco_bits,
+                           const std::string& bits_note) {
+  app.add_option("--compress", compress,
+                 "glTF output: none, draco (KHR_draco_mesh_compression) or meshopt "
+                 "(EXT_meshopt_compression, exact)")
+      ->check(CLI::IsMember({"none", "draco", "meshopt"}))
+      ->capture_default_str();
+  app.add_option("--draco-bits", draco_bits,
+                 "Draco output (.drc, or --compress draco): position quantization bits " +
+                     bits_note)
+      ->check(integerIn(0, 30))
+      ->capture_default_str();
+}
+
 CLI::Validator positiveNumber() {
   return numberCheck(false);
 }

@@ -23,6 +23,12 @@ CLI::Validator numberIn(double lo, double hi);
 // alone turns "-1" into 2^64-1 and saturates 2^64 for unsigned options; this runs before it.
 CLI::Validator integerIn(uint64_t lo, uint64_t hi);
 
+// The output compression flags of the programs that write meshes: --compress none|draco|meshopt
+// (glTF outputs) and --draco-bits N (Draco quantization; `bits_note` says what the program does
+// with it). mesh/io/mesh_io.h's parseGltfCompression reads `compress`.
+void addCompressionOptions(CLI::App& app, std::string& compress, int& draco_bits,
+                           const std::string& bits_note);
+
 struct CommonOptions {
   uint64_t seed = 0;
   int threads = 0;  // 0 = all hardware threads

@@ -1,7 +1,10 @@
 #include "proxies/pipeline/gltf_proof.h"
 
 #include "proxies/check/check_report.h"
+#include "proxies/check/containment.h"
 #include "proxies/check/pair_check.h"
+#include "proxies/pipeline/written_class.h"
+#include "util/error.h"
 
 namespace proxyvis {
 using json = nlohmann::json;
@@ -52,6 +55,22 @@ json gltfSegmentEvidence(const TriMesh& original, const TriMesh& proxy, uint64_t
           {"HM_rate_upper_95", intervals["HM"].value("hi", json())},
           {"MH_rate_upper_95", intervals["MH"].value("hi", json())},
           {"sampled_class", check["sampled_class"]}};
+}
+
+void proveWrittenProxy(const TriMesh& original, const TriMesh& written, json& report,
+                       const std::string& file) {
+  const std::optional<ProxyClass> cls = writtenClass(report);
+  if (!cls || *cls == ProxyClass::kGeneral) return;
+  const ContainmentResult r = checkContainment(original, written);
+  const ContainmentVerdict expected =
+      *cls == ProxyClass::kOutside ? ContainmentVerdict::kContains : ContainmentVerdict::kContained;
+  report["written_check"] = {{"containment", containmentName(r.verdict)}, {"detail", r.detail}};
+  if (r.verdict != expected)
+    throw CheckFailed(file, "the quantized proxy is no longer " + std::string(proxyClassName(*cls)),
+                      std::string("after encoding: ") + containmentName(r.verdict) + " (" +
+                          r.detail + ")",
+                      "write it without quantization (--draco-bits 0) or with meshopt; nothing "
+                      "was written");
 }
 
 std::string gltfProxyNodeName(const std::string& original, const json& report) {

@@ -1,6 +1,7 @@
 #pragma once
 // What a proxy written as glTF carries about itself: its node's name (following the engines'
-// conventions where one exists) and the proof in the node's extras (docs/gltf.md).
+// conventions where one exists) and the proof in the node's extras (docs/gltf.md); and the proof
+// of a proxy that an encoder moved (quantization).
 #include <nlohmann/json.hpp>
 #include <cstdint>
 #include <string>
@@ -19,6 +20,13 @@ nlohmann::json gltfProofExtras(const nlohmann::json& report, const std::string& 
 // meshes (seeded): the HH/HM/MH/MM counts and the 95 % upper bounds on the HM and MH rates.
 nlohmann::json gltfSegmentEvidence(const TriMesh& original, const TriMesh& proxy, uint64_t rays,
                                    uint64_t seed);
+
+// A proxy is proved before it is encoded; an encoder that moves vertices (Draco quantization)
+// writes another mesh. Checks `written` (the file decoded again) exactly against `original` for
+// the class in `report` and records the verdict as report["written_check"]; throws CheckFailed
+// when the written mesh no longer has the class. A general proxy needs no such proof.
+void proveWrittenProxy(const TriMesh& original, const TriMesh& written, nlohmann::json& report,
+                       const std::string& file);
 
 // The node name of a proxy of `original` with the written class in `report`: "NAME-occonly" for
 // inside proxies (Godot imports such nodes as occluders only), "NAME-occludee" for outside

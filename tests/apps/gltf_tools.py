@@ -5,7 +5,12 @@ gltf_tools.py BIN_DIR DATA_DIR JS_DIR WORK_DIR
 
 Checks, each against facts fixed outside the code under test:
 - every file proxyvis writes (mesh-info --save .glb/.gltf, proxy-gen -o .glb/.gltf for the three
-  kinds) passes the Khronos glTF-Validator with 0 errors and 0 warnings;
+  kinds, plain and with --compress draco / meshopt) passes the Khronos glTF-Validator with 0
+  errors and 0 warnings, and so do the compressed files decoded by the official decoders
+  (decompress.mjs: the validator does not look inside compressed buffers);
+- a compressed proxy is the plain one: same triangle count and volume (meshopt and lossless
+  Draco keep every position; Draco reorders faces, so the volume's sum may differ in its last
+  bits);
 - the class survives the file: proxy-check --expect KIND original proxy.glb exits 0, and the
   proof in the node's extras says that class, the exact containment verdict of that kind, zero
   HM' (outside) or MH' (inside) segments, and the input's SHA-256 as hashlib computes it;
@@ -59,26 +64,43 @@ def validate(js: pathlib.Path, files) -> None:
           f"validator ran on all {len(files)} files (exit {r.returncode}) {r.stderr.strip()[:200]}")
 
 
+def decompressed(js, files, work):
+    """Each compressed file decoded into a plain one by decompress.mjs."""
+    out = []
+    for f in files:
+        plain = work / ("decoded_" + f.name)
+        r = run(["node", js / "decompress.mjs", f, plain])
+        check(r.returncode == 0, f"decompress {f.name}: {r.stderr.strip()[:200]}")
+        out.append(plain)
+    return out
+
+
+def proxy_output(bin_dir, bunny, kind, out, extra=()) -> bool:
+    r = run([bin_dir / "proxy-gen", bunny, "--kind", kind, "-o", out, "--quiet",
+             "--gltf-rays", "20000", *extra])
+    check(r.returncode == 0, f"proxy-gen --kind {kind} -o {out.name} {' '.join(extra)}: "
+          f"{r.stderr.strip()}")
+    r = run([bin_dir / "proxy-check", bunny, out, "--expect", kind, "--rays", "20000", "--quiet"])
+    check(r.returncode == 0, f"proxy-check --expect {kind} {out.name}: exit {r.returncode}")
+    return r.returncode == 0
+
+
 def writers(bin_dir, data, js, work) -> None:
     bunny = data / "bunny.off"
-    written = []
+    written, compressed = [], []
     for ext in ("glb", "gltf"):
-        out = work / f"bunny_saved.{ext}"
-        r = run([bin_dir / "mesh-info", bunny, "--save", out, "--quiet"])
-        check(r.returncode == 0, f"mesh-info --save {out.name}: {r.stderr.strip()}")
-        written.append(out)
+        for comp in ("none", "draco", "meshopt"):
+            out = work / f"bunny_saved_{comp}.{ext}"
+            r = run([bin_dir / "mesh-info", bunny, "--save", out, "--compress", comp, "--quiet"])
+            check(r.returncode == 0, f"mesh-info --save {out.name}: {r.stderr.strip()}")
+            (written if comp == "none" else compressed).append(out)
     source_sha = hashlib.sha256(bunny.read_bytes()).hexdigest()
     for kind, verdict, zero in (("outside", "contains", "HM"), ("inside", "contained", "MH"),
                                 ("general", None, None)):
         for ext in ("glb", "gltf"):
             out = work / f"bunny_{kind}.{ext}"
-            r = run([bin_dir / "proxy-gen", bunny, "--kind", kind, "-o", out, "--quiet",
-                     "--gltf-rays", "20000"])
-            check(r.returncode == 0, f"proxy-gen --kind {kind} -o {out.name}: {r.stderr.strip()}")
+            proxy_output(bin_dir, bunny, kind, out)
             written.append(out)
-            r = run([bin_dir / "proxy-check", bunny, out, "--expect", kind, "--rays", "20000",
-                     "--quiet"])
-            check(r.returncode == 0, f"proxy-check --expect {kind} {out.name}: exit {r.returncode}")
             doc = glb_json(out) if ext == "glb" else json.loads(out.read_text())
             node = doc["nodes"][0]
             proof = node.get("extras", {}).get("proxyvis", {})
@@ -92,7 +114,18 @@ def writers(bin_dir, data, js, work) -> None:
                       f"{out.name}: extras segment counts {counts} ({zero} must be 0)")
             suffix = {"outside": "-occludee", "inside": "-occonly", "general": "-lod"}[kind]
             check(node.get("name") == "bunny" + suffix, f"{out.name}: node name {node.get('name')}")
-    validate(js, written)
+        plain = info(bin_dir, work / f"bunny_{kind}.glb", work)
+        for comp in ("draco", "meshopt"):
+            out = work / f"bunny_{kind}_{comp}.glb"
+            proxy_output(bin_dir, bunny, kind, out, ("--compress", comp))
+            compressed.append(out)
+            got = info(bin_dir, out, work)
+            # Lossless: the same volume up to the order in which Draco sums the faces.
+            check(got.get("faces") == plain["faces"] and
+                  abs(got.get("volume", 0) - plain["volume"]) <= 1e-12 * plain["volume"],
+                  f"{out.name} is the plain proxy: {got.get('faces')} vs {plain['faces']} faces, "
+                  f"volume {got.get('volume')} vs {plain['volume']}")
+    validate(js, written + compressed + decompressed(js, compressed, work))
 
 
 def close(a: dict, b: dict, tolerance: float) -> bool:

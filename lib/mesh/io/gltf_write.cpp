@@ -1,12 +1,18 @@
-// Writing meshes as glTF 2.0 with tinygltf: one buffer, per mesh a position view and an index
-// view, one node per mesh carrying its name and extras.
-#include "mesh/io/internal/tiny_gltf.h"
+// Writing meshes as glTF 2.0 with tinygltf: one node and one mesh per input mesh, positions and
+// indices in buffer 0, plain or compressed (Draco, meshopt). What tinygltf 2.7 cannot serialize
+// (extensions of buffer views and buffers, a buffer without data) is set in the written JSON
+// afterwards, at the JSON pointers recorded while building.
+#include <meshoptimizer.h>
 
 #include <fmt/format.h>
+#include <algorithm>
 #include <cstring>
 #include <sstream>
 
+#include "mesh/io/internal/draco_io.h"
+#include "mesh/io/internal/glb_container.h"
 #include "mesh/io/internal/gltf_io.h"
+#include "mesh/io/internal/tiny_gltf.h"
 #include "util/error.h"
 
 namespace proxyvis::detail {
@@ -39,104 +45,228 @@ tinygltf::Value toValue(const json& j) {
   }
 }
 
-void appendPadded(std::vector<unsigned char>& buffer, const void* data, size_t size) {
-  const auto* bytes = static_cast<const unsigned char*>(data);
-  buffer.insert(buffer.end(), bytes, bytes + size);
-  while (buffer.size() % 4) buffer.push_back(0);
-}
+size_t padded(size_t n) { return (n + 3) / 4 * 4; }
 
-// Adds a buffer view over `size` bytes at the end of buffer 0 and returns its index.
-int addView(tinygltf::Model& model, const void* data, size_t size, int target) {
-  tinygltf::BufferView view;
-  view.buffer = 0;
-  view.byteOffset = model.buffers[0].data.size();
-  view.byteLength = size;
-  view.target = target;
-  appendPadded(model.buffers[0].data, data, size);
-  model.bufferViews.push_back(view);
-  return int(model.bufferViews.size() - 1);
-}
-
-int addPositions(tinygltf::Model& model, const TriMesh& mesh) {
-  tinygltf::Accessor a;
-  a.bufferView = addView(model, mesh.vertices.data(), mesh.vertices.size() * sizeof(Vec3f),
-                         TINYGLTF_TARGET_ARRAY_BUFFER);
-  a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
-  a.type = TINYGLTF_TYPE_VEC3;
-  a.count = mesh.vertices.size();
-  const Bounds3f b = mesh.bounds();  // of the referenced vertices; unreferenced ones are kept too
-  a.minValues = {b.lo.x, b.lo.y, b.lo.z};
-  a.maxValues = {b.hi.x, b.hi.y, b.hi.z};
-  for (const Vec3f& v : mesh.vertices)
-    for (int c = 0; c < 3; ++c) {
-      a.minValues[size_t(c)] = std::min(a.minValues[size_t(c)], double(v[c]));
-      a.maxValues[size_t(c)] = std::max(a.maxValues[size_t(c)], double(v[c]));
+class ModelBuilder {
+ public:
+  ModelBuilder(const GltfEncoding& encoding, const std::string& file)
+      : encoding_(encoding), file_(file) {
+    model_.asset.version = "2.0";
+    model_.asset.generator = "proxyvis " PROXYVIS_VERSION;
+    model_.buffers.emplace_back();
+    if (encoding.compression == GltfCompression::kMeshopt) {
+      model_.buffers.emplace_back();  // the fallback: byte counts only, set after writing
+      use("EXT_meshopt_compression");
     }
-  model.accessors.push_back(a);
-  return int(model.accessors.size() - 1);
-}
-
-int addIndices(tinygltf::Model& model, const TriMesh& mesh) {
-  tinygltf::Accessor a;
-  a.type = TINYGLTF_TYPE_SCALAR;
-  a.count = mesh.triangles.size() * 3;
-  const uint32_t* flat = mesh.triangles.front().data();
-  if (mesh.vertices.size() <= 65535) {
-    std::vector<uint16_t> narrow(flat, flat + a.count);
-    a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
-    a.bufferView = addView(model, narrow.data(), narrow.size() * 2,
-                           TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-  } else {
-    a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-    a.bufferView = addView(model, flat, a.count * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    if (encoding.compression == GltfCompression::kDraco) use("KHR_draco_mesh_compression");
   }
-  model.accessors.push_back(a);
-  return int(model.accessors.size() - 1);
-}
 
-}  // namespace
+  tinygltf::Model& model() { return model_; }
 
-std::string encodeGltf(const std::vector<GltfMeshOut>& meshes, bool binary,
-                       const json& asset_extras, const std::string& file) {
-  tinygltf::Model model;
-  model.asset.version = "2.0";
-  model.asset.generator = "proxyvis " PROXYVIS_VERSION;
-  if (!asset_extras.is_null()) model.asset.extras = toValue(asset_extras);
-  model.buffers.emplace_back();
-  tinygltf::Scene scene;
-  bool any_hidden = false;
-  for (const GltfMeshOut& out : meshes) {
-    if (out.mesh == nullptr || out.mesh->triangles.empty())
-      throw WriteError(file, "cannot write an empty mesh", "glTF primitives need triangles");
+  tinygltf::Primitive primitive(const TriMesh& mesh) {
     tinygltf::Primitive prim;
     prim.mode = TINYGLTF_MODE_TRIANGLES;
-    prim.attributes["POSITION"] = addPositions(model, *out.mesh);
-    prim.indices = addIndices(model, *out.mesh);
+    if (encoding_.compression == GltfCompression::kDraco) return dracoPrimitive(mesh);
+    const bool narrow = mesh.vertices.size() <= 65535;
+    const uint32_t* flat = mesh.triangles.front().data();
+    const size_t index_count = mesh.triangles.size() * 3;
+    int position_view = -1, index_view = -1;
+    if (encoding_.compression == GltfCompression::kMeshopt) {
+      position_view = meshoptView(mesh.vertices.data(), mesh.vertices.size(), sizeof(Vec3f),
+                                  "ATTRIBUTES", TINYGLTF_TARGET_ARRAY_BUFFER);
+      index_view = meshoptView(flat, index_count, narrow ? 2 : 4, "TRIANGLES",
+                               TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    } else {
+      position_view = view(mesh.vertices.data(), mesh.vertices.size() * sizeof(Vec3f),
+                           TINYGLTF_TARGET_ARRAY_BUFFER);
+      if (narrow) {
+        const std::vector<uint16_t> indices(flat, flat + index_count);
+        index_view = view(indices.data(), index_count * 2, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+      } else {
+        index_view = view(flat, index_count * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+      }
+    }
+    prim.attributes["POSITION"] = positions(position_view, mesh);
+    prim.indices = indices(index_view, index_count, narrow);
+    return prim;
+  }
+
+  void addMesh(const GltfMeshOut& out) {
+    if (out.mesh == nullptr || out.mesh->triangles.empty())
+      throw WriteError(file_, "cannot write an empty mesh", "glTF primitives need triangles");
     tinygltf::Mesh mesh;
     mesh.name = out.name;
-    mesh.primitives.push_back(prim);
-    model.meshes.push_back(mesh);
+    mesh.primitives.push_back(primitive(*out.mesh));
+    model_.meshes.push_back(mesh);
     tinygltf::Node node;
     node.name = out.name;
-    node.mesh = int(model.meshes.size() - 1);
+    node.mesh = int(model_.meshes.size() - 1);
     if (!out.extras.is_null()) node.extras = toValue(out.extras);
     if (out.hidden) {
       node.extensions["KHR_node_visibility"] =
           tinygltf::Value(tinygltf::Value::Object{{"visible", tinygltf::Value(false)}});
-      any_hidden = true;
+      use("KHR_node_visibility", /*required=*/false);
     }
-    model.nodes.push_back(node);
-    scene.nodes.push_back(int(model.nodes.size() - 1));
+    model_.nodes.push_back(node);
+    scene_.nodes.push_back(int(model_.nodes.size() - 1));
   }
-  if (any_hidden) model.extensionsUsed.push_back("KHR_node_visibility");
-  model.buffers[0].data.shrink_to_fit();
-  model.scenes.push_back(scene);
-  model.defaultScene = 0;
-  std::ostringstream stream(std::ios::out | std::ios::binary);
-  tinygltf::TinyGLTF writer;
-  if (!writer.WriteGltfSceneToStream(&model, stream, /*prettyPrint=*/!binary, binary))
-    throw WriteError(file, "cannot write output", "tinygltf's writer failed");
-  return std::move(stream).str();
+
+  // The file's bytes, with the recorded JSON set at its pointers.
+  std::string write() {
+    model_.scenes.push_back(scene_);
+    model_.defaultScene = 0;
+    if (encoding_.compression == GltfCompression::kMeshopt)
+      patches_.emplace_back("/buffers/1",
+                            json{{"byteLength", fallback_bytes_},
+                                 {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}});
+    std::ostringstream stream(std::ios::out | std::ios::binary);
+    tinygltf::TinyGLTF writer;
+    if (!writer.WriteGltfSceneToStream(&model_, stream, /*prettyPrint=*/!encoding_.binary,
+                                       encoding_.binary))
+      throw WriteError(file_, "cannot write output", "tinygltf's writer failed");
+    std::string bytes = std::move(stream).str();
+    if (patches_.empty()) return bytes;
+    GlbChunks chunks;
+    if (encoding_.binary) chunks = splitGlb(bytes, file_);
+    json doc = json::parse(encoding_.binary ? chunks.json : bytes);
+    for (const auto& [pointer, value] : patches_) doc[json::json_pointer(pointer)] = value;
+    return encoding_.binary ? joinGlb(doc.dump(), chunks) : doc.dump(2);
+  }
+
+ private:
+  void use(const std::string& extension, bool required = true) {
+    auto add = [&](std::vector<std::string>& list) {
+      if (std::find(list.begin(), list.end(), extension) == list.end()) list.push_back(extension);
+    };
+    add(model_.extensionsUsed);
+    if (required) add(model_.extensionsRequired);
+  }
+
+  // Appends `size` bytes to buffer 0 (4-byte aligned) and returns their offset.
+  size_t append(const void* data, size_t size) {
+    std::vector<unsigned char>& buffer = model_.buffers[0].data;
+    const size_t offset = buffer.size();
+    const auto* bytes = static_cast<const unsigned char*>(data);
+    buffer.insert(buffer.end(), bytes, bytes + size);
+    buffer.resize(padded(buffer.size()), 0);
+    return offset;
+  }
+
+  int view(const void* data, size_t size, int target) {
+    tinygltf::BufferView v;
+    v.buffer = 0;
+    v.byteOffset = append(data, size);
+    v.byteLength = size;
+    v.target = target;
+    model_.bufferViews.push_back(v);
+    return int(model_.bufferViews.size() - 1);
+  }
+
+  // A view of `count` elements of `stride` bytes in the fallback buffer, whose data is the
+  // meshopt encoding in buffer 0 (EXT_meshopt_compression). Indices come as 32-bit values and
+  // are written with `stride` 2 or 4.
+  int meshoptView(const void* data, size_t count, size_t stride, const char* mode, int target) {
+    std::vector<unsigned char> encoded;
+    if (std::strcmp(mode, "ATTRIBUTES") == 0) {
+      encoded.resize(meshopt_encodeVertexBufferBound(count, stride));
+      encoded.resize(
+          meshopt_encodeVertexBuffer(encoded.data(), encoded.size(), data, count, stride));
+    } else {
+      const auto* indices = static_cast<const unsigned int*>(data);
+      size_t vertices = 0;
+      for (size_t i = 0; i < count; ++i) vertices = std::max<size_t>(vertices, indices[i] + 1);
+      encoded.resize(meshopt_encodeIndexBufferBound(count, vertices));
+      encoded.resize(meshopt_encodeIndexBuffer(encoded.data(), encoded.size(), indices, count));
+    }
+    if (encoded.empty())
+      throw WriteError(file_, "meshopt cannot encode the mesh", "the encoder returned no bytes");
+    const size_t offset = append(encoded.data(), encoded.size());
+    tinygltf::BufferView v;
+    v.buffer = 1;
+    v.byteOffset = fallback_bytes_;
+    v.byteLength = count * stride;
+    if (target == TINYGLTF_TARGET_ARRAY_BUFFER) v.byteStride = stride;
+    v.target = target;
+    fallback_bytes_ += padded(count * stride);
+    model_.bufferViews.push_back(v);
+    const int index = int(model_.bufferViews.size() - 1);
+    patches_.emplace_back(fmt::format("/bufferViews/{}/extensions", index),
+                          json{{"EXT_meshopt_compression",
+                                {{"buffer", 0},
+                                 {"byteOffset", offset},
+                                 {"byteLength", encoded.size()},
+                                 {"byteStride", stride},
+                                 {"count", count},
+                                 {"mode", mode}}}});
+    return index;
+  }
+
+  tinygltf::Primitive dracoPrimitive(const TriMesh& mesh) {
+    const std::string bytes =
+        encodeDraco(mesh, encoding_.draco_bits, encoding_.draco_speed, file_);
+    // The accessors describe what a decoder gets: Draco may reorder and quantize points.
+    TriMesh decoded;
+    decodeDraco(bytes, file_, decoded);
+    tinygltf::Primitive prim;
+    prim.mode = TINYGLTF_MODE_TRIANGLES;
+    prim.attributes["POSITION"] = positions(-1, decoded);
+    prim.indices = indices(-1, decoded.triangles.size() * 3, decoded.vertices.size() <= 65535);
+    tinygltf::BufferView v;
+    v.buffer = 0;
+    v.byteOffset = append(bytes.data(), bytes.size());
+    v.byteLength = bytes.size();
+    model_.bufferViews.push_back(v);
+    prim.extensions["KHR_draco_mesh_compression"] = tinygltf::Value(tinygltf::Value::Object{
+        {"bufferView", tinygltf::Value(int(model_.bufferViews.size() - 1))},
+        {"attributes", tinygltf::Value(tinygltf::Value::Object{{"POSITION", tinygltf::Value(0)}})}});
+    return prim;
+  }
+
+  int positions(int view, const TriMesh& mesh) {
+    tinygltf::Accessor a;
+    a.bufferView = view;
+    a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+    a.type = TINYGLTF_TYPE_VEC3;
+    a.count = mesh.vertices.size();
+    // Over every vertex, referenced or not: the validator checks min/max against all of them.
+    a.minValues = {INFINITY, INFINITY, INFINITY};
+    a.maxValues = {-INFINITY, -INFINITY, -INFINITY};
+    for (const Vec3f& v : mesh.vertices)
+      for (size_t c = 0; c < 3; ++c) {
+        a.minValues[c] = std::min(a.minValues[c], double(v[int(c)]));
+        a.maxValues[c] = std::max(a.maxValues[c], double(v[int(c)]));
+      }
+    model_.accessors.push_back(a);
+    return int(model_.accessors.size() - 1);
+  }
+
+  int indices(int view, size_t count, bool narrow) {
+    tinygltf::Accessor a;
+    a.bufferView = view;
+    a.type = TINYGLTF_TYPE_SCALAR;
+    a.count = count;
+    a.componentType = narrow ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT
+                             : TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+    model_.accessors.push_back(a);
+    return int(model_.accessors.size() - 1);
+  }
+
+  GltfEncoding encoding_;
+  std::string file_;
+  tinygltf::Model model_;
+  tinygltf::Scene scene_;
+  size_t fallback_bytes_ = 0;
+  std::vector<std::pair<std::string, json>> patches_;
+};
+
+}  // namespace
+
+std::string encodeGltf(const std::vector<GltfMeshOut>& meshes, const GltfEncoding& encoding,
+                       const json& asset_extras, const std::string& file) {
+  ModelBuilder builder(encoding, file);
+  if (!asset_extras.is_null()) builder.model().asset.extras = toValue(asset_extras);
+  for (const GltfMeshOut& out : meshes) builder.addMesh(out);
+  return builder.write();
 }
 
 }  // namespace proxyvis::detail

@@ -105,32 +105,60 @@ TriMesh parseMeshBytesIn(std::string bytes, const fs::path& path, const fs::path
   return mesh;
 }
 
-void addMeshOutput(OutputSet& outputs, const TriMesh& mesh, const fs::path& path,
-                   const SaveOptions& options) {
+GltfCompression parseGltfCompression(const std::string& text, const fs::path& output) {
+  if (text == "none" || text.empty()) return GltfCompression::kNone;
+  if (!isGltfPath(output))
+    throw Error(output.string(), "--compress " + text + " needs a .gltf or .glb output",
+                "compression here is the glTF extensions' (Draco files are always compressed)",
+                "write .glb, or drop --compress");
+  if (text == "draco") return GltfCompression::kDraco;
+  if (text == "meshopt") return GltfCompression::kMeshopt;
+  throw Error("", "unknown --compress '" + text + "'", "", "use none, draco or meshopt");
+}
+
+bool movesVertices(const fs::path& path, const SaveOptions& options) {
+  const std::string format = formatOf(path);
+  const bool draco = format == "drc" || (isGltfPath(path) &&
+                                         options.gltf_compression == GltfCompression::kDraco);
+  return draco && options.draco_quantization > 0;
+}
+
+std::string encodeMesh(const TriMesh& mesh, const fs::path& path, const SaveOptions& options) {
   const std::string file = path.string();
   const std::string format = formatOf(path);
   if (format.empty()) throw unknownExtension(path);
-  std::string bytes;
-  if (format == "drc") {
-    bytes = detail::encodeDraco(mesh, options.draco_quantization, options.draco_speed, file);
-  } else if (format == "gltf" || format == "glb") {
+  if (format == "drc")
+    return detail::encodeDraco(mesh, options.draco_quantization, options.draco_speed, file);
+  if (format == "gltf" || format == "glb") {
     detail::GltfMeshOut out;
     out.mesh = &mesh;
     out.name = options.gltf_name.empty() ? path.stem().string() : options.gltf_name;
     out.extras = options.gltf_extras;
     out.hidden = options.gltf_hidden;
-    bytes = detail::encodeGltf({out}, format == "glb", nullptr, file);
-  } else {
-    std::ostringstream encoded(std::ios::out | std::ios::binary);
-    if (!detail::writeWithOpenMesh(mesh, format, encoded, options.binary))
-      throw WriteError(file, "cannot write output", "OpenMesh's " + format + " writer failed");
-    bytes = std::move(encoded).str();
+    detail::GltfEncoding encoding;
+    encoding.binary = format == "glb";
+    encoding.compression = options.gltf_compression;
+    encoding.draco_bits = options.draco_quantization;
+    encoding.draco_speed = options.draco_speed;
+    return detail::encodeGltf({out}, encoding, nullptr, file);
   }
+  std::ostringstream encoded(std::ios::out | std::ios::binary);
+  if (!detail::writeWithOpenMesh(mesh, format, encoded, options.binary))
+    throw WriteError(file, "cannot write output", "OpenMesh's " + format + " writer failed");
+  return std::move(encoded).str();
+}
+
+void addEncodedMeshOutput(OutputSet& outputs, const std::string& bytes, const fs::path& path) {
   // The sidecar is put in place after the mesh: a mesh beside a stale sidecar would be refused.
   // A stream or device target (/dev/null, a FIFO) is no file to verify later: no sidecar.
   outputs.addText(path, bytes);
   if (resolveOutputTarget(path).kind == OutputTarget::Kind::kFile)
     outputs.addText(detail::sidecarPathOf(path), detail::sidecarLine(path, bytes));
+}
+
+void addMeshOutput(OutputSet& outputs, const TriMesh& mesh, const fs::path& path,
+                   const SaveOptions& options) {
+  addEncodedMeshOutput(outputs, encodeMesh(mesh, path, options), path);
 }
 
 void saveMesh(const TriMesh& mesh, const fs::path& path, const SaveOptions& options) {

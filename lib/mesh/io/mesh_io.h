@@ -29,6 +29,10 @@ namespace proxyvis {
 
 class OutputSet;
 
+// How a .gltf/.glb stores its geometry: plain, KHR_draco_mesh_compression (positions quantized
+// to draco_quantization bits, 0 = lossless floats) or EXT_meshopt_compression (exact).
+enum class GltfCompression { kNone, kDraco, kMeshopt };
+
 struct SaveOptions {
   bool binary = true;           // PLY only: binary_little_endian (true) or ASCII
   int draco_quantization = 16;  // .drc only: position quantization bits (0 = lossless float)
@@ -38,6 +42,7 @@ struct SaveOptions {
   std::string gltf_name = {};
   nlohmann::json gltf_extras = nullptr;
   bool gltf_hidden = false;
+  GltfCompression gltf_compression = GltfCompression::kNone;
 };
 
 // Loads a triangle mesh; polygons are fan-triangulated. Vertex order is kept.
@@ -57,6 +62,23 @@ TriMesh parseMeshBytesIn(std::string bytes, const std::filesystem::path& path,
 // extension.
 void saveMesh(const TriMesh& mesh, const std::filesystem::path& path,
               const SaveOptions& options = {});
+
+// --compress none|draco|meshopt for a mesh written to `output`: anything but "none" needs a
+// .gltf/.glb output (Error naming the flag otherwise).
+GltfCompression parseGltfCompression(const std::string& text, const std::filesystem::path& output);
+
+// True when writing `mesh` to `path` with `options` changes its positions (Draco quantization,
+// in a .drc or glTF Draco): what is written must then be checked again.
+bool movesVertices(const std::filesystem::path& path, const SaveOptions& options);
+
+// The bytes saveMesh would write for `mesh` at `path` (format by extension). Throws Error for an
+// unknown extension, WriteError when an encoder refuses the mesh.
+std::string encodeMesh(const TriMesh& mesh, const std::filesystem::path& path,
+                       const SaveOptions& options = {});
+
+// Stages already encoded mesh bytes and their sidecar in `outputs`, as addMeshOutput does.
+void addEncodedMeshOutput(OutputSet& outputs, const std::string& bytes,
+                          const std::filesystem::path& path);
 
 // Stages `mesh` and its sidecar in `outputs` (saveMesh is this plus commit()), for programs that
 // write a mesh together with the report describing it as one unit.

@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "mesh/io/mesh_io.h"
 #include "mesh/tri_mesh.h"
 
 namespace tinygltf {
@@ -14,6 +15,8 @@ class Model;
 }
 
 namespace proxyvis::detail {
+
+using proxyvis::GltfCompression;
 
 // The parsed document. External buffers are read only from inside `folder` (never through `..`,
 // absolute paths, symbolic links that leave it or URI schemes); an empty `folder` allows none
@@ -39,9 +42,17 @@ struct GltfMeshOut {
   bool hidden = false;    // KHR_node_visibility: present in the file, not drawn
 };
 
-// Encodes the meshes as a GLB (binary) or a .gltf with its buffer as a data: URI, positions as
-// floats with their min/max, indices as the smallest unsigned type that holds them.
-std::string encodeGltf(const std::vector<GltfMeshOut>& meshes, bool binary,
+struct GltfEncoding {
+  bool binary = true;  // GLB; else .gltf with the buffer as a data: URI
+  GltfCompression compression = GltfCompression::kNone;
+  int draco_bits = 0;  // Draco position quantization (0: lossless floats)
+  int draco_speed = 5;
+};
+
+// Encodes the meshes, positions as floats with their min/max, indices as the smallest unsigned
+// type that holds them; compressed with KHR_draco_mesh_compression or EXT_meshopt_compression
+// (vertex and index codecs, no filters: exact) when asked.
+std::string encodeGltf(const std::vector<GltfMeshOut>& meshes, const GltfEncoding& encoding,
                        const nlohmann::json& asset_extras, const std::string& file);
 
 }  // namespace proxyvis::detail
