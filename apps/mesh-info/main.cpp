@@ -56,6 +56,8 @@ int main(int argc, char** argv) {
   SaveOptions save;
   app.add_option("--save", save_path,
                  "write the (single) input mesh to this file (format by extension)");
+  GltfPick pick;
+  addGltfPickOptions(app, pick.mesh, pick.node);
   std::string compress = "none";
   addCompressionOptions(app, compress, save.draco_quantization, "(0 = lossless)");
   app.add_option("--draco-speed", save.draco_speed,
@@ -85,7 +87,7 @@ int main(int argc, char** argv) {
     OutputSet outputs(MissingFolders::kCreate);
     nlohmann::json all = nlohmann::json::array();
     for (const std::string& file : files) {
-      const TriMesh mesh = loadMesh(file);
+      const TriMesh mesh = loadMesh(file, pick);
       nlohmann::json j;
       if (!save_path.empty()) {
         addMeshOutput(outputs, mesh, save_path, save);

@@ -59,6 +59,7 @@ struct Args {
   uint64_t gltf_rays = 100000;            // --gltf-rays: segments classified for a glTF's proof
   std::string compress = "none";          // --compress (glTF output)
   int draco_bits = 0;                     // --draco-bits (.drc, glTF Draco)
+  GltfPick pick;                          // --mesh / --node (glTF input)
 };
 
 ProxyGenOptions toOptions(const Args& a, const CommonOptions& common) {
@@ -101,7 +102,7 @@ int runMesh(const Args& a, const CommonOptions& common) {
   StageProgress progress(common.quiet, a.progress);
   progress.stage("load");
   const Stopwatch load_clock;
-  const TriMesh input = loadMesh(a.input);
+  const TriMesh input = loadMesh(a.input, a.pick);
   const double load_seconds = load_clock.seconds();
   ProxyGenOptions options = toOptions(a, common);
   options.on_stage = [&](const std::string& stage) { progress.stage(stage); };
@@ -116,6 +117,8 @@ int runMesh(const Args& a, const CommonOptions& common) {
   if (isGltfPath(a.output)) {
     save.gltf_name = gltfProxyNodeName(fs::path(a.input).stem().string(), result.report);
     json proof = gltfProofExtras(result.report, sha256OfFile(a.input), programBuildId());
+    if (!a.pick.mesh.empty()) proof["source_mesh"] = a.pick.mesh;
+    if (!a.pick.node.empty()) proof["source_node"] = a.pick.node;
     if (a.gltf_rays > 0)
       proof["segments"] = gltfSegmentEvidence(input, result.proxy, a.gltf_rays, options.seed);
     save.gltf_extras = {{"proxyvis", proof}};
@@ -310,6 +313,7 @@ void addProxyOptions(CLI::App& app, Args& a) {
   app.add_option("-o,--output", a.output,
                  "Output mesh (mesh input): .ply, .obj, .off, .drc (lossless), or .glb/.gltf with "
                  "the proof in the node's extras (docs/gltf.md)");
+  addGltfPickOptions(app, a.pick.mesh, a.pick.node);
   addCompressionOptions(app, a.compress, a.draco_bits,
                         "(0 = lossless, default; more moves vertices, so the written proxy is "
                         "proved again against the input and nothing is written if it fails)");

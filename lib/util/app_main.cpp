@@ -94,6 +94,16 @@ CLI::Validator integerIn(uint64_t lo, uint64_t hi) {
       fmt::format("INT in [{}, {}]", lo, hi));
 }
 
+void addGltfPickOptions(CLI::App& app, std::string& mesh, std::string& node) {
+  CLI::Option* m = app.add_option(
+      "--mesh", mesh, "glTF input: take only the mesh with this name, in its own coordinates");
+  CLI::Option* n = app.add_option(
+      "--node", node,
+      "glTF input: take only the node with this name and its children, in world coordinates "
+      "(default: the whole default scene)");
+  m->excludes(n);
+}
+
 void addCompressionOptions(CLI::App& app, std::string& compress, int& draco_bits,
                            const std::string& bits_note) {
   app.add_option("--compress", compress,

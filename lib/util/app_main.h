@@ -29,6 +29,9 @@ CLI::Validator integerIn(uint64_t lo, uint64_t hi);
 void addCompressionOptions(CLI::App& app, std::string& compress, int& draco_bits,
                            const std::string& bits_note);
 
+// --mesh NAME and --node NAME: what to take of a glTF input (mesh/io/mesh_io.h's GltfPick).
+void addGltfPickOptions(CLI::App& app, std::string& mesh, std::string& node);
+
 struct CommonOptions {
   uint64_t seed = 0;
   int threads = 0;  // 0 = all hardware threads

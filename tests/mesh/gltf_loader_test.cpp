@@ -185,6 +185,27 @@ TEST(GltfLoader, GpuInstancesArePlacedAfterTheirNode) {
   EXPECT_NEAR(m.signedVolume(), 9.0 / 6.0, 1e-6);
 }
 
+TEST(GltfLoader, PickOneNodeOrOneMeshByName) {
+  GltfBuilder b = tetra();
+  b.doc["meshes"][0]["name"] = "tetra";
+  b.doc["nodes"][0] = {{"name", "near"}, {"mesh", 0}, {"translation", {1.0, 0.0, 0.0}}};
+  b.root(b.node({{"name", "far"}, {"children", {2}}, {"translation", {0.0, 100.0, 0.0}}}));
+  b.node({{"name", "far child"}, {"mesh", 0}, {"scale", {2.0, 2.0, 2.0}}});
+  auto pick = [&](const GltfPick& p) { return parseMeshBytesIn(b.glb(), "t.glb", {}, p); };
+  EXPECT_EQ(pick({}).numTriangles(), 8u);
+  const TriMesh far = pick({"", "far"});  // the node and its child, placed in the world
+  ASSERT_EQ(far.numTriangles(), 4u);
+  EXPECT_EQ(far.vertices[1], Vec3f(2, 100, 0));
+  const TriMesh child = pick({"", "far child"});  // its parent's transform still applies
+  EXPECT_EQ(child.vertices[1], Vec3f(2, 100, 0));
+  const TriMesh mesh = pick({"tetra", ""});  // the mesh in its own coordinates
+  EXPECT_EQ(mesh.vertices[1], Vec3f(1, 0, 0));
+  EXPECT_NE(errorOf([&] { pick({"", "nowhere"}); }).find("no node is named 'nowhere'; the file's nodes: 'near', 'far', 'far child'"),
+            std::string::npos);
+  b.doc["nodes"][2]["name"] = "far";
+  EXPECT_NE(errorOf([&] { pick({"", "far"}); }).find("2 nodes are named 'far'"), std::string::npos);
+}
+
 TEST(GltfLoader, AFileWithoutNodesGivesEveryMesh) {
   GltfBuilder b = tetra();
   b.doc.erase("nodes");

@@ -106,9 +106,36 @@ struct Placement {
 
 // The (mesh, world transform) pairs of the default scene; every mesh once, untransformed, when
 // the file has no scene or no nodes.
+// The one index of `items` whose name is `name`; Error naming the choices otherwise.
+template <typename T>
+int pickByName(const std::vector<T>& items, const std::string& name, const char* what,
+               const char* whats, const char* flag, const std::string& file) {
+  std::vector<int> found;
+  std::string names;
+  for (size_t i = 0; i < items.size(); ++i) {
+    if (items[i].name == name) found.push_back(int(i));
+    if (i < 8) names += (names.empty() ? "'" : ", '") + printableText(items[i].name) + "'";
+  }
+  if (items.size() > 8) names += fmt::format(" and {} more", items.size() - 8);
+  if (found.size() == 1) return found[0];
+  throw Error(file,
+              found.empty() ? fmt::format("no {} is named '{}'", what, printableText(name))
+                            : fmt::format("{} {} are named '{}'", found.size(), whats,
+                                          printableText(name)),
+              fmt::format("the file's {}: {}", whats, names.empty() ? "none" : names),
+              fmt::format("give {} one of those names", flag));
+}
+
 std::vector<Placement> placements(const tinygltf::Model& model, GltfAccessors& data,
-                                  const std::string& file) {
+                                  const GltfPick& pick, const std::string& file) {
   std::vector<Placement> out;
+  if (!pick.mesh.empty()) {
+    out.push_back({pickByName(model.meshes, pick.mesh, "mesh", "meshes", "--mesh", file), identity()});
+    return out;
+  }
+  const int picked_node =
+      pick.node.empty() ? -1 : pickByName(model.nodes, pick.node, "node", "nodes", "--node", file);
+  bool picked_reached = false;
   std::vector<int> roots;
   if (!model.scenes.empty()) {
     const int s = model.defaultScene >= 0 ? model.defaultScene : 0;
@@ -118,7 +145,7 @@ std::vector<Placement> placements(const tinygltf::Model& model, GltfAccessors& d
                   "the file is corrupt; re-export it");
     roots = model.scenes[size_t(s)].nodes;
   }
-  if (roots.empty()) {
+  if (roots.empty() && picked_node < 0) {
     for (size_t m = 0; m < model.meshes.size(); ++m) out.push_back({int(m), identity()});
     return out;
   }
@@ -128,9 +155,10 @@ std::vector<Placement> placements(const tinygltf::Model& model, GltfAccessors& d
   struct Frame {
     int node;
     Mat4 parent;
+    bool picked;  // in the subtree of --node (or no --node given)
   };
   std::vector<Frame> stack;
-  for (int r : roots) stack.push_back({r, identity()});
+  for (int r : roots) stack.push_back({r, identity(), picked_node < 0});
   while (!stack.empty()) {
     const Frame f = stack.back();
     stack.pop_back();
@@ -144,13 +172,18 @@ std::vector<Placement> placements(const tinygltf::Model& model, GltfAccessors& d
                   "the file is corrupt; re-export it");
     const tinygltf::Node& node = model.nodes[size_t(f.node)];
     const Mat4 world = multiply(f.parent, localTransform(node));
-    if (node.mesh >= 0) {
+    const bool picked = f.picked || f.node == picked_node;
+    picked_reached = picked_reached || f.node == picked_node;
+    if (node.mesh >= 0 && picked) {
       const std::vector<Mat4> instances = gpuInstances(node, f.node, data, file);
       if (instances.empty()) out.push_back({node.mesh, world});
       for (const Mat4& instance : instances) out.push_back({node.mesh, multiply(world, instance)});
     }
-    for (int c : node.children) stack.push_back({c, world});
+    for (int c : node.children) stack.push_back({c, world, picked});
   }
+  if (picked_node >= 0 && !picked_reached)
+    throw Error(file, fmt::format("node '{}' is not in the default scene", printableText(pick.node)),
+                "only the scene's nodes have a place in the world", "pick a node of the scene");
   return out;
 }
 
@@ -221,9 +254,10 @@ void appendPrimitive(const tinygltf::Model& model, GltfAccessors& data, size_t m
 
 }  // namespace
 
-void gltfSceneToMesh(const tinygltf::Model& model, const std::string& file, TriMesh& out) {
+void gltfSceneToMesh(const tinygltf::Model& model, const GltfPick& pick, const std::string& file,
+                     TriMesh& out) {
   GltfAccessors data(model, file);
-  const std::vector<Placement> placed = placements(model, data, file);
+  const std::vector<Placement> placed = placements(model, data, pick, file);
   std::vector<TriMesh> local(model.meshes.size());
   std::vector<bool> decoded(model.meshes.size(), false);
   size_t expanded = 0;
@@ -262,8 +296,8 @@ void gltfSceneToMesh(const tinygltf::Model& model, const std::string& file, TriM
 }
 
 void decodeGltf(const std::string& bytes, bool binary, const std::filesystem::path& folder,
-                const std::string& file, TriMesh& out) {
-  gltfSceneToMesh(parseGltfModel(bytes, binary, folder, file), file, out);
+                const GltfPick& pick, const std::string& file, TriMesh& out) {
+  gltfSceneToMesh(parseGltfModel(bytes, binary, folder, file), pick, file, out);
 }
 
 }  // namespace proxyvis::detail

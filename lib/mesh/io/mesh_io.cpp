@@ -70,20 +70,21 @@ bool isSupportedMeshExtension(const fs::path& path) {
   return !formatOf(path).empty();
 }
 
-TriMesh loadMesh(const fs::path& path) {
+TriMesh loadMesh(const fs::path& path, const GltfPick& pick) {
   std::error_code ec;
   if (formatOf(path).empty() && fs::is_regular_file(path, ec)) throw unknownExtension(path);
   std::string bytes = readTextFile(path);  // missing, directory, unreadable -> Error
   detail::verifySidecar(path, bytes);
   const fs::path folder = path.parent_path().empty() ? fs::path(".") : path.parent_path();
-  return parseMeshBytesIn(std::move(bytes), path, folder);
+  return parseMeshBytesIn(std::move(bytes), path, folder, pick);
 }
 
 TriMesh parseMeshBytes(std::string bytes, const fs::path& path) {
   return parseMeshBytesIn(std::move(bytes), path, {});
 }
 
-TriMesh parseMeshBytesIn(std::string bytes, const fs::path& path, const fs::path& folder) {
+TriMesh parseMeshBytesIn(std::string bytes, const fs::path& path, const fs::path& folder,
+                         const GltfPick& pick) {
   const std::string file = path.string();
   const std::string format = formatOf(path);
   if (format.empty()) throw unknownExtension(path);
@@ -95,7 +96,7 @@ TriMesh parseMeshBytesIn(std::string bytes, const fs::path& path, const fs::path
   if (format == "drc") {
     detail::decodeDraco(bytes, file, mesh);
   } else if (format == "gltf" || format == "glb") {
-    detail::decodeGltf(bytes, format == "glb", folder, file, mesh);
+    detail::decodeGltf(bytes, format == "glb", folder, pick, file, mesh);
   } else {
     detail::checkDeclaredCounts(bytes, format, file);
     if (format == "off") detail::blankOffComments(bytes);

@@ -45,8 +45,15 @@ struct SaveOptions {
   GltfCompression gltf_compression = GltfCompression::kNone;
 };
 
+// What to take of a glTF file (docs/gltf.md): by default every mesh of the default scene placed
+// by its nodes; `node`: one node's subtree, in world space; `mesh`: one mesh, in its own space.
+// Names must match exactly one node or mesh. Ignored for the other formats.
+struct GltfPick {
+  std::string mesh, node;
+};
+
 // Loads a triangle mesh; polygons are fan-triangulated. Vertex order is kept.
-TriMesh loadMesh(const std::filesystem::path& path);
+TriMesh loadMesh(const std::filesystem::path& path, const GltfPick& pick = {});
 
 // What loadMesh does once it has the file's bytes (and checked them against a .sha256 sidecar):
 // `path` only chooses the format (extension) and names the file in errors; nothing is read from
@@ -55,7 +62,7 @@ TriMesh parseMeshBytes(std::string bytes, const std::filesystem::path& path);
 
 // parseMeshBytes for a file in `folder`: a .gltf may read its external buffers from inside it.
 TriMesh parseMeshBytesIn(std::string bytes, const std::filesystem::path& path,
-                         const std::filesystem::path& folder);
+                         const std::filesystem::path& folder, const GltfPick& pick = {});
 
 // Saves atomically (temporary file + rename), then its "<file>.sha256" sidecar the same way.
 // Throws WriteError when either cannot be written (and leaves neither), Error for an unknown

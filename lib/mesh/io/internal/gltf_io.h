@@ -25,14 +25,16 @@ using proxyvis::GltfCompression;
 tinygltf::Model parseGltfModel(const std::string& bytes, bool binary,
                                const std::filesystem::path& folder, const std::string& file);
 
-// Every triangle of the default scene (or of every mesh, when the file has no nodes) in world
+// Every triangle of the default scene (or, with pick.node, of that node's subtree in world space;
+// with pick.mesh, of that mesh in its own space) (or of every mesh, when the file has no nodes) in world
 // space; strips and fans become triangle lists, a node with a mirroring transform has its
 // triangles' winding turned back. Draco, meshopt and quantized primitives are decoded.
-void gltfSceneToMesh(const tinygltf::Model& model, const std::string& file, TriMesh& out);
+void gltfSceneToMesh(const tinygltf::Model& model, const GltfPick& pick, const std::string& file,
+                     TriMesh& out);
 
 // parseGltfModel + gltfSceneToMesh: the whole file as one mesh in `out`.
 void decodeGltf(const std::string& bytes, bool binary, const std::filesystem::path& folder,
-                const std::string& file, TriMesh& out);
+                const GltfPick& pick, const std::string& file, TriMesh& out);
 
 // One mesh of a file to write, placed by its own node with `name` and `extras`.
 struct GltfMeshOut {
