@@ -17,6 +17,7 @@
 #include "proxies/pipeline/proxy_pipeline.h"
 #include "proxies/pipeline/written_class.h"
 #include "scene/scene_desc.h"
+#include "scene_gltf.h"
 #include "scene_mesh.h"
 #include "scene_outputs.h"
 #include "shard.h"
@@ -60,6 +61,7 @@ struct Args {
   std::string compress = "none";          // --compress (glTF output)
   int draco_bits = 0;                     // --draco-bits (.drc, glTF Draco)
   GltfPick pick;                          // --mesh / --node (glTF input)
+  std::string scene_gltf;                 // --gltf OUT (scene mode)
 };
 
 ProxyGenOptions toOptions(const Args& a, const CommonOptions& common) {
@@ -264,7 +266,14 @@ int runScene(const Args& a, const CommonOptions& common, const CLI::App& app) {
   if (shard) planned.push_back({"--out-dir", manifest_out.string()});
   planned.push_back({"--json", common.json_path});
   planned.push_back({"--done", a.done_file});
+  planned.push_back({"--gltf", a.scene_gltf});
   checkOutputs(inputs, planned);
+  if (!a.scene_gltf.empty() && (shard || !isGltfPath(a.scene_gltf)))
+    throw Error(a.scene_gltf, shard ? "--gltf needs the whole scene" : "--gltf writes .glb or .gltf",
+                shard ? "a shard holds some of its proxies" : "the format is chosen by the extension",
+                shard ? "merge the shards first" : "name the file .glb");
+  const GltfCompression scene_compression =
+      a.scene_gltf.empty() ? GltfCompression::kNone : parseGltfCompression(a.compress, a.scene_gltf);
   // Before any folder is made: an unusable --cache fails the run with nothing written.
   const std::unique_ptr<ProxyCache> cache = openCache(a);
   std::error_code ec;
@@ -286,6 +295,8 @@ int runScene(const Args& a, const CommonOptions& common, const CLI::App& app) {
                                   selected, proxy_files)
                             .dump(1) +
                         "\n");
+  if (!a.scene_gltf.empty())
+    addSceneGltfOutput(outputs, scene_out, outcomes, proxy_files, a.scene_gltf, scene_compression);
   emit(result.report, result.summary, common, outputs);
   // A plan unit's marker, last: it exists only when every output above is in place.
   if (!a.done_file.empty() && result.code == kExitOk) {
@@ -298,7 +309,10 @@ int runScene(const Args& a, const CommonOptions& common, const CLI::App& app) {
 
 // The mesh and the proxy: input, kind, method, outputs, sizes and budgets.
 void addProxyOptions(CLI::App& app, Args& a) {
-  app.add_option("input", a.input, "Mesh (.obj .ply .off .drc) or scene (.json)")->required();
+  app.add_option("input", a.input,
+                 "Mesh (.obj .ply .off .drc .gltf .glb) or scene (.json; a .gltf/.glb with "
+                 "--out-dir is read as a scene: every mesh its nodes draw)")
+      ->required();
   app.add_option("--kind", a.kind, "outside | inside | general")
       ->check(CLI::IsMember({"outside", "inside", "general"}))
       ->capture_default_str();
@@ -322,6 +336,10 @@ void addProxyOptions(CLI::App& app, Args& a) {
                  "HM'/MH' counts and bounds (0 = none)")
       ->check(integerIn(0, 100'000'000))
       ->capture_default_str();
+  app.add_option("--gltf", a.scene_gltf,
+                 "Scene input: also write the scene with its proxies as one .glb/.gltf (outside "
+                 "and inside proxies as hidden child nodes, general ones as MSFT_lod levels, "
+                 "each with its proof; docs/gltf.md)");
   app.add_option("--out-dir", a.out_dir,
                  "Output directory (scene input): DIR/<mesh>.<kind>.ply, DIR/scene.json");
   app.add_option(
@@ -433,6 +451,9 @@ int main(int argc, char** argv) {
       ->excludes("--quiet");
   return runApp(app, argc, argv, common, [&] {
     checkOutputs({a.input}, {{"-o", a.output}, {"--json", common.json_path}});
-    return lowerExtension(a.input) == ".json" ? runScene(a, common, app) : runMesh(a, common);
+    // A glTF file is a scene with --out-dir (every mesh, like a JSON scene), one mesh with -o.
+    const bool scene = lowerExtension(a.input) == ".json" ||
+                       (isGltfPath(a.input) && !a.out_dir.empty() && a.output.empty());
+    return scene ? runScene(a, common, app) : runMesh(a, common);
   });
 }

@@ -26,9 +26,9 @@ struct Generated {
   std::string skipped;
 };
 
-Generated generate(const std::string& bytes, const fs::path& file, ProxyGenOptions o) {
+Generated generate(const std::string& bytes, const SceneMeshDesc& mesh, ProxyGenOptions o) {
   const Stopwatch load_clock;
-  const TriMesh input = parseMeshBytes(bytes, file);
+  const TriMesh input = parseSceneMeshBytes(bytes, mesh);
   const double load_seconds = load_clock.seconds();
   Generated g;
   // A proxy only pays if it has fewer faces than its original; no closed mesh has fewer than 4,
@@ -103,7 +103,7 @@ SceneMeshProxy proxyForSceneMesh(const SceneMeshDesc& mesh, const ProxyGenOption
   std::string key;
   std::optional<CachedProxy> entry;
   if (cache) {
-    key = proxyCacheKey(sha256Hex(bytes), proxyCacheSettings(options));
+    key = proxyCacheKey(sceneMeshContentKey(sha256Hex(bytes), mesh), proxyCacheSettings(options));
     std::string damage;
     entry = cache->find(key, &damage);
     if (!damage.empty())
@@ -112,7 +112,7 @@ SceneMeshProxy proxyForSceneMesh(const SceneMeshDesc& mesh, const ProxyGenOption
   }
   std::string state = cache ? "cached" : "off";
   if (!entry) {
-    Generated g = generate(bytes, mesh.file, options);
+    Generated g = generate(bytes, mesh, options);
     entry.emplace();
     if (!g.skipped.empty()) {
       entry->report = std::move(g.report);

@@ -181,7 +181,7 @@ class DistributedSceneLoader {
     comm_.collectively([&] {
       for (size_t m = 0; m < num_meshes_; ++m) {
         if (!load_[m]) continue;
-        originals_[m] = loadMesh(desc_.meshes[m].file);
+        originals_[m] = loadSceneMesh(desc_.meshes[m]);
         ds_.facts_.originals_opened.push_back(desc_.meshes[m].file);
       }
     });

@@ -164,7 +164,7 @@ std::unique_ptr<RenderScene> loadRenderScene(const SceneDesc& desc,
   std::vector<const TriMesh*> original_ptrs(num_meshes), proxy_ptrs(num_meshes);
   for (size_t m = 0; m < num_meshes; ++m) {
     if (!used[m]) continue;
-    originals[m] = loadMesh(desc.meshes[m].file);
+    originals[m] = loadSceneMesh(desc.meshes[m]);
     original_ptrs[m] = &originals[m];
     proxy_ptrs[m] = &originals[m];
     if (chosen[m] >= 0) {

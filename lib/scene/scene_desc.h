@@ -31,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "mesh/tri_mesh.h"
 #include "util/affine3.h"
 #include "util/proxy_class.h"
 #include "util/vec3.h"
@@ -84,6 +85,9 @@ struct ProxyRef {
 struct SceneMeshDesc {
   std::string name;            // unique, no whitespace (the instance list refers to it)
   std::filesystem::path file;  // absolute after loading
+  // A .gltf/.glb file's meshes[gltf_mesh], its surface (non-emissive) primitives in the mesh's
+  // own coordinates; -1: the whole file, as loadMesh reads it.
+  int gltf_mesh = -1;
   Vec3f albedo{0.7f, 0.7f, 0.7f};
   Affine3f transform;  // used when place == true
   bool place = true;
@@ -114,7 +118,22 @@ struct SceneDesc {
   std::string displayName() const;
 };
 
-// Parses and validates a scene file and its instance list; throws Error naming the file and the
+// A glTF file as a scene (docs/gltf.md): every mesh a node draws is a mesh of the scene placed only
+// through instances (one per node, and per GPU instance), emissive primitives are area lights,
+// the first perspective camera is the camera. Throws Error as loadSceneDesc does (no lights, ...).
+// Prints one line on stderr naming what it ignores (textures, animations, ...).
+SceneDesc sceneFromGltf(const std::filesystem::path& path);
+
+// The triangles of a scene mesh (its file, or the glTF mesh it picks), in its own coordinates.
+TriMesh loadSceneMesh(const SceneMeshDesc& mesh);
+// The same from the file's bytes, read already (and checked against its sidecar).
+TriMesh parseSceneMeshBytes(std::string bytes, const SceneMeshDesc& mesh);
+// What identifies a scene mesh's content for caches: the file's SHA-256, and the glTF mesh it
+// picks (every mesh of one glTF file has the same file hash).
+std::string sceneMeshContentKey(const std::string& file_sha256, const SceneMeshDesc& mesh);
+
+// Parses and validates a scene file (JSON; a .gltf/.glb goes to sceneFromGltf) and its instance
+// list; throws Error naming the file and the
 // JSON path (or list line) of the problem: unknown keys, wrong types, non-finite numbers, missing
 // referenced files, duplicate mesh names, singular transforms, no lights. Does not load meshes.
 SceneDesc loadSceneDesc(const std::filesystem::path& path);

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "mesh/io/mesh_io.h"
 #include "scene/internal/json_fields.h"
 #include "scene/internal/quoted.h"
 #include "scene/internal/value_ranges.h"
@@ -215,13 +216,20 @@ ProxyRef parseProxy(const Field& f, const fs::path& dir) {
 }
 
 SceneMeshDesc parseMesh(const Field& f, const fs::path& dir) {
-  f.expectObject({"name", "file", "albedo", "transform", "place", "make_proxy", "proxies"});
+  f.expectObject(
+      {"name", "file", "gltf_mesh", "albedo", "transform", "place", "make_proxy", "proxies"});
   SceneMeshDesc m;
   m.name = f["name"].asString();
   if (m.name.empty() || m.name.find_first_of(" \t\r\n#") != std::string::npos)
     f["name"].fail("mesh names must be non-empty, without spaces or '#'",
                    "the instance list refers to meshes by name");
   m.file = resolveFile(f["file"], dir);
+  if (f.has("gltf_mesh")) {
+    m.gltf_mesh = f["gltf_mesh"].asInt();
+    if (m.gltf_mesh < 0) f["gltf_mesh"].fail("expected a mesh index >= 0", "meshes[i] of the file");
+    if (!isGltfPath(m.file))
+      f["gltf_mesh"].fail("gltf_mesh needs a .gltf or .glb file", "it picks one mesh of it");
+  }
   if (f.has("albedo")) {
     m.albedo = f["albedo"].asVec3();
     for (int i = 0; i < 3; ++i)
@@ -254,6 +262,7 @@ int SceneDesc::findMesh(const std::string& name) const {
 SceneDesc loadSceneDesc(const fs::path& path) {
   std::error_code ec;
   const fs::path absolute = fs::absolute(path, ec).lexically_normal();
+  if (isGltfPath(absolute)) return sceneFromGltf(absolute);
   SceneDesc scene = parseSceneDesc(readTextFile(absolute), absolute);
   if (!scene.instances_file.empty())
     scene.instances = loadInstanceList(scene.instances_file, scene.meshes);

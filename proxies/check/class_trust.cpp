@@ -67,7 +67,7 @@ std::vector<ProxyTrust> establishProxyClasses(SceneDesc& scene, const RenderScen
     // The containment relation does not change under the instance transforms (affine and
     // invertible), so the check runs on the files as they are, in object space.
     t.trust = decideClassTrust(ref.verified_class, ref.sha256, file_hash, [&] {
-      return checkContainment(loadMesh(mesh.file), loadMesh(ref.file));
+      return checkContainment(loadSceneMesh(mesh), loadMesh(ref.file));
     });
     if (ref.verified_class) ref.verified_class = t.trust.trusted;
     out.push_back(std::move(t));

@@ -28,7 +28,7 @@ std::unique_ptr<TraceScene> buildFullScene(TraceDevice& device, const SceneDesc&
     bool instanced = false;
     for (const SceneInstanceDesc& inst : scene.instances) instanced = instanced || inst.mesh == i;
     if (!d.place && !instanced) continue;
-    const TriMesh mesh = loadMesh(d.file);
+    const TriMesh mesh = loadSceneMesh(d);
     if (d.place) builder.addMesh(transformedMesh(mesh, d.transform), i);
     if (instanced) prototype[i] = builder.addPrototype(mesh);
   }

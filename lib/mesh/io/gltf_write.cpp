@@ -1,5 +1,5 @@
-// Writing meshes as glTF 2.0 with tinygltf: one node and one mesh per input mesh, positions and
-// indices in buffer 0, plain or compressed (Draco, meshopt). What tinygltf 2.7 cannot serialize
+// Writing a glTF document (mesh/io/gltf_document.h) with tinygltf: positions and indices in
+// buffer 0, plain or compressed (Draco, meshopt). What tinygltf 2.7 cannot serialize
 // (extensions of buffer views and buffers, a buffer without data) is set in the written JSON
 // afterwards, at the JSON pointers recorded while building.
 #include <meshoptimizer.h>
@@ -11,7 +11,7 @@
 
 #include "mesh/io/internal/draco_io.h"
 #include "mesh/io/internal/glb_container.h"
-#include "mesh/io/internal/gltf_io.h"
+#include "mesh/io/gltf_document.h"
 #include "mesh/io/internal/tiny_gltf.h"
 #include "util/error.h"
 
@@ -47,10 +47,19 @@ tinygltf::Value toValue(const json& j) {
 
 size_t padded(size_t n) { return (n + 3) / 4 * 4; }
 
+struct GltfEncoding {
+  bool binary = true;  // GLB; else .gltf with the buffer as a data: URI
+  GltfCompression compression = GltfCompression::kNone;
+  int draco_bits = 0;  // Draco position quantization (0: lossless floats)
+  int draco_speed = 5;
+};
+
 class ModelBuilder {
  public:
   ModelBuilder(const GltfEncoding& encoding, const std::string& file)
       : encoding_(encoding), file_(file) {
+    meshopt_encodeVertexVersion(0);  // what EXT_meshopt_compression decoders read
+    meshopt_encodeIndexVersion(1);
     model_.asset.version = "2.0";
     model_.asset.generator = "proxyvis " PROXYVIS_VERSION;
     model_.buffers.emplace_back();
@@ -91,24 +100,71 @@ class ModelBuilder {
     return prim;
   }
 
+  void addMaterial(const GltfMaterialOut& in) {
+    tinygltf::Material m;
+    m.pbrMetallicRoughness.baseColorFactor = {in.base_color.x, in.base_color.y, in.base_color.z, 1};
+    m.pbrMetallicRoughness.metallicFactor = 0;
+    m.doubleSided = true;
+    m.emissiveFactor = {in.emissive.x, in.emissive.y, in.emissive.z};
+    if (in.emissive_strength != 1) {
+      m.extensions["KHR_materials_emissive_strength"] = tinygltf::Value(tinygltf::Value::Object{
+          {"emissiveStrength", tinygltf::Value(double(in.emissive_strength))}});
+      use("KHR_materials_emissive_strength", /*required=*/false);
+    }
+    model_.materials.push_back(m);
+  }
+
   void addMesh(const GltfMeshOut& out) {
     if (out.mesh == nullptr || out.mesh->triangles.empty())
       throw WriteError(file_, "cannot write an empty mesh", "glTF primitives need triangles");
     tinygltf::Mesh mesh;
     mesh.name = out.name;
-    mesh.primitives.push_back(primitive(*out.mesh));
+    tinygltf::Primitive prim = primitive(*out.mesh);
+    prim.material = out.material;
+    mesh.primitives.push_back(prim);
+    if (!out.extras.is_null()) mesh.extras = toValue(out.extras);
     model_.meshes.push_back(mesh);
+  }
+
+  void addCamera(const GltfCameraOut& in) {
+    tinygltf::Camera c;
+    c.type = "perspective";
+    c.perspective.yfov = in.yfov;
+    c.perspective.aspectRatio = in.aspect;
+    c.perspective.znear = in.znear;
+    c.perspective.zfar = 1e7;  // beyond any scene (coordinates stay within 1e6)
+    model_.cameras.push_back(c);
+  }
+
+  void addNode(const GltfNodeOut& out) {
     tinygltf::Node node;
     node.name = out.name;
-    node.mesh = int(model_.meshes.size() - 1);
+    node.mesh = out.mesh;
+    node.camera = out.camera;
+    node.children = out.children;
+    const Affine3f identity;
+    if (out.transform && std::memcmp(out.transform->m, identity.m, sizeof identity.m) != 0) {
+      const Affine3f& t = *out.transform;
+      node.matrix.assign(16, 0.0);
+      for (int row = 0; row < 3; ++row)
+        for (int col = 0; col < 4; ++col) node.matrix[size_t(col * 4 + row)] = t.m[row][col];
+      node.matrix[15] = 1;
+    }
     if (!out.extras.is_null()) node.extras = toValue(out.extras);
+    const int index = int(model_.nodes.size());
     if (out.hidden) {
-      node.extensions["KHR_node_visibility"] =
-          tinygltf::Value(tinygltf::Value::Object{{"visible", tinygltf::Value(false)}});
+      // tinygltf 2.7 writes no node extensions: set after writing, like the buffer views'.
+      patches_.emplace_back(fmt::format("/nodes/{}/extensions/KHR_node_visibility", index),
+                            json{{"visible", false}});
       use("KHR_node_visibility", /*required=*/false);
     }
+    if (!out.lod_nodes.empty()) {
+      patches_.emplace_back(fmt::format("/nodes/{}/extensions/MSFT_lod", index),
+                            json{{"ids", out.lod_nodes}});
+      use("MSFT_lod", /*required=*/false);
+    }
     model_.nodes.push_back(node);
-    scene_.nodes.push_back(int(model_.nodes.size() - 1));
+    if (out.root) scene_.nodes.push_back(index);
   }
 
   // The file's bytes, with the recorded JSON set at its pointers.
@@ -260,13 +316,26 @@ class ModelBuilder {
 };
 
 }  // namespace
+}  // namespace proxyvis::detail
 
-std::string encodeGltf(const std::vector<GltfMeshOut>& meshes, const GltfEncoding& encoding,
-                       const json& asset_extras, const std::string& file) {
-  ModelBuilder builder(encoding, file);
-  if (!asset_extras.is_null()) builder.model().asset.extras = toValue(asset_extras);
-  for (const GltfMeshOut& out : meshes) builder.addMesh(out);
+namespace proxyvis {
+
+std::string encodeGltfDocument(const GltfDocumentOut& document, bool binary,
+                               GltfCompression compression, int draco_bits, int draco_speed,
+                               const std::string& file) {
+  detail::GltfEncoding encoding;
+  encoding.binary = binary;
+  encoding.compression = compression;
+  encoding.draco_bits = draco_bits;
+  encoding.draco_speed = draco_speed;
+  detail::ModelBuilder builder(encoding, file);
+  if (!document.asset_extras.is_null())
+    builder.model().asset.extras = detail::toValue(document.asset_extras);
+  for (const GltfMaterialOut& m : document.materials) builder.addMaterial(m);
+  for (const GltfMeshOut& m : document.meshes) builder.addMesh(m);
+  for (const GltfCameraOut& c : document.cameras) builder.addCamera(c);
+  for (const GltfNodeOut& n : document.nodes) builder.addNode(n);
   return builder.write();
 }
 
-}  // namespace proxyvis::detail
+}  // namespace proxyvis

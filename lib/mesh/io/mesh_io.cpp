@@ -6,6 +6,7 @@
 #include <system_error>
 
 #include "mesh/io/internal/draco_io.h"
+#include "mesh/io/gltf_document.h"
 #include "mesh/io/internal/gltf_io.h"
 #include "mesh/io/internal/header_check.h"
 #include "mesh/io/internal/openmesh_formats.h"
@@ -131,17 +132,17 @@ std::string encodeMesh(const TriMesh& mesh, const fs::path& path, const SaveOpti
   if (format == "drc")
     return detail::encodeDraco(mesh, options.draco_quantization, options.draco_speed, file);
   if (format == "gltf" || format == "glb") {
-    detail::GltfMeshOut out;
-    out.mesh = &mesh;
-    out.name = options.gltf_name.empty() ? path.stem().string() : options.gltf_name;
-    out.extras = options.gltf_extras;
-    out.hidden = options.gltf_hidden;
-    detail::GltfEncoding encoding;
-    encoding.binary = format == "glb";
-    encoding.compression = options.gltf_compression;
-    encoding.draco_bits = options.draco_quantization;
-    encoding.draco_speed = options.draco_speed;
-    return detail::encodeGltf({out}, encoding, nullptr, file);
+    GltfDocumentOut doc;
+    const std::string name = options.gltf_name.empty() ? path.stem().string() : options.gltf_name;
+    doc.meshes.push_back({&mesh, name, -1, nullptr});
+    GltfNodeOut node;
+    node.name = name;
+    node.mesh = 0;
+    node.extras = options.gltf_extras;
+    node.hidden = options.gltf_hidden;
+    doc.nodes.push_back(node);
+    return encodeGltfDocument(doc, format == "glb", options.gltf_compression,
+                              options.draco_quantization, options.draco_speed, file);
   }
   std::ostringstream encoded(std::ios::out | std::ios::binary);
   if (!detail::writeWithOpenMesh(mesh, format, encoded, options.binary))

@@ -50,6 +50,8 @@ struct SaveOptions {
 // Names must match exactly one node or mesh. Ignored for the other formats.
 struct GltfPick {
   std::string mesh, node;
+  int mesh_index = -1;         // meshes[i], in its own space (scene meshes: names can repeat)
+  bool surfaces_only = false;  // leave out emissive primitives (a glTF scene's lights)
 };
 
 // Loads a triangle mesh; polygons are fan-triangulated. Vertex order is kept.
