@@ -9,6 +9,7 @@
 #include <functional>
 
 #include "gltf_builder.h"
+#include "mesh/io/gltf_scene_content.h"
 #include "mesh/io/internal/draco_io.h"
 #include "mesh/io/mesh_io.h"
 #include "mesh_test_util.h"
@@ -204,6 +205,65 @@ TEST(GltfLoader, PickOneNodeOrOneMeshByName) {
             std::string::npos);
   b.doc["nodes"][2]["name"] = "far";
   EXPECT_NE(errorOf([&] { pick({"", "far"}); }).find("2 nodes are named 'far'"), std::string::npos);
+}
+
+TEST(GltfLoader, HiddenNodesAreLeftOutUnlessPickedByName) {
+  GltfBuilder b = tetra();
+  b.doc["nodes"][0]["name"] = "shown";
+  b.doc["nodes"][0]["children"] = {1};
+  b.node({{"name", "hidden"}, {"mesh", 0}, {"translation", {5.0, 0.0, 0.0}},
+          {"extensions", {{"KHR_node_visibility", {{"visible", false}}}}}});
+  auto load = [&](const GltfPick& p) { return parseMeshBytesIn(b.glb(), "t.glb", {}, p); };
+  EXPECT_EQ(load({}).numTriangles(), 4u);
+  const TriMesh hidden = load({"", "hidden"});
+  ASSERT_EQ(hidden.numTriangles(), 4u);
+  EXPECT_EQ(hidden.vertices[1], Vec3f(6, 0, 0));
+}
+
+TEST(GltfScene, CameraLightsAndInstances) {
+  ScratchDir dir;
+  GltfBuilder b = tetra();
+  // A second mesh, emissive only: a light, no surface. Its node places it at y = 10.
+  const int p = b.accessor(b.view(kTetraPositions), kFloat, 4, "VEC3");
+  const int i = b.accessor(b.view(kTetraIndices), kUInt, 12, "SCALAR");
+  const int light = b.mesh(p, i, 4, "lamp");
+  b.doc["meshes"][size_t(light)]["primitives"][0]["material"] = 0;
+  b.doc["materials"] = {{{"emissiveFactor", {1.0, 0.5, 0.25}},
+                         {"extensions", {{"KHR_materials_emissive_strength",
+                                          {{"emissiveStrength", 4.0}}}}}}};
+  b.root(b.node({{"mesh", light}, {"translation", {0.0, 10.0, 0.0}}}));
+  b.root(b.node({{"mesh", 0}, {"translation", {3.0, 0.0, 0.0}}}));  // a second instance
+  // A camera at (0, 2, 8) turned 90 degrees about y: it looks down -x.
+  b.doc["cameras"] = {{{"type", "perspective"},
+                       {"perspective", {{"yfov", 0.5}, {"aspectRatio", 2.0}, {"znear", 0.1}}}}};
+  b.root(b.node({{"camera", 0}, {"translation", {0.0, 2.0, 8.0}},
+                 {"rotation", {0.0, std::sqrt(0.5), 0.0, std::sqrt(0.5)}}}));
+  writeBytes(dir.path() / "s.glb", b.glb());
+  const GltfSceneContent c = readGltfScene(dir.path() / "s.glb");
+  ASSERT_EQ(c.meshes.size(), 1u);
+  EXPECT_EQ(c.meshes[0].index, 0);
+  ASSERT_EQ(c.instances.size(), 2u);
+  std::vector<float> xs;  // where each instance puts the vertex (1, 0, 0), in any order
+  for (const auto& inst : c.instances) xs.push_back(inst.transform.apply(Vec3f(1, 0, 0)).x);
+  std::sort(xs.begin(), xs.end());
+  EXPECT_EQ(xs, (std::vector<float>{1, 4}));
+  ASSERT_EQ(c.lights.size(), 1u);
+  EXPECT_EQ(c.lights[0].triangles.size(), 4u);
+  EXPECT_EQ(c.lights[0].radiance, Vec3f(4, 2, 1));
+  EXPECT_EQ(c.lights[0].triangles[0][1], Vec3f(0, 11, 0));  // vertex 2 of triangle 0, placed
+  ASSERT_TRUE(c.camera.has_value());
+  EXPECT_NEAR(c.camera->yfov_deg, 0.5 * 180 / M_PI, 1e-9);
+  EXPECT_EQ(c.camera->aspect, 2.0);
+  EXPECT_EQ(c.camera->eye, Vec3f(0, 2, 8));
+  const Vec3f forward = c.camera->look_at - c.camera->eye;
+  EXPECT_NEAR(forward.x, -1, 1e-6);
+  EXPECT_NEAR(forward.z, 0, 1e-6);
+  EXPECT_NEAR(c.camera->up.y, 1, 1e-6);
+  // The prototype loads without its emissive primitives.
+  GltfPick pick;
+  pick.mesh_index = 0;
+  pick.surfaces_only = true;
+  EXPECT_EQ(loadMesh(dir.path() / "s.glb", pick).numTriangles(), 4u);
 }
 
 TEST(GltfLoader, AFileWithoutNodesGivesEveryMesh) {
