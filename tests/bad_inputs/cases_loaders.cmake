@@ -70,3 +70,13 @@ loaders_case(gltf_cycle gltf_cycle.glb "nodes\\[0\\] is reached twice")
 loaders_case(gltf_required gltf_required.glb "extensionsRequired\\[0\\] 'KHR_materials_variants' is not supported")
 loaders_case(gltf_escape gltf_asset/escape.gltf "buffers\\[0\\].uri '../gltf_outside.bin' leaves the asset's folder")
 loaders_case(gltf_absolute gltf_asset/absolute.gltf "buffers\\[0\\].uri 'file://.*' leaves the asset's folder")
+# glTF as a scene and glTF outputs: a file without emissive triangles has no light to render by;
+# --gltf and --compress name what they write.
+bad_input_test(loaders_gltf_scene_no_light render "${L}/gltf_no_light.glb -o @OUT@/x.exr"
+  REGEX "gltf_no_light.glb: no lights; direct illumination needs emissive triangles"
+  INPUTS ${L}/gltf_no_light.glb OUTPUTS @OUT@/x.exr)
+bad_input_test(loaders_gltf_scene_output_ext proxy-gen
+  "@DATA@/../scenes/dragon-plane.json --out-dir @OUT@/d --gltf @OUT@/scene.ply"
+  REGEX "scene.ply: --gltf writes .glb or .gltf" OUTPUTS @OUT@/d @OUT@/scene.ply)
+bad_input_test(loaders_compress_not_gltf mesh-info "@DATA@/bunny.off --save @OUT@/b.ply --compress draco"
+  REGEX "b.ply: --compress draco needs a .gltf or .glb output" OUTPUTS @OUT@/b.ply)

@@ -125,6 +125,7 @@ def gltf_files(d: pathlib.Path) -> None:
     doc, data = tetra_gltf()
     good = glb(doc, data)
     (d / "gltf_truncated.glb").write_bytes(good[:-30])
+    (d / "gltf_no_light.glb").write_bytes(good)  # a good mesh, but as a scene it has no light
     lying = bytearray(good)
     lying[12:16] = struct.pack("<I", 1 << 30)  # the JSON chunk claims 1 GB
     (d / "gltf_chunk_lies.glb").write_bytes(bytes(lying))
