@@ -43,8 +43,9 @@ void checkExpectedSha256(const std::string& file, std::string expected) {
 
 int main(int argc, char** argv) {
   using namespace proxyvis;
-  CLI::App app{"mesh-info: load meshes (OBJ, PLY, OFF, Draco, glTF) and print their validation report",
-               "mesh-info"};
+  CLI::App app{
+      "mesh-info: load meshes (OBJ, PLY, OFF, Draco, glTF) and print their validation report",
+      "mesh-info"};
   CommonOptions common;
   addCommonOptions(app, common);
   std::vector<std::string> files;

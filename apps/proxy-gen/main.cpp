@@ -269,11 +269,13 @@ int runScene(const Args& a, const CommonOptions& common, const CLI::App& app) {
   planned.push_back({"--gltf", a.scene_gltf});
   checkOutputs(inputs, planned);
   if (!a.scene_gltf.empty() && (shard || !isGltfPath(a.scene_gltf)))
-    throw Error(a.scene_gltf, shard ? "--gltf needs the whole scene" : "--gltf writes .glb or .gltf",
-                shard ? "a shard holds some of its proxies" : "the format is chosen by the extension",
-                shard ? "merge the shards first" : "name the file .glb");
-  const GltfCompression scene_compression =
-      a.scene_gltf.empty() ? GltfCompression::kNone : parseGltfCompression(a.compress, a.scene_gltf);
+    throw Error(
+        a.scene_gltf, shard ? "--gltf needs the whole scene" : "--gltf writes .glb or .gltf",
+        shard ? "a shard holds some of its proxies" : "the format is chosen by the extension",
+        shard ? "merge the shards first" : "name the file .glb");
+  const GltfCompression scene_compression = a.scene_gltf.empty()
+                                                ? GltfCompression::kNone
+                                                : parseGltfCompression(a.compress, a.scene_gltf);
   // Before any folder is made: an unusable --cache fails the run with nothing written.
   const std::unique_ptr<ProxyCache> cache = openCache(a);
   std::error_code ec;

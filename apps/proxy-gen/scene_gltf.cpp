@@ -37,9 +37,9 @@ void addSceneGltfOutput(OutputSet& outputs, const fs::path& scene_json,
       proxies[m].push_back(std::move(p));
     }
   }
-  outputs.addText(out, encodeSceneGltf(scene, originals, proxies, isGltfPath(out) &&
-                                                                      out.extension() != ".gltf",
-                                       compression, out.string()));
+  outputs.addText(
+      out, encodeSceneGltf(scene, originals, proxies, isGltfPath(out) && out.extension() != ".gltf",
+                           compression, out.string()));
 }
 
 }  // namespace proxyvis

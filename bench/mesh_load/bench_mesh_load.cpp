@@ -55,11 +55,13 @@ int main(int argc, char** argv) {
         triangles[f] = mesh.numTriangles();
       }
     fmt::print("{} rounds, interleaved\n\n", rounds);
-    fmt::print("| file | MB | triangles | load ms (median) | range ms | M triangles/s | vs first |\n");
+    fmt::print(
+        "| file | MB | triangles | load ms (median) | range ms | M triangles/s | vs first |\n");
     fmt::print("|---|---:|---:|---:|---:|---:|---:|\n");
     for (size_t f = 0; f < n; ++f) {
       std::vector<double> ratios;
-      for (int r = 0; r < rounds; ++r) ratios.push_back(seconds[f][size_t(r)] / seconds[0][size_t(r)]);
+      for (int r = 0; r < rounds; ++r)
+        ratios.push_back(seconds[f][size_t(r)] / seconds[0][size_t(r)]);
       const auto [lo, hi] = std::minmax_element(seconds[f].begin(), seconds[f].end());
       const double m = median(seconds[f]);
       fmt::print("| {} | {:.1f} | {} | {:.0f} | {:.0f}-{:.0f} | {:.1f} | {:.2f}x |\n",

@@ -47,7 +47,8 @@ CameraDesc cameraOf(const GltfSceneContent& content, const fs::path& path) {
                 fmt::format("it must be in [{:g}, {:g}]", kMinFovDeg, kMaxFovDeg),
                 "fix the camera in the file");
   for (const Vec3f& p : {camera.eye, camera.look_at})
-    if (auto problem = detail::positionProblem(p, "camera position")) fail(path, "camera", *problem);
+    if (auto problem = detail::positionProblem(p, "camera position"))
+      fail(path, "camera", *problem);
   camera.width = kDefaultImageWidth;
   camera.height = c.aspect > 0 ? std::max(1, int(std::lround(kDefaultImageWidth / c.aspect)))
                                : kDefaultImageWidth;
@@ -113,7 +114,8 @@ SceneDesc sceneFromGltf(const fs::path& path) {
   }
   std::string ignored;
   for (const std::string& item : content.ignored) ignored += (ignored.empty() ? "" : ", ") + item;
-  if (!content.camera) ignored += std::string(ignored.empty() ? "" : "; ") + "no perspective camera: the default view";
+  if (!content.camera)
+    ignored += std::string(ignored.empty() ? "" : "; ") + "no perspective camera: the default view";
   if (!ignored.empty())
     std::fprintf(stderr, "note: %s: ignored: %s\n", scene.path.filename().string().c_str(),
                  ignored.c_str());
@@ -133,14 +135,17 @@ GltfPick scenePick(const SceneMeshDesc& mesh) {
 
 }  // namespace
 
-TriMesh loadSceneMesh(const SceneMeshDesc& mesh) { return loadMesh(mesh.file, scenePick(mesh)); }
+TriMesh loadSceneMesh(const SceneMeshDesc& mesh) {
+  return loadMesh(mesh.file, scenePick(mesh));
+}
 
 TriMesh parseSceneMeshBytes(std::string bytes, const SceneMeshDesc& mesh) {
   return parseMeshBytesIn(std::move(bytes), mesh.file, mesh.file.parent_path(), scenePick(mesh));
 }
 
 std::string sceneMeshContentKey(const std::string& file_sha256, const SceneMeshDesc& mesh) {
-  return mesh.gltf_mesh < 0 ? file_sha256 : fmt::format("{}:gltf_mesh={}", file_sha256, mesh.gltf_mesh);
+  return mesh.gltf_mesh < 0 ? file_sha256
+                            : fmt::format("{}:gltf_mesh={}", file_sha256, mesh.gltf_mesh);
 }
 
 }  // namespace proxyvis

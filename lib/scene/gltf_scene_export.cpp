@@ -43,8 +43,7 @@ class SceneDocument {
       if (scene_.meshes[m].place) placeMesh(m, scene_.meshes[m].transform, scene_.meshes[m].name);
     for (size_t i = 0; i < scene_.instances.size(); ++i) {
       const SceneInstanceDesc& inst = scene_.instances[i];
-      placeMesh(inst.mesh, inst.transform,
-                scene_.meshes[inst.mesh].name + "." + std::to_string(i));
+      placeMesh(inst.mesh, inst.transform, scene_.meshes[inst.mesh].name + "." + std::to_string(i));
     }
     for (size_t l = 0; l < scene_.lights.size(); ++l) addLight(l);
     addCamera();
@@ -58,8 +57,8 @@ class SceneDocument {
     first_mesh_.push_back(int(doc_.meshes.size()));
     doc_.meshes.push_back({&originals_[m], scene_.meshes[m].name, material, nullptr});
     for (const GltfSceneProxy& p : proxies_[m])
-      doc_.meshes.push_back({p.mesh, scene_.meshes[m].name + proxySuffix(p.cls), material,
-                             p.extras});
+      doc_.meshes.push_back(
+          {p.mesh, scene_.meshes[m].name + proxySuffix(p.cls), material, p.extras});
   }
 
   // One node of the original; its outside/inside proxies hidden below it, its general proxies
@@ -100,8 +99,8 @@ class SceneDocument {
     }
     const float peak = std::max({light.radiance.x, light.radiance.y, light.radiance.z, 1e-30f});
     doc_.materials.push_back({{0, 0, 0}, light.radiance / peak, peak});
-    doc_.meshes.push_back({&mesh, "light" + std::to_string(l), int(doc_.materials.size() - 1),
-                           nullptr});
+    doc_.meshes.push_back(
+        {&mesh, "light" + std::to_string(l), int(doc_.materials.size() - 1), nullptr});
     GltfNodeOut node;
     node.name = "light" + std::to_string(l);
     node.mesh = int(doc_.meshes.size() - 1);
@@ -123,8 +122,8 @@ class SceneDocument {
   const std::vector<TriMesh>& originals_;
   const std::vector<std::vector<GltfSceneProxy>>& proxies_;
   GltfDocumentOut doc_;
-  std::vector<int> first_mesh_;          // document mesh of each scene mesh (its proxies follow)
-  std::deque<TriMesh> light_meshes_;     // stable addresses for the document's pointers
+  std::vector<int> first_mesh_;       // document mesh of each scene mesh (its proxies follow)
+  std::deque<TriMesh> light_meshes_;  // stable addresses for the document's pointers
 };
 
 }  // namespace

@@ -74,12 +74,10 @@ json sceneToJson(const SceneDesc& scene, const fs::path& dir, const fs::path& in
   root["lights"] = lights;
   json meshes = json::array();
   for (const SceneMeshDesc& m : scene.meshes) {
-    json jm = {{"name", m.name},
-               {"file", relativePath(m.file, dir)}};
+    json jm = {{"name", m.name}, {"file", relativePath(m.file, dir)}};
     if (m.gltf_mesh >= 0) jm["gltf_mesh"] = m.gltf_mesh;
-    jm.update(json{{"albedo", toJson(m.albedo)},
-               {"transform", toJson(m.transform)},
-               {"place", m.place}});
+    jm.update(
+        json{{"albedo", toJson(m.albedo)}, {"transform", toJson(m.transform)}, {"place", m.place}});
     if (!m.make_proxy) jm["make_proxy"] = false;
     json proxies = json::array();
     for (const ProxyRef& p : m.proxies) {

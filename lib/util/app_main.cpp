@@ -111,9 +111,9 @@ void addCompressionOptions(CLI::App& app, std::string& compress, int& draco_bits
                  "(EXT_meshopt_compression, exact)")
       ->check(CLI::IsMember({"none", "draco", "meshopt"}))
       ->capture_default_str();
-  app.add_option("--draco-bits", draco_bits,
-                 "Draco output (.drc, or --compress draco): position quantization bits " +
-                     bits_note)
+  app.add_option(
+         "--draco-bits", draco_bits,
+         "Draco output (.drc, or --compress draco): position quantization bits " + bits_note)
       ->check(integerIn(0, 30))
       ->capture_default_str();
 }

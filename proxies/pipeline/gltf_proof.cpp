@@ -17,11 +17,10 @@ json gltfProofExtras(const json& report, const std::string& source_sha256,
   if (report.contains("class_reason")) proof["class_reason"] = report["class_reason"];
   proof["verified"] = report.value("verified", false);
   proof["method"] = report.value("method", json());
-  proof["budget"] = report.contains("parameters") ? report["parameters"].value("budget", json())
-                                                  : json();
-  proof["max_faces"] = report.contains("parameters")
-                           ? report["parameters"].value("max_faces", json())
-                           : json();
+  proof["budget"] =
+      report.contains("parameters") ? report["parameters"].value("budget", json()) : json();
+  proof["max_faces"] =
+      report.contains("parameters") ? report["parameters"].value("max_faces", json()) : json();
   proof["faces"] = report.value("faces", json());
   proof["volume_ratio"] = report.value("volume_ratio", json());
   if (report.contains("hausdorff")) proof["hausdorff"] = report["hausdorff"];
@@ -66,11 +65,11 @@ void proveWrittenProxy(const TriMesh& original, const TriMesh& written, json& re
       *cls == ProxyClass::kOutside ? ContainmentVerdict::kContains : ContainmentVerdict::kContained;
   report["written_check"] = {{"containment", containmentName(r.verdict)}, {"detail", r.detail}};
   if (r.verdict != expected)
-    throw CheckFailed(file, "the quantized proxy is no longer " + std::string(proxyClassName(*cls)),
-                      std::string("after encoding: ") + containmentName(r.verdict) + " (" +
-                          r.detail + ")",
-                      "write it without quantization (--draco-bits 0) or with meshopt; nothing "
-                      "was written");
+    throw CheckFailed(
+        file, "the quantized proxy is no longer " + std::string(proxyClassName(*cls)),
+        std::string("after encoding: ") + containmentName(r.verdict) + " (" + r.detail + ")",
+        "write it without quantization (--draco-bits 0) or with meshopt; nothing "
+        "was written");
 }
 
 std::string gltfProxyNodeName(const std::string& original, const json& report) {

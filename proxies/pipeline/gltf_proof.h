@@ -2,8 +2,8 @@
 // What a proxy written as glTF carries about itself: its node's name (following the engines'
 // conventions where one exists) and the proof in the node's extras (docs/gltf.md); and the proof
 // of a proxy that an encoder moved (quantization).
-#include <nlohmann/json.hpp>
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "mesh/tri_mesh.h"

@@ -4,9 +4,13 @@ namespace proxyvis::test {
 using json = nlohmann::json;
 
 GltfBuilder::GltfBuilder() {
-  doc = {{"asset", {{"version", "2.0"}}}, {"buffers", json::array({json::object()})},
-         {"bufferViews", json::array()}, {"accessors", json::array()}, {"meshes", json::array()},
-         {"nodes", json::array()}, {"scenes", json::array({{{"nodes", json::array()}}})},
+  doc = {{"asset", {{"version", "2.0"}}},
+         {"buffers", json::array({json::object()})},
+         {"bufferViews", json::array()},
+         {"accessors", json::array()},
+         {"meshes", json::array()},
+         {"nodes", json::array()},
+         {"scenes", json::array({{{"nodes", json::array()}}})},
          {"scene", 0}};
 }
 
@@ -41,7 +45,9 @@ int GltfBuilder::node(json n) {
   return int(doc["nodes"].size() - 1);
 }
 
-void GltfBuilder::root(int n) { doc["scenes"][0]["nodes"].push_back(n); }
+void GltfBuilder::root(int n) {
+  doc["scenes"][0]["nodes"].push_back(n);
+}
 
 std::string glbBytes(const std::string& json_text, const std::string& bin) {
   auto u32 = [](uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };

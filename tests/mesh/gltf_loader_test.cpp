@@ -26,7 +26,9 @@ constexpr int kByte = 5120, kUByte = 5121, kShort = 5122, kUShort = 5123, kUInt 
 const std::vector<float> kTetraPositions = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
 const std::vector<uint32_t> kTetraIndices = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
 
-TriMesh parseGlb(const GltfBuilder& b) { return parseMeshBytes(b.glb(), "t.glb"); }
+TriMesh parseGlb(const GltfBuilder& b) {
+  return parseMeshBytes(b.glb(), "t.glb");
+}
 
 std::string errorOf(const std::function<void()>& f) {
   try {
@@ -43,8 +45,8 @@ GltfBuilder tetra(int index_type = kUInt) {
   const int p = b.accessor(b.view(kTetraPositions), kFloat, 4, "VEC3");
   int i = -1;
   if (index_type == kUByte)
-    i = b.accessor(b.view(std::vector<uint8_t>(kTetraIndices.begin(), kTetraIndices.end())),
-                   kUByte, 12, "SCALAR");
+    i = b.accessor(b.view(std::vector<uint8_t>(kTetraIndices.begin(), kTetraIndices.end())), kUByte,
+                   12, "SCALAR");
   else if (index_type == kUShort)
     i = b.accessor(b.view(std::vector<uint16_t>(kTetraIndices.begin(), kTetraIndices.end())),
                    kUShort, 12, "SCALAR");
@@ -82,8 +84,8 @@ TEST(GltfLoader, StripsAndFansBecomeTriangleListsWithOneWinding) {
   for (int mode : {5, 6}) {
     GltfBuilder b;
     const int p = b.accessor(b.view(square), kFloat, 4, "VEC3");
-    std::vector<uint16_t> idx = mode == 5 ? std::vector<uint16_t>{0, 1, 2, 3}
-                                          : std::vector<uint16_t>{0, 1, 3, 2};
+    std::vector<uint16_t> idx =
+        mode == 5 ? std::vector<uint16_t>{0, 1, 2, 3} : std::vector<uint16_t>{0, 1, 3, 2};
     const int i = b.accessor(b.view(idx), kUShort, 4, "SCALAR");
     b.root(b.node({{"mesh", b.mesh(p, i, mode)}}));
     const TriMesh m = parseGlb(b);
@@ -134,7 +136,8 @@ TEST(GltfLoader, QuantizedPositionsAreDequantized) {
       } else {
         bytes.push_back(char(q));
       }
-      if (bytes.size() % ((type == kShort || type == kUShort) ? 8 : 4) == ((type == kShort || type == kUShort) ? 6 : 3))
+      if (bytes.size() % ((type == kShort || type == kUShort) ? 8 : 4) ==
+          ((type == kShort || type == kUShort) ? 6 : 3))
         bytes.append((type == kShort || type == kUShort) ? 2 : 1, '\0');  // 4-byte aligned vertices
     }
     const int stride = (type == kShort || type == kUShort) ? 8 : 4;
@@ -201,7 +204,9 @@ TEST(GltfLoader, PickOneNodeOrOneMeshByName) {
   EXPECT_EQ(child.vertices[1], Vec3f(2, 100, 0));
   const TriMesh mesh = pick({"tetra", ""});  // the mesh in its own coordinates
   EXPECT_EQ(mesh.vertices[1], Vec3f(1, 0, 0));
-  EXPECT_NE(errorOf([&] { pick({"", "nowhere"}); }).find("no node is named 'nowhere'; the file's nodes: 'near', 'far', 'far child'"),
+  EXPECT_NE(errorOf([&] {
+              pick({"", "nowhere"});
+            }).find("no node is named 'nowhere'; the file's nodes: 'near', 'far', 'far child'"),
             std::string::npos);
   b.doc["nodes"][2]["name"] = "far";
   EXPECT_NE(errorOf([&] { pick({"", "far"}); }).find("2 nodes are named 'far'"), std::string::npos);
@@ -211,7 +216,9 @@ TEST(GltfLoader, HiddenNodesAreLeftOutUnlessPickedByName) {
   GltfBuilder b = tetra();
   b.doc["nodes"][0]["name"] = "shown";
   b.doc["nodes"][0]["children"] = {1};
-  b.node({{"name", "hidden"}, {"mesh", 0}, {"translation", {5.0, 0.0, 0.0}},
+  b.node({{"name", "hidden"},
+          {"mesh", 0},
+          {"translation", {5.0, 0.0, 0.0}},
           {"extensions", {{"KHR_node_visibility", {{"visible", false}}}}}});
   auto load = [&](const GltfPick& p) { return parseMeshBytesIn(b.glb(), "t.glb", {}, p); };
   EXPECT_EQ(load({}).numTriangles(), 4u);
@@ -228,15 +235,16 @@ TEST(GltfScene, CameraLightsAndInstances) {
   const int i = b.accessor(b.view(kTetraIndices), kUInt, 12, "SCALAR");
   const int light = b.mesh(p, i, 4, "lamp");
   b.doc["meshes"][size_t(light)]["primitives"][0]["material"] = 0;
-  b.doc["materials"] = {{{"emissiveFactor", {1.0, 0.5, 0.25}},
-                         {"extensions", {{"KHR_materials_emissive_strength",
-                                          {{"emissiveStrength", 4.0}}}}}}};
+  b.doc["materials"] = {
+      {{"emissiveFactor", {1.0, 0.5, 0.25}},
+       {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4.0}}}}}}};
   b.root(b.node({{"mesh", light}, {"translation", {0.0, 10.0, 0.0}}}));
   b.root(b.node({{"mesh", 0}, {"translation", {3.0, 0.0, 0.0}}}));  // a second instance
   // A camera at (0, 2, 8) turned 90 degrees about y: it looks down -x.
   b.doc["cameras"] = {{{"type", "perspective"},
                        {"perspective", {{"yfov", 0.5}, {"aspectRatio", 2.0}, {"znear", 0.1}}}}};
-  b.root(b.node({{"camera", 0}, {"translation", {0.0, 2.0, 8.0}},
+  b.root(b.node({{"camera", 0},
+                 {"translation", {0.0, 2.0, 8.0}},
                  {"rotation", {0.0, std::sqrt(0.5), 0.0, std::sqrt(0.5)}}}));
   writeBytes(dir.path() / "s.glb", b.glb());
   const GltfSceneContent c = readGltfScene(dir.path() / "s.glb");
@@ -286,15 +294,18 @@ TEST(GltfLoader, MeshoptCompressedViewsDecodeExactly) {
   GltfBuilder b;
   b.doc["extensionsUsed"] = {"EXT_meshopt_compression"};
   b.doc["extensionsRequired"] = {"EXT_meshopt_compression"};
-  b.doc["buffers"].push_back({{"byteLength", 96},
-                              {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}});
+  b.doc["buffers"].push_back(
+      {{"byteLength", 96}, {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}});
   auto compressed = [&](const std::string& bytes, size_t stride, size_t count, const char* mode) {
     const int v = b.view(bytes);
     json& view = b.doc["bufferViews"][size_t(v)];
     view["extensions"] = {{"EXT_meshopt_compression",
-                           {{"buffer", 0}, {"byteOffset", view["byteOffset"]},
-                            {"byteLength", bytes.size()}, {"byteStride", stride},
-                            {"count", count}, {"mode", mode}}}};
+                           {{"buffer", 0},
+                            {"byteOffset", view["byteOffset"]},
+                            {"byteLength", bytes.size()},
+                            {"byteStride", stride},
+                            {"count", count},
+                            {"mode", mode}}}};
     view["buffer"] = 1;
     view["byteOffset"] = 0;
     view["byteLength"] = stride * count;
@@ -388,8 +399,9 @@ TEST(GltfLoader, UnsupportedRequiredExtensionIsNamed) {
   GltfBuilder b = tetra();
   b.doc["extensionsUsed"] = {"KHR_materials_variants"};
   b.doc["extensionsRequired"] = {"KHR_materials_variants"};
-  EXPECT_NE(errorOf([&] { parseGlb(b); })
-                .find("extensionsRequired[0] 'KHR_materials_variants' is not supported"),
+  EXPECT_NE(errorOf([&] {
+              parseGlb(b);
+            }).find("extensionsRequired[0] 'KHR_materials_variants' is not supported"),
             std::string::npos);
 }
 
@@ -400,9 +412,9 @@ TEST(GltfLoader, ExternalBufferBesideTheFileIsRead) {
   writeBytes(dir.path() / "t.gltf", b.gltf("tetra%20data.bin"));
   EXPECT_EQ(loadMesh(dir.path() / "t.gltf").numTriangles(), 4u);
   // Parsed from bytes alone there is no folder to read from.
-  EXPECT_NE(errorOf([&] { parseMeshBytes(b.gltf("tetra%20data.bin"), "t.gltf"); })
-                .find("cannot be read"),
-            std::string::npos);
+  EXPECT_NE(
+      errorOf([&] { parseMeshBytes(b.gltf("tetra%20data.bin"), "t.gltf"); }).find("cannot be read"),
+      std::string::npos);
 }
 
 TEST(GltfLoader, UrisThatLeaveTheFolderAreNeverRead) {
@@ -411,9 +423,9 @@ TEST(GltfLoader, UrisThatLeaveTheFolderAreNeverRead) {
   std::filesystem::create_directories(dir.path() / "asset");
   writeBytes(dir.path() / "secret.bin", b.bin);
   const std::string abs = (dir.path() / "secret.bin").string();
-  for (const std::string& uri : {std::string("../secret.bin"), std::string("%2e%2e/secret.bin"),
-                                 abs, "file://" + abs, std::string("http://example.com/t.bin"),
-                                 std::string("sub\\..\\..\\secret.bin")}) {
+  for (const std::string& uri :
+       {std::string("../secret.bin"), std::string("%2e%2e/secret.bin"), abs, "file://" + abs,
+        std::string("http://example.com/t.bin"), std::string("sub\\..\\..\\secret.bin")}) {
     writeBytes(dir.path() / "asset/t.gltf", b.gltf(uri));
     const std::string e = errorOf([&] { loadMesh(dir.path() / "asset/t.gltf"); });
     EXPECT_NE(e.find("buffers[0].uri"), std::string::npos) << uri << ": " << e;
@@ -432,7 +444,8 @@ TEST(GltfWriter, RoundTripKeepsEveryVertexAndTriangle) {
   TriMesh grid;
   const uint32_t n = 300;
   for (uint32_t y = 0; y < n; ++y)
-    for (uint32_t x = 0; x < n; ++x) grid.vertices.push_back(Vec3f(float(x) * 0.1f, float(y) * 0.3f, float(x ^ y) * 1e-3f));
+    for (uint32_t x = 0; x < n; ++x)
+      grid.vertices.push_back(Vec3f(float(x) * 0.1f, float(y) * 0.3f, float(x ^ y) * 1e-3f));
   for (uint32_t y = 0; y + 1 < n; ++y)
     for (uint32_t x = 0; x + 1 < n; ++x) {
       const uint32_t v = y * n + x;

@@ -23,7 +23,8 @@ uint32_t readU32(const std::string& bytes, size_t at) {
 
 GlbChunks splitGlb(const std::string& bytes, const std::string& file) {
   if (bytes.size() < 20)
-    throw Error(file, "truncated GLB", fmt::format("{} bytes, a GLB header alone is 20", bytes.size()),
+    throw Error(file, "truncated GLB",
+                fmt::format("{} bytes, a GLB header alone is 20", bytes.size()),
                 "the file was not written completely; re-export it");
   if (readU32(bytes, 0) != kGlbMagic)
     throw Error(file, "not a GLB file", "it does not start with the magic 'glTF'",

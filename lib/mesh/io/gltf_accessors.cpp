@@ -19,12 +19,16 @@ constexpr size_t kMaxMeshoptRatio = 256;
 size_t componentSize(int type) {
   switch (type) {
     case TINYGLTF_COMPONENT_TYPE_BYTE:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return 1;
     case TINYGLTF_COMPONENT_TYPE_SHORT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+      return 2;
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
-    default: return 0;
+    case TINYGLTF_COMPONENT_TYPE_FLOAT:
+      return 4;
+    default:
+      return 0;
   }
 }
 
@@ -50,8 +54,10 @@ double readComponent(const char* p, int type, bool normalized) {
       const double v = get(uint16_t());
       return normalized ? v / 65535.0 : v;
     }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return get(uint32_t());
-    default: return get(float());
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+      return get(uint32_t());
+    default:
+      return get(float());
   }
 }
 
@@ -151,8 +157,9 @@ std::string_view GltfAccessors::decodeMeshoptView(int view, const std::string& w
   else if (filter == "EXPONENTIAL" && stride % 4 == 0)
     meshopt_decodeFilterExp(out.data(), count, stride);
   else if (filter != "NONE")
-    throw Error(file_, fmt::format("{} filter '{}' on {}-byte elements", at, printableText(filter), stride),
-                "that filter does not apply to such elements", "the file is corrupt; re-export it");
+    throw Error(
+        file_, fmt::format("{} filter '{}' on {}-byte elements", at, printableText(filter), stride),
+        "that filter does not apply to such elements", "the file is corrupt; re-export it");
   (void)where;
   return decoded_views_.emplace(view, std::move(out)).first->second;
 }
@@ -187,9 +194,9 @@ std::vector<double> GltfAccessors::readValues(int index, int components, const s
   std::vector<double> values(a.count * size_t(components), 0.0);
   for (size_t i = 0; i < a.count && !bytes.empty(); ++i)
     for (int c = 0; c < components; ++c)
-      values[i * size_t(components) + size_t(c)] = readComponent(
-          bytes.data() + a.byteOffset + i * stride + size_t(c) * component, a.componentType,
-          a.normalized);
+      values[i * size_t(components) + size_t(c)] =
+          readComponent(bytes.data() + a.byteOffset + i * stride + size_t(c) * component,
+                        a.componentType, a.normalized);
   if (a.sparse.isSparse) {
     const size_t n = size_t(std::max(a.sparse.count, 0));
     const size_t index_size = componentSize(a.sparse.indices.componentType);
@@ -197,7 +204,8 @@ std::vector<double> GltfAccessors::readValues(int index, int components, const s
     const std::string_view val = viewBytes(a.sparse.values.bufferView, at + ".sparse.values");
     const size_t idx_offset = size_t(std::max(a.sparse.indices.byteOffset, 0));
     const size_t val_offset = size_t(std::max(a.sparse.values.byteOffset, 0));
-    if (n > a.count || index_size == 0 || a.sparse.indices.componentType == TINYGLTF_COMPONENT_TYPE_BYTE ||
+    if (n > a.count || index_size == 0 ||
+        a.sparse.indices.componentType == TINYGLTF_COMPONENT_TYPE_BYTE ||
         a.sparse.indices.componentType == TINYGLTF_COMPONENT_TYPE_SHORT ||
         !fits(idx_offset, n, index_size, index_size, idx.size()) ||
         !fits(val_offset, n, element, element, val.size()))
@@ -213,9 +221,9 @@ std::vector<double> GltfAccessors::readValues(int index, int components, const s
                     fmt::format("the accessor has {} elements", a.count),
                     "the file is corrupt; re-export it");
       for (int c = 0; c < components; ++c)
-        values[size_t(target) * size_t(components) + size_t(c)] = readComponent(
-            val.data() + val_offset + k * element + size_t(c) * component, a.componentType,
-            a.normalized);
+        values[size_t(target) * size_t(components) + size_t(c)] =
+            readComponent(val.data() + val_offset + k * element + size_t(c) * component,
+                          a.componentType, a.normalized);
     }
   }
   return values;

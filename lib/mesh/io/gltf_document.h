@@ -15,7 +15,7 @@ namespace proxyvis {
 
 struct GltfMaterialOut {
   Vec3f base_color{0.7f, 0.7f, 0.7f};
-  Vec3f emissive{0, 0, 0};       // emissiveFactor (each component in [0, 1])
+  Vec3f emissive{0, 0, 0};      // emissiveFactor (each component in [0, 1])
   float emissive_strength = 1;  // KHR_materials_emissive_strength when not 1
 };
 

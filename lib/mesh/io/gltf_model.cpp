@@ -23,10 +23,10 @@ namespace {
 // Extensions that change what a loader must do with the geometry and that we implement, and
 // those that only concern what we ignore (materials, textures, visibility, LODs).
 const std::set<std::string> kSupportedRequired = {
-    "KHR_draco_mesh_compression", "KHR_mesh_quantization", "EXT_meshopt_compression",
-    "EXT_mesh_gpu_instancing",
-    "KHR_materials_emissive_strength", "KHR_node_visibility", "KHR_texture_transform",
-    "KHR_materials_unlit"};
+    "KHR_draco_mesh_compression",      "KHR_mesh_quantization",
+    "EXT_meshopt_compression",         "EXT_mesh_gpu_instancing",
+    "KHR_materials_emissive_strength", "KHR_node_visibility",
+    "KHR_texture_transform",           "KHR_materials_unlit"};
 
 std::string percentDecoded(const std::string& uri) {
   std::string out;
@@ -47,7 +47,8 @@ std::string percentDecoded(const std::string& uri) {
 std::string uriRefusal(const std::string& uri) {
   if (uri.rfind("data:", 0) == 0) return {};
   static const std::regex scheme("^[A-Za-z][A-Za-z0-9+.-]*:");
-  if (std::regex_search(uri, scheme)) return "it names a URI scheme (only data: and relative paths are read)";
+  if (std::regex_search(uri, scheme))
+    return "it names a URI scheme (only data: and relative paths are read)";
   const std::string path = percentDecoded(uri);
   if (path.empty()) return {};
   if (path.find('\0') != std::string::npos) return "it holds a NUL byte";
@@ -86,13 +87,15 @@ std::string checkedDocument(const std::string& text, const std::string& file, bo
                 "'" + printableExcerpt(text, 40) + "...' is not a JSON object",
                 "the file is corrupt; re-export it");
   const json required = doc.value("extensionsRequired", json::array());
-  if (!required.is_array()) throw Error(file, "extensionsRequired is not an array", "", "fix the file");
+  if (!required.is_array())
+    throw Error(file, "extensionsRequired is not an array", "", "fix the file");
   for (size_t i = 0; i < required.size(); ++i) {
     const std::string name = required[i].is_string() ? required[i].get<std::string>() : "?";
     if (!kSupportedRequired.count(name))
-      throw Error(file, fmt::format("extensionsRequired[{}] '{}' is not supported", i, printableText(name)),
-                  "the file cannot be read correctly without it",
-                  "re-export without it (proxyvis reads Draco, meshopt and quantized meshes)");
+      throw Error(
+          file, fmt::format("extensionsRequired[{}] '{}' is not supported", i, printableText(name)),
+          "the file cannot be read correctly without it",
+          "re-export without it (proxyvis reads Draco, meshopt and quantized meshes)");
   }
   for (const char* array : {"buffers", "images"}) {
     const auto it = doc.find(array);
@@ -103,8 +106,9 @@ std::string checkedDocument(const std::string& text, const std::string& file, bo
       const std::string uri = item["uri"].get<std::string>();
       const std::string why = uriRefusal(uri);
       if (!why.empty())
-        throw Error(file, fmt::format("{}[{}].uri '{}' leaves the asset's folder", array, i,
-                                      printableExcerpt(uri)),
+        throw Error(file,
+                    fmt::format("{}[{}].uri '{}' leaves the asset's folder", array, i,
+                                printableExcerpt(uri)),
                     why, "keep buffers beside the .gltf file or inside it");
     }
   }
@@ -150,7 +154,9 @@ bool guardedFileExists(const std::string& path, void* user) {
   return insideFolder(*static_cast<FolderGuard*>(user), path) && fs::is_regular_file(path, ec);
 }
 
-std::string unexpandedPath(const std::string& path, void*) { return path; }  // no wordexp
+std::string unexpandedPath(const std::string& path, void*) {
+  return path;
+}  // no wordexp
 
 bool guardedReadWholeFile(std::vector<unsigned char>* out, std::string* err,
                           const std::string& path, void* user) {
@@ -202,7 +208,8 @@ tinygltf::Model parseGltfModel(const std::string& bytes, bool binary, const fs::
   loader.SetImageLoader(ignoreImage, nullptr);
   tinygltf::Model model;
   std::string err, warn;
-  const std::string base = guard.folder.empty() ? std::string("/nonexistent") : guard.folder.string();
+  const std::string base =
+      guard.folder.empty() ? std::string("/nonexistent") : guard.folder.string();
   bool ok = false;
   if (binary) {
     const std::string glb = changed ? joinGlb(document, chunks) : bytes;

@@ -25,10 +25,22 @@ Mat4 trsMatrix(const double* t, const double* r, const double* sc) {
     for (int i = 0; i < 3; ++i) m[i * 4 + i] = sc[i];
   if (r) {
     const double x = r[0], y = r[1], z = r[2], w = r[3];
-    const Mat4 rot = {1 - 2 * (y * y + z * z), 2 * (x * y + z * w), 2 * (x * z - y * w), 0,
-                      2 * (x * y - z * w), 1 - 2 * (x * x + z * z), 2 * (y * z + x * w), 0,
-                      2 * (x * z + y * w), 2 * (y * z - x * w), 1 - 2 * (x * x + y * y), 0,
-                      0, 0, 0, 1};
+    const Mat4 rot = {1 - 2 * (y * y + z * z),
+                      2 * (x * y + z * w),
+                      2 * (x * z - y * w),
+                      0,
+                      2 * (x * y - z * w),
+                      1 - 2 * (x * x + z * z),
+                      2 * (y * z + x * w),
+                      0,
+                      2 * (x * z + y * w),
+                      2 * (y * z - x * w),
+                      1 - 2 * (x * x + y * y),
+                      0,
+                      0,
+                      0,
+                      0,
+                      1};
     m = multiply(rot, m);
   }
   if (t)
@@ -63,8 +75,8 @@ std::vector<Mat4> gpuInstances(const tinygltf::Node& node, int index, GltfAccess
   for (int k = 0; k < 3; ++k) {
     if (!attributes.Has(names[k])) continue;
     const tinygltf::Value& accessor = attributes.Get(names[k]);
-    values[k] = data.readValues(accessor.IsNumber() ? accessor.GetNumberAsInt() : -1,
-                                components[k], at + ".attributes." + names[k]);
+    values[k] = data.readValues(accessor.IsNumber() ? accessor.GetNumberAsInt() : -1, components[k],
+                                at + ".attributes." + names[k]);
     const size_t n = values[k].size() / size_t(components[k]);
     if (count != SIZE_MAX && n != count)
       throw Error(file, at + " attributes differ in count",
@@ -96,9 +108,9 @@ int pickByName(const std::vector<T>& items, const std::string& name, const char*
   if (items.size() > 8) names += fmt::format(" and {} more", items.size() - 8);
   if (found.size() == 1) return found[0];
   throw Error(file,
-              found.empty() ? fmt::format("no {} is named '{}'", what, printableText(name))
-                            : fmt::format("{} {} are named '{}'", found.size(), whats,
-                                          printableText(name)),
+              found.empty()
+                  ? fmt::format("no {} is named '{}'", what, printableText(name))
+                  : fmt::format("{} {} are named '{}'", found.size(), whats, printableText(name)),
               fmt::format("the file's {}: {}", whats, names.empty() ? "none" : names),
               fmt::format("give {} one of those names", flag));
 }
@@ -113,7 +125,9 @@ bool hiddenNode(const tinygltf::Node& node) {
 
 }  // namespace
 
-Mat4 identity() { return {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}; }
+Mat4 identity() {
+  return {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+}
 
 double determinant3(const Mat4& m) {
   return m[0] * (m[5] * m[10] - m[9] * m[6]) - m[4] * (m[1] * m[10] - m[9] * m[2]) +
@@ -199,7 +213,8 @@ std::vector<Placement> placements(const tinygltf::Model& model, GltfAccessors& d
     for (int c : node.children) stack.push_back({c, world, picked, visible});
   }
   if (picked_node >= 0 && !picked_reached)
-    throw Error(file, fmt::format("node '{}' is not in the default scene", printableText(pick.node)),
+    throw Error(file,
+                fmt::format("node '{}' is not in the default scene", printableText(pick.node)),
                 "only the scene's nodes have a place in the world", "pick a node of the scene");
   return out;
 }

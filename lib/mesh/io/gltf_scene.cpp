@@ -25,7 +25,6 @@ const char* modeName(int mode) {
   return mode >= 0 && mode < 4 ? names[mode] : "an unknown mode";
 }
 
-
 }  // namespace
 
 void appendPrimitive(const tinygltf::Model& model, GltfAccessors& data, size_t mesh_index,
@@ -35,9 +34,11 @@ void appendPrimitive(const tinygltf::Model& model, GltfAccessors& data, size_t m
   const std::string where = fmt::format("meshes[{}].primitives[{}]", mesh_index, prim_index);
   const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
   if (mode < TINYGLTF_MODE_TRIANGLES || mode > TINYGLTF_MODE_TRIANGLE_FAN)
-    throw Error(file, fmt::format("{} (mesh '{}') draws {}", where, printableText(mesh.name), modeName(mode)),
-                "only triangles, strips and fans make a surface",
-                "export the mesh's faces, not its points or edges");
+    throw Error(
+        file,
+        fmt::format("{} (mesh '{}') draws {}", where, printableText(mesh.name), modeName(mode)),
+        "only triangles, strips and fans make a surface",
+        "export the mesh's faces, not its points or edges");
   const uint32_t base = uint32_t(local.vertices.size());
   if (auto draco = prim.extensions.find("KHR_draco_mesh_compression");
       draco != prim.extensions.end()) {
@@ -55,7 +56,8 @@ void appendPrimitive(const tinygltf::Model& model, GltfAccessors& data, size_t m
   if (position == prim.attributes.end())
     throw Error(file, where + " has no POSITION attribute", "a surface needs vertex positions",
                 "the file is corrupt; re-export it");
-  const std::vector<double> p = data.readValues(position->second, 3, where + ".attributes.POSITION");
+  const std::vector<double> p =
+      data.readValues(position->second, 3, where + ".attributes.POSITION");
   const size_t n = p.size() / 3;
   for (size_t i = 0; i < n; ++i)
     local.vertices.push_back(Vec3f(float(p[3 * i]), float(p[3 * i + 1]), float(p[3 * i + 2])));
@@ -69,7 +71,8 @@ void appendPrimitive(const tinygltf::Model& model, GltfAccessors& data, size_t m
   for (size_t k = 0; k < idx.size(); ++k)
     if (idx[k] >= n)
       throw Error(file, fmt::format("{}.indices[{}] is {}", where, k, idx[k]),
-                  fmt::format("the primitive has {} vertices", n), "the file is corrupt; re-export it");
+                  fmt::format("the primitive has {} vertices", n),
+                  "the file is corrupt; re-export it");
   auto add = [&](uint32_t a, uint32_t b, uint32_t c) {
     if (a != b && b != c && a != c) local.triangles.push_back({a + base, b + base, c + base});
   };
@@ -85,7 +88,6 @@ void appendPrimitive(const tinygltf::Model& model, GltfAccessors& data, size_t m
     for (size_t k = 1; k + 1 < idx.size(); ++k) add(idx[0], idx[k], idx[k + 1]);
   }
 }
-
 
 std::optional<Vec3f> emittedRadiance(const tinygltf::Model& model,
                                      const tinygltf::Primitive& prim) {

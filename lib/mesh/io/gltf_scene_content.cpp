@@ -91,7 +91,8 @@ GltfSceneContent readGltfScene(const std::filesystem::path& path) {
       prototype[m] = -1;
       for (const tinygltf::Primitive& prim : mesh.primitives)
         if (!detail::isEmissive(model, prim)) {
-          out.meshes.push_back({mesh.name, int(m), detail::baseColor(model, prim, {0.7f, 0.7f, 0.7f})});
+          out.meshes.push_back(
+              {mesh.name, int(m), detail::baseColor(model, prim, {0.7f, 0.7f, 0.7f})});
           prototype[m] = int(out.meshes.size() - 1);
           break;
         }

@@ -15,8 +15,8 @@ namespace proxyvis {
 
 struct GltfSceneContent {
   struct Mesh {
-    std::string name;  // the glTF mesh's name (may be empty or repeated)
-    int index = -1;    // meshes[index] of the file
+    std::string name;                // the glTF mesh's name (may be empty or repeated)
+    int index = -1;                  // meshes[index] of the file
     Vec3f albedo{0.7f, 0.7f, 0.7f};  // baseColorFactor of its first surface primitive
   };
   struct Instance {
@@ -30,7 +30,7 @@ struct GltfSceneContent {
   struct Camera {
     Vec3f eye, look_at, up;
     double yfov_deg = 40;
-    double aspect = 0;  // width / height; 0 when the file leaves it open
+    double aspect = 0;          // width / height; 0 when the file leaves it open
     int width = 0, height = 0;  // the camera node's extras.proxyvis.resolution, 0: none
   };
   std::vector<Mesh> meshes;  // those with surface (non-emissive) triangles that a node places

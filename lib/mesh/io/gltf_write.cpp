@@ -9,9 +9,9 @@
 #include <cstring>
 #include <sstream>
 
+#include "mesh/io/gltf_document.h"
 #include "mesh/io/internal/draco_io.h"
 #include "mesh/io/internal/glb_container.h"
-#include "mesh/io/gltf_document.h"
 #include "mesh/io/internal/tiny_gltf.h"
 #include "util/error.h"
 
@@ -22,15 +22,18 @@ using json = nlohmann::json;
 
 tinygltf::Value toValue(const json& j) {
   switch (j.type()) {
-    case json::value_t::boolean: return tinygltf::Value(j.get<bool>());
+    case json::value_t::boolean:
+      return tinygltf::Value(j.get<bool>());
     case json::value_t::number_integer:
     case json::value_t::number_unsigned:
       // tinygltf keeps ints as int: larger integers (byte counts, seeds) go as doubles.
       if (j.is_number_integer() && j.get<int64_t>() >= INT32_MIN && j.get<int64_t>() <= INT32_MAX)
         return tinygltf::Value(int(j.get<int64_t>()));
       return tinygltf::Value(j.get<double>());
-    case json::value_t::number_float: return tinygltf::Value(j.get<double>());
-    case json::value_t::string: return tinygltf::Value(j.get<std::string>());
+    case json::value_t::number_float:
+      return tinygltf::Value(j.get<double>());
+    case json::value_t::string:
+      return tinygltf::Value(j.get<std::string>());
     case json::value_t::array: {
       tinygltf::Value::Array a;
       for (const json& item : j) a.push_back(toValue(item));
@@ -41,11 +44,14 @@ tinygltf::Value toValue(const json& j) {
       for (const auto& [key, item] : j.items()) o[key] = toValue(item);
       return tinygltf::Value(std::move(o));
     }
-    default: return tinygltf::Value();
+    default:
+      return tinygltf::Value();
   }
 }
 
-size_t padded(size_t n) { return (n + 3) / 4 * 4; }
+size_t padded(size_t n) {
+  return (n + 3) / 4 * 4;
+}
 
 struct GltfEncoding {
   bool binary = true;  // GLB; else .gltf with the buffer as a data: URI
@@ -172,9 +178,9 @@ class ModelBuilder {
     model_.scenes.push_back(scene_);
     model_.defaultScene = 0;
     if (encoding_.compression == GltfCompression::kMeshopt)
-      patches_.emplace_back("/buffers/1",
-                            json{{"byteLength", fallback_bytes_},
-                                 {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}});
+      patches_.emplace_back(
+          "/buffers/1", json{{"byteLength", fallback_bytes_},
+                             {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}});
     std::ostringstream stream(std::ios::out | std::ios::binary);
     tinygltf::TinyGLTF writer;
     if (!writer.WriteGltfSceneToStream(&model_, stream, /*prettyPrint=*/!encoding_.binary,
@@ -258,8 +264,7 @@ class ModelBuilder {
   }
 
   tinygltf::Primitive dracoPrimitive(const TriMesh& mesh) {
-    const std::string bytes =
-        encodeDraco(mesh, encoding_.draco_bits, encoding_.draco_speed, file_);
+    const std::string bytes = encodeDraco(mesh, encoding_.draco_bits, encoding_.draco_speed, file_);
     // The accessors describe what a decoder gets: Draco may reorder and quantize points.
     TriMesh decoded;
     decodeDraco(bytes, file_, decoded);
@@ -274,7 +279,8 @@ class ModelBuilder {
     model_.bufferViews.push_back(v);
     prim.extensions["KHR_draco_mesh_compression"] = tinygltf::Value(tinygltf::Value::Object{
         {"bufferView", tinygltf::Value(int(model_.bufferViews.size() - 1))},
-        {"attributes", tinygltf::Value(tinygltf::Value::Object{{"POSITION", tinygltf::Value(0)}})}});
+        {"attributes",
+         tinygltf::Value(tinygltf::Value::Object{{"POSITION", tinygltf::Value(0)}})}});
     return prim;
   }
 
@@ -301,8 +307,8 @@ class ModelBuilder {
     a.bufferView = view;
     a.type = TINYGLTF_TYPE_SCALAR;
     a.count = count;
-    a.componentType = narrow ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT
-                             : TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+    a.componentType =
+        narrow ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT : TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
     model_.accessors.push_back(a);
     return int(model_.accessors.size() - 1);
   }

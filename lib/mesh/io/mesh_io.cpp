@@ -5,8 +5,8 @@
 #include <sstream>
 #include <system_error>
 
-#include "mesh/io/internal/draco_io.h"
 #include "mesh/io/gltf_document.h"
+#include "mesh/io/internal/draco_io.h"
 #include "mesh/io/internal/gltf_io.h"
 #include "mesh/io/internal/header_check.h"
 #include "mesh/io/internal/openmesh_formats.h"
@@ -34,7 +34,8 @@ std::string formatOf(const fs::path& path) {
 
 Error unknownExtension(const fs::path& path) {
   return Error(path.string(), "unknown mesh file extension '" + path.extension().string() + "'",
-               "the format is chosen by the extension", "use .obj, .ply, .off, .drc, .gltf or .glb");
+               "the format is chosen by the extension",
+               "use .obj, .ply, .off, .drc, .gltf or .glb");
 }
 
 // What every loader output must satisfy before anyone uses it.
@@ -120,8 +121,8 @@ GltfCompression parseGltfCompression(const std::string& text, const fs::path& ou
 
 bool movesVertices(const fs::path& path, const SaveOptions& options) {
   const std::string format = formatOf(path);
-  const bool draco = format == "drc" || (isGltfPath(path) &&
-                                         options.gltf_compression == GltfCompression::kDraco);
+  const bool draco =
+      format == "drc" || (isGltfPath(path) && options.gltf_compression == GltfCompression::kDraco);
   return draco && options.draco_quantization > 0;
 }
 

@@ -23,8 +23,7 @@ void appendPrimitive(const tinygltf::Model& model, GltfAccessors& data, size_t m
 
 // The radiance a primitive's material emits (emissiveFactor times
 // KHR_materials_emissive_strength); nullopt when it emits nothing.
-std::optional<Vec3f> emittedRadiance(const tinygltf::Model& model,
-                                     const tinygltf::Primitive& prim);
+std::optional<Vec3f> emittedRadiance(const tinygltf::Model& model, const tinygltf::Primitive& prim);
 inline bool isEmissive(const tinygltf::Model& model, const tinygltf::Primitive& prim) {
   return emittedRadiance(model, prim).has_value();
 }
