@@ -23,17 +23,11 @@ import struct
 import subprocess
 import sys
 
-FAILURES = []
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent / "support"))
+from gltf_checks import FAILURES, check, glb_json, run  # noqa: E402
 
 
-def check(ok: bool, what: str) -> None:
-    print(("ok   " if ok else "FAIL ") + what)
-    if not ok:
-        FAILURES.append(what)
 
-
-def run(cmd) -> subprocess.CompletedProcess:
-    return subprocess.run([str(c) for c in cmd], capture_output=True, text=True)
 
 
 def mesh_info(bin_dir, path, work, *extra) -> dict:
@@ -41,10 +35,6 @@ def mesh_info(bin_dir, path, work, *extra) -> dict:
     r = run([bin_dir / "mesh-info", path, "--json", out, "--quiet", *extra])
     return json.loads(out.read_text())[0] if r.returncode == 0 else {"error": r.stderr.strip()}
 
-
-def glb_json(path: pathlib.Path) -> dict:
-    data = path.read_bytes()
-    return json.loads(data[20:20 + struct.unpack("<I", data[12:16])[0]])
 
 
 def main() -> int:

@@ -26,18 +26,12 @@ import struct
 import subprocess
 import sys
 
-FAILURES = []
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent / "support"))
+from gltf_checks import FAILURES, check, glb_json, run  # noqa: E402
+
 PLAIN, COMPRESSED = 1e-6, 2e-4
 
 
-def check(ok: bool, what: str) -> None:
-    print(("ok   " if ok else "FAIL ") + what)
-    if not ok:
-        FAILURES.append(what)
-
-
-def run(cmd, **kw) -> subprocess.CompletedProcess:
-    return subprocess.run([str(c) for c in cmd], capture_output=True, text=True, **kw)
 
 
 def info(bin_dir: pathlib.Path, mesh: pathlib.Path) -> dict:

@@ -26,23 +26,12 @@ import struct
 import subprocess
 import sys
 
-FAILURES = []
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent / "support"))
+from gltf_checks import FAILURES, check, glb_json, run  # noqa: E402
 
 
-def check(ok: bool, what: str) -> None:
-    print(("ok   " if ok else "FAIL ") + what)
-    if not ok:
-        FAILURES.append(what)
 
 
-def run(cmd, **kw) -> subprocess.CompletedProcess:
-    return subprocess.run([str(c) for c in cmd], capture_output=True, text=True, **kw)
-
-
-def glb_json(path: pathlib.Path) -> dict:
-    data = path.read_bytes()
-    length = struct.unpack("<I", data[12:16])[0]
-    return json.loads(data[20:20 + length])
 
 
 def info(bin_dir: pathlib.Path, mesh: pathlib.Path, work: pathlib.Path) -> dict:
