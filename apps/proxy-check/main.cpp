@@ -2,7 +2,7 @@
 // containment test, and reports both (docs/design.md).
 //
 //   proxy-check ORIGINAL PROXY [--rays N] [--seed S] [--expect outside|inside|general]
-//               [--json OUT] [--dump-errors FILE.ply]
+//               [--json OUT] [--dump-errors FILE.ply] [--html REPORT.html]
 //   proxy-check SCENE.json [--write-scene OUT.json]
 //               (every proxy of every mesh; instanced meshes: their prototype)
 #include <fmt/core.h>
@@ -17,6 +17,7 @@
 
 #include "mesh/io/mesh_io.h"
 #include "proxies/check/check_report.h"
+#include "proxies/check/check_view3d.h"
 #include "proxies/check/pair_check.h"
 #include "proxies/check/scene_segments.h"
 #include "proxies/check/scene_stream.h"
@@ -44,16 +45,22 @@ struct Options {
   std::string expect;
   std::string dump_errors;
   std::string write_scene;
+  std::string html;
 };
+
+// Error segments kept for --html alone (the page draws a few thousand of each class; keeping the
+// first of a larger number leaves enough of the rarer class).
+constexpr uint64_t kHtmlErrorSegments = 200'000;
 
 // The human report goes to stdout unless the JSON does; then to stderr (unless --quiet).
 void printHuman(const Options& o, const std::string& text) {
   printHumanReport(o.common, text);
 }
 
-// The error segments and the JSON that describes them (with their hash) as one unit: the JSON is
-// put in place last.
-void writeOutputs(const Options& o, const std::vector<ErrorSegment>& errors, nlohmann::json json) {
+// The error segments, the HTML page and the JSON that describes them (with their hashes) as one
+// unit: the JSON is put in place last.
+void writeOutputs(const Options& o, const std::vector<ErrorSegment>& errors, nlohmann::json json,
+                  const std::string& html = {}) {
   OutputSet outputs(MissingFolders::kCreate);
   if (!o.dump_errors.empty()) {
     outputs.add(o.dump_errors,
@@ -61,6 +68,10 @@ void writeOutputs(const Options& o, const std::vector<ErrorSegment>& errors, nlo
     json["dump_errors"] = {{"file", o.dump_errors},
                            {"segments", errors.size()},
                            {"sha256", outputs.sha256Of(o.dump_errors)}};
+  }
+  if (!o.html.empty()) {
+    outputs.addText(o.html, html);
+    json["html"] = {{"file", o.html}, {"sha256", outputs.sha256Of(o.html)}};
   }
   if (!o.common.json_path.empty()) outputs.addText(o.common.json_path, json.dump(2) + "\n");
   outputs.commit();
@@ -78,6 +89,7 @@ PairCheckOptions pairOptions(const Options& o) {
   p.seed = o.common.seed;
   p.quiet = o.common.quiet;
   if (!o.expect.empty()) p.expect = parseProxyClass(o.expect);
+  if (!o.html.empty()) p.max_error_segments = kHtmlErrorSegments;
   if (!o.dump_errors.empty()) p.max_error_segments = 1'000'000;
   return p;
 }
@@ -94,17 +106,9 @@ int runPair(const Options& o) {
   PairCheckReport r = checkPair(original, proxy, pairOptions(o));
   printHuman(o, formatHumanReport(r));
   printMismatch(r);
-  writeOutputs(o, r.sampled.errors, toJson(r));
+  const std::string html = o.html.empty() ? std::string() : checkReportHtml(original, proxy, r);
+  writeOutputs(o, r.sampled.errors, toJson(r), html);
   return r.failed() ? kExitCheckFailed : kExitOk;
-}
-
-// The class the exact check proved (general unless contains / contained, and general when the
-// sampled verdict disagrees with it), for --write-scene.
-ProxyClass provenClass(const PairCheckReport& r) {
-  if (r.mismatch) return ProxyClass::kGeneral;
-  if (r.exact.verdict == ContainmentVerdict::kContains) return ProxyClass::kOutside;
-  if (r.exact.verdict == ContainmentVerdict::kContained) return ProxyClass::kInside;
-  return ProxyClass::kGeneral;
 }
 
 // Draws per prototype until --rays segments are classified; a prototype that the scene's segments
@@ -274,6 +278,10 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"outside", "inside", "general"}));
   app.add_option("--dump-errors", o.dump_errors,
                  "Write the error segments as a PLY of edges (red HM', blue MH')");
+  app.add_option("--html", o.html,
+                 "Mesh pair: write an HTML page with the classification and an interactive 3D "
+                 "view of original, proxy and the error segments (three.js embedded: one file "
+                 "that works offline; docs/report_3d.md)");
   app.add_option("--write-scene", o.write_scene,
                  "Scene input: write a copy of the scene (paths relative to OUT.json) in which "
                  "each proxy's class is the one the exact check proved (outside: contains; "
@@ -283,11 +291,15 @@ int main(int argc, char** argv) {
   return runApp(app, argc, argv, o.common, [&] {
     checkOutputs(o.inputs, {{"--json", o.common.json_path},
                             {"--dump-errors", o.dump_errors},
-                            {"--write-scene", o.write_scene}});
+                            {"--write-scene", o.write_scene},
+                            {"--html", o.html}});
     if (o.inputs.size() == 1) {
       if (fs::path(o.inputs[0]).extension() != ".json")
         throw Error(o.inputs[0], "one input must be a scene (.json)",
                     "a mesh needs its proxy beside it", "proxy-check ORIGINAL PROXY");
+      if (!o.html.empty())
+        throw Error("", "--html needs a mesh pair", "the page shows one original and its proxy",
+                    "run proxy-check ORIGINAL PROXY --html REPORT.html");
       return runScene(o);
     }
     return runPair(o);

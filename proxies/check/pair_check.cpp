@@ -97,4 +97,11 @@ PairCheckReport checkPair(const TriMesh& original, const TriMesh& proxy,
   return r;
 }
 
+ProxyClass provenClass(const PairCheckReport& r) {
+  if (r.mismatch) return ProxyClass::kGeneral;
+  if (r.exact.verdict == ContainmentVerdict::kContains) return ProxyClass::kOutside;
+  if (r.exact.verdict == ContainmentVerdict::kContained) return ProxyClass::kInside;
+  return ProxyClass::kGeneral;
+}
+
 }  // namespace proxyvis

@@ -67,6 +67,10 @@ MeshSummary summarizeMesh(const TriMesh& mesh, bool closed);
 // `exact` and `expected`.
 void finishVerdicts(PairCheckReport& report);
 
+// The class the exact check proved: outside for `contains`, inside for `contained`, otherwise
+// general; general also when the sampled verdict disagrees with it (a mismatch).
+ProxyClass provenClass(const PairCheckReport& report);
+
 // The exact check, the classification (sphere distribution unless options.generator is set: (both
 // ends outside both meshes, as the guarantees require) and the mesh statistics. Throws Error for
 // empty meshes.
