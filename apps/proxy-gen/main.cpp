@@ -12,6 +12,7 @@
 
 #include "mesh/io/mesh_io.h"
 #include "output_paths.h"
+#include "proxies/check/check_view3d.h"
 #include "proxies/pipeline/gltf_proof.h"
 #include "proxies/pipeline/proxy_cache.h"
 #include "proxies/pipeline/proxy_pipeline.h"
@@ -42,6 +43,9 @@ using json = nlohmann::json;
 
 namespace {
 
+// HM'/MH' segments kept for --report's 3D view (it draws a few thousand of each class).
+constexpr uint64_t kReportErrorSegments = 2000;
+
 struct Args {
   std::string input, output, out_dir, kind = "outside", method;
   std::optional<double> alpha, offset, ratio, erosion, voxel;
@@ -57,7 +61,8 @@ struct Args {
   std::string done_file;                  // --done FILE: a plan unit's marker
   std::string plan_dir;                   // --plan DIR: write the shards as a plan's units
   uint64_t plan_shards = 0;               // --shards N of the plan
-  uint64_t gltf_rays = 100000;            // --gltf-rays: segments classified for a glTF's proof
+  uint64_t check_rays = 100000;           // --check-rays: segments for a glTF's proof, --report
+  std::string report_html;                // --report REPORT.html (mesh mode)
   std::string compress = "none";          // --compress (glTF output)
   int draco_bits = 0;                     // --draco-bits (.drc, glTF Draco)
   GltfPick pick;                          // --mesh / --node (glTF input)
@@ -92,6 +97,39 @@ void addLoadSeconds(json& report, double load_seconds) {
   seconds["total"] = seconds.value("total", 0.0) + load_seconds;
 }
 
+// The proxy file (a glTF with its proof; proved again when quantization moved its vertices) and
+// the --report page, staged in `outputs`.
+void addProxyOutputs(const Args& a, const TriMesh& input, ProxyGenResult& result, uint64_t seed,
+                     OutputSet& outputs) {
+  const bool gltf = isGltfPath(a.output);
+  std::optional<PairCheckReport> check;
+  if ((gltf || !a.report_html.empty()) && a.check_rays > 0)
+    check = classifyProxySegments(input, result.proxy, a.check_rays, seed,
+                                  a.report_html.empty() ? 0 : kReportErrorSegments);
+  SaveOptions save;
+  save.draco_quantization = a.draco_bits;
+  save.gltf_compression = parseGltfCompression(a.compress, a.output);
+  if (gltf) {
+    save.gltf_name = gltfProxyNodeName(fs::path(a.input).stem().string(), result.report);
+    json proof = gltfProofExtras(result.report, sha256OfFile(a.input), programBuildId());
+    if (!a.pick.mesh.empty()) proof["source_mesh"] = a.pick.mesh;
+    if (!a.pick.node.empty()) proof["source_node"] = a.pick.node;
+    if (check) proof["segments"] = gltfSegmentEvidence(*check);
+    save.gltf_extras = {{"proxyvis", proof}};
+  }
+  const std::string bytes = encodeMesh(result.proxy, a.output, save);
+  if (movesVertices(a.output, save))
+    proveWrittenProxy(input, parseMeshBytes(bytes, a.output), result.report, a.output);
+  addEncodedMeshOutput(outputs, bytes, a.output);
+  if (!a.report_html.empty()) {
+    if (!check)
+      throw Error("", "--report needs classified segments", "--check-rays 0 classifies none",
+                  "drop --check-rays 0");
+    outputs.addText(a.report_html, checkReportHtml(input, result.proxy, *check));
+    result.report["report_html"] = a.report_html;
+  }
+}
+
 int runMesh(const Args& a, const CommonOptions& common) {
   if (!a.shard.empty() || !a.merge_shards.empty() || !a.plan_dir.empty())
     throw Error(a.input, "--shard, --merge-shards and --plan split a scene",
@@ -112,23 +150,7 @@ int runMesh(const Args& a, const CommonOptions& common) {
   progress.done();
   addLoadSeconds(result.report, load_seconds);
   OutputSet outputs(MissingFolders::kCreate);
-  // The file holds the very mesh that was verified, or (Draco quantization) one proved again.
-  SaveOptions save;
-  save.draco_quantization = a.draco_bits;
-  save.gltf_compression = parseGltfCompression(a.compress, a.output);
-  if (isGltfPath(a.output)) {
-    save.gltf_name = gltfProxyNodeName(fs::path(a.input).stem().string(), result.report);
-    json proof = gltfProofExtras(result.report, sha256OfFile(a.input), programBuildId());
-    if (!a.pick.mesh.empty()) proof["source_mesh"] = a.pick.mesh;
-    if (!a.pick.node.empty()) proof["source_node"] = a.pick.node;
-    if (a.gltf_rays > 0)
-      proof["segments"] = gltfSegmentEvidence(input, result.proxy, a.gltf_rays, options.seed);
-    save.gltf_extras = {{"proxyvis", proof}};
-  }
-  const std::string bytes = encodeMesh(result.proxy, a.output, save);
-  if (movesVertices(a.output, save))
-    proveWrittenProxy(input, parseMeshBytes(bytes, a.output), result.report, a.output);
-  addEncodedMeshOutput(outputs, bytes, a.output);
+  addProxyOutputs(a, input, result, options.seed, outputs);
   noteWrittenClass(result.report, a.input);
   result.report["output"] = a.output;
   result.report["output_sha256"] = outputs.sha256Of(a.output);
@@ -232,6 +254,10 @@ int writePlan(const Args& a, const CommonOptions& common, const CLI::App& app) {
 }
 
 int runScene(const Args& a, const CommonOptions& common, const CLI::App& app) {
+  if (!a.report_html.empty())
+    throw Error(a.report_html, "--report is for a mesh input",
+                "the page shows one input and its proxy",
+                "run proxy-gen MESH -o OUT --report PAGE.html");
   if (a.out_dir.empty())
     throw Error(a.input, "no output directory", "a scene input needs --out-dir DIR",
                 "add --out-dir out/");
@@ -333,9 +359,12 @@ void addProxyOptions(CLI::App& app, Args& a) {
   addCompressionOptions(app, a.compress, a.draco_bits,
                         "(0 = lossless, default; more moves vertices, so the written proxy is "
                         "proved again against the input and nothing is written if it fails)");
-  app.add_option("--gltf-rays", a.gltf_rays,
-                 "glTF output: segments classified against original and proxy for the proof's "
-                 "HM'/MH' counts and bounds (0 = none)")
+  app.add_option("--report", a.report_html,
+                 "Mesh input: also write an HTML page with the check of the proxy and a 3D view of "
+                 "input, proxy and the segments that break its class (docs/report_3d.md)");
+  app.add_option("--check-rays,--gltf-rays", a.check_rays,
+                 "Segments classified against original and proxy for a glTF output's proof "
+                 "(HM'/MH' counts and bounds) and for --report (0 = none)")
       ->check(integerIn(0, 100'000'000))
       ->capture_default_str();
   app.add_option("--gltf", a.scene_gltf,
@@ -452,7 +481,8 @@ int main(int argc, char** argv) {
                "it is not a terminal (one line per stage); without it, only on a terminal")
       ->excludes("--quiet");
   return runApp(app, argc, argv, common, [&] {
-    checkOutputs({a.input}, {{"-o", a.output}, {"--json", common.json_path}});
+    checkOutputs({a.input},
+                 {{"-o", a.output}, {"--json", common.json_path}, {"--report", a.report_html}});
     // A glTF file is a scene with --out-dir (every mesh, like a JSON scene), one mesh with -o.
     const bool scene = lowerExtension(a.input) == ".json" ||
                        (isGltfPath(a.input) && !a.out_dir.empty() && a.output.empty());

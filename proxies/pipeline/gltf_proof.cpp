@@ -38,18 +38,23 @@ json gltfProofExtras(const json& report, const std::string& source_sha256,
   return proof;
 }
 
-json gltfSegmentEvidence(const TriMesh& original, const TriMesh& proxy, uint64_t rays,
-                         uint64_t seed) {
+PairCheckReport classifyProxySegments(const TriMesh& original, const TriMesh& proxy, uint64_t rays,
+                                      uint64_t seed, uint64_t keep_errors) {
   PairCheckOptions options;
   options.rays = rays;
   options.seed = seed;
   options.distance_samples = 1000;  // the report's own distances are the ones kept
   options.quiet = true;
-  const json check = toJson(checkPair(original, proxy, options));
+  options.max_error_segments = keep_errors;
+  return checkPair(original, proxy, options);
+}
+
+json gltfSegmentEvidence(const PairCheckReport& report) {
+  const json check = toJson(report);
   const json& intervals = check["intervals"];
   return {{"distribution", "sphere"},
-          {"rays", rays},
-          {"seed", seed},
+          {"rays", report.rays_requested},
+          {"seed", report.seed},
           {"counts", check["counts"]},
           {"HM_rate_upper_95", intervals["HM"].value("hi", json())},
           {"MH_rate_upper_95", intervals["MH"].value("hi", json())},

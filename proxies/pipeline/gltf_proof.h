@@ -7,6 +7,7 @@
 #include <string>
 
 #include "mesh/tri_mesh.h"
+#include "proxies/check/pair_check.h"
 
 namespace proxyvis {
 
@@ -16,10 +17,14 @@ namespace proxyvis {
 nlohmann::json gltfProofExtras(const nlohmann::json& report, const std::string& source_sha256,
                                const std::string& program_build);
 
-// extras.proxyvis.segments: `rays` segments of the sphere distribution classified against both
-// meshes (seeded): the HH/HM/MH/MM counts and the 95 % upper bounds on the HM and MH rates.
-nlohmann::json gltfSegmentEvidence(const TriMesh& original, const TriMesh& proxy, uint64_t rays,
-                                   uint64_t seed);
+// `rays` segments of the sphere distribution classified against both meshes (seeded), keeping up
+// to `keep_errors` HM'/MH' segments (for a report's 3D view).
+PairCheckReport classifyProxySegments(const TriMesh& original, const TriMesh& proxy, uint64_t rays,
+                                      uint64_t seed, uint64_t keep_errors);
+
+// extras.proxyvis.segments from such a check: the HH/HM/MH/MM counts and the 95 % upper bounds
+// on the HM and MH rates.
+nlohmann::json gltfSegmentEvidence(const PairCheckReport& report);
 
 // A proxy is proved before it is encoded; an encoder that moves vertices (Draco quantization)
 // writes another mesh. Checks `written` (the file decoded again) exactly against `original` for

@@ -4,7 +4,8 @@ with WebGL (SwiftShader), driven over the DevTools protocol on a pipe (standard 
 
 Writes an outside proxy of data/bunny.off with proxy-gen and a planted defect (that proxy scaled
 down by 10 % about its centre, so that HM' segments exist), runs proxy-check --expect outside
---html on both, and checks each page with the network emulated offline:
+--html on both (and takes proxy-gen --report's page of the good proxy as a third, good page),
+and checks each page with the network emulated offline:
   - no console message at all (console API, exceptions, browser log entries);
   - no request but the page itself (data: URLs excepted): everything is embedded;
   - the view was built (<html data-view3d="ready">) and the canvas is not blank: its screenshot
@@ -433,7 +434,10 @@ def main():
     proxy_check = os.path.join(bin_dir, "proxy-check")
     bunny = os.path.join(data_dir, "bunny.off")
     good_proxy = os.path.join(work, "bunny.outside.ply")
-    _, t_gen = run([proxy_gen, bunny, "--kind", "outside", "-o", good_proxy, "--quiet"], 0)
+    # proxy-gen --report writes the same kind of page for the proxy it makes: judged as a good one.
+    gen_page = os.path.join(work, "proxy_gen.html")
+    _, t_gen = run([proxy_gen, bunny, "--kind", "outside", "-o", good_proxy, "--quiet",
+                    "--report", gen_page, "--check-rays", RAYS, "--seed", "1"], 0)
     bad_proxy = os.path.join(work, "bunny.shrunk.ply")
     scaled_copy(good_proxy, bad_proxy, 0.9)
     good, bad = os.path.join(work, "good.html"), os.path.join(work, "defect.html")
@@ -460,7 +464,8 @@ def main():
     failed = False
     try:
         t = time.monotonic()
-        pages = {"good": look(browser, good, screenshot), "defect": look(browser, bad)}
+        pages = {"good": look(browser, good, screenshot), "defect": look(browser, bad),
+                 "proxy-gen": look(browser, gen_page)}
         print(f"good and defect pages looked at in {time.monotonic() - t:.1f} s")
         # The checker first: each planted problem must be found.
         planted = [
@@ -492,7 +497,7 @@ def main():
             else:
                 print(f"planted '{name}' found ({time.monotonic() - t:.1f} s): "
                       + next(f for f in failures if wanted in f)[:150])
-        for name, expect_errors in (("good", False), ("defect", True)):
+        for name, expect_errors in (("good", False), ("defect", True), ("proxy-gen", False)):
             findings = pages[name]
             failures = judge(findings, expect_errors)
             for f in failures:
