@@ -12,6 +12,8 @@ Checks, each against facts fixed outside the code under test:
 - the GLB read back as a scene renders the image of the JSON scene (same seed and samples) up to
   float rounding: no pixel value differs by more than 1e-4 (OpenImageIO's idiff; the camera
   comes back through a matrix, so its rays differ in their last bits: 1.2e-6 seen);
+- with --kind general the proxy is the dragon node's MSFT_lod level instead (a node outside the
+  scene's root list, with the dragon's transform), and that file validates as well;
 - proxy-gen on the GLB as a scene (--out-dir) builds the dragon's proxy again, its scene.json
   refers to the GLB's meshes by "gltf_mesh", proxy-check --expect outside holds for it, and
   render-compare runs on the GLB scene itself and writes its report.
@@ -68,6 +70,21 @@ def main() -> int:
     check(picked.get("faces") == ply.get("faces") and
           abs(picked.get("volume", 0) - ply.get("volume", 1)) <= 1e-9 * abs(ply.get("volume", 1)),
           f"--node dragon-occludee is the written proxy: {picked.get('faces')} vs {ply.get('faces')} faces")
+
+    general = work / "general"
+    lod_glb = general / "scene.glb"
+    r = run([bin_dir / "proxy-gen", src / "scenes/dragon-plane.json", "--kind", "general",
+             "--out-dir", general, "--gltf", lod_glb, "--no-cache", "--quiet"])
+    check(r.returncode == 0, f"proxy-gen --kind general --gltf: {r.stderr.strip()[-200:]}")
+    if r.returncode == 0:
+        doc = glb_json(lod_glb)
+        dragon = [n for n in doc["nodes"] if n.get("name") == "dragon"]
+        ids = dragon[0].get("extensions", {}).get("MSFT_lod", {}).get("ids", []) if dragon else []
+        lod_ok = len(ids) == 1 and doc["nodes"][ids[0]].get("name") == "dragon-lod" and \
+            ids[0] not in doc["scenes"][0]["nodes"]
+        check(lod_ok, f"the general proxy is the dragon's MSFT_lod level: ids {ids}")
+        v = run(["node", js / "validate.mjs", lod_glb])
+        check(v.returncode == 0, f"validator on the LOD scene: {v.stdout.strip()[:300]}")
 
     images = []
     for scene in (src / "scenes/dragon-plane.json", glb):
