@@ -385,6 +385,16 @@ TEST(GltfLoader, AccessorsAndIndicesOutsideTheirDataAreRefused) {
   EXPECT_NE(errorOf([&] { parseGlb(b); }).find("has the wrong type"), std::string::npos);
 }
 
+// fuzz_glb: a GLB buffer of byteLength 0 made tinygltf read byte 0 of an empty vector (an
+// std::out_of_range, not an Error naming the file).
+TEST(GltfLoader, EmptyBufferIsRefusedBeforeTinygltfSeesIt) {
+  GltfBuilder b = tetra();
+  json doc = b.doc;
+  doc["buffers"][0] = {{"byteLength", 0}};
+  const std::string e = errorOf([&] { parseMeshBytes(glbBytes(doc.dump(), b.bin), "e.glb"); });
+  EXPECT_NE(e.find("e.glb: buffers[0].byteLength is missing or 0"), std::string::npos) << e;
+}
+
 TEST(GltfLoader, NodeCyclesAndSharedChildrenAreRefused) {
   GltfBuilder b = tetra();
   b.doc["nodes"][0]["children"] = {0};

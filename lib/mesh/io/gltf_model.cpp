@@ -97,6 +97,15 @@ std::string checkedDocument(const std::string& text, const std::string& file, bo
           "the file cannot be read correctly without it",
           "re-export without it (proxyvis reads Draco, meshopt and quantized meshes)");
   }
+  // glTF requires byteLength >= 1; tinygltf reads byte 0 of an empty GLB buffer (and throws).
+  if (doc.contains("buffers") && doc["buffers"].is_array())
+    for (size_t i = 0; i < doc["buffers"].size(); ++i) {
+      const json& b = doc["buffers"][i];
+      const json length = b.is_object() ? b.value("byteLength", json()) : json();
+      if (!length.is_number_unsigned() || length.get<uint64_t>() == 0)
+        throw Error(file, fmt::format("buffers[{}].byteLength is missing or 0", i),
+                    "every buffer holds at least one byte", "the file is corrupt; re-export it");
+    }
   for (const char* array : {"buffers", "images"}) {
     const auto it = doc.find(array);
     if (it == doc.end() || !it->is_array()) continue;
@@ -211,14 +220,19 @@ tinygltf::Model parseGltfModel(const std::string& bytes, bool binary, const fs::
   const std::string base =
       guard.folder.empty() ? std::string("/nonexistent") : guard.folder.string();
   bool ok = false;
-  if (binary) {
-    const std::string glb = changed ? joinGlb(document, chunks) : bytes;
-    ok = loader.LoadBinaryFromMemory(&model, &err, &warn,
-                                     reinterpret_cast<const unsigned char*>(glb.data()),
-                                     unsigned(glb.size()), base);
-  } else {
-    ok = loader.LoadASCIIFromString(&model, &err, &warn, document.data(), unsigned(document.size()),
-                                    base);
+  try {
+    if (binary) {
+      const std::string glb = changed ? joinGlb(document, chunks) : bytes;
+      ok = loader.LoadBinaryFromMemory(&model, &err, &warn,
+                                       reinterpret_cast<const unsigned char*>(glb.data()),
+                                       unsigned(glb.size()), base);
+    } else {
+      ok = loader.LoadASCIIFromString(&model, &err, &warn, document.data(),
+                                      unsigned(document.size()), base);
+    }
+  } catch (const std::exception& e) {  // tinygltf indexes with at() in places
+    ok = false;
+    err = std::string("tinygltf: ") + e.what();
   }
   if (!ok)
     throw Error(file, "glTF file cannot be read", firstLine(err.empty() ? warn : err),
