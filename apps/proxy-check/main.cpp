@@ -38,6 +38,7 @@ namespace {
 constexpr uint64_t kMaxRays = 10'000'000'000ULL;
 
 struct Options {
+  GltfPick original_pick, proxy_pick;  // --mesh/--node, --proxy-mesh/--proxy-node (glTF pair)
   CommonOptions common;
   std::vector<std::string> inputs;
   uint64_t rays = 1'000'000;
@@ -101,8 +102,8 @@ int runPair(const Options& o) {
   if (!o.write_scene.empty())
     throw Error("", "--write-scene needs a scene", "a mesh pair has no scene to record into",
                 "run proxy-check SCENE.json --write-scene OUT.json");
-  const TriMesh original = loadMesh(o.inputs[0]);
-  const TriMesh proxy = loadMesh(o.inputs[1]);
+  const TriMesh original = loadMesh(o.inputs[0], o.original_pick);
+  const TriMesh proxy = loadMesh(o.inputs[1], o.proxy_pick);
   PairCheckReport r = checkPair(original, proxy, pairOptions(o));
   printHuman(o, formatHumanReport(r));
   printMismatch(r);
@@ -258,7 +259,9 @@ int main(int argc, char** argv) {
       "contradicted.",
       "proxy-check"};
   addCommonOptions(app, o.common);
-  app.add_option("inputs", o.inputs, "ORIGINAL PROXY (meshes: .obj .ply .off .drc) or SCENE.json")
+  app.add_option(
+         "inputs", o.inputs,
+         "ORIGINAL PROXY (meshes: .obj .ply .off .drc .gltf .glb) or SCENE (.json, .gltf, .glb)")
       ->required()
       ->expected(1, 2);
   app.add_option("--rays", o.rays,
@@ -278,6 +281,15 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"outside", "inside", "general"}));
   app.add_option("--dump-errors", o.dump_errors,
                  "Write the error segments as a PLY of edges (red HM', blue MH')");
+  addGltfPickOptions(app, o.original_pick.mesh, o.original_pick.node);
+  CLI::Option* proxy_mesh = app.add_option(
+      "--proxy-mesh", o.proxy_pick.mesh,
+      "glTF proxy: take only the mesh with this name (as --mesh does for the original)");
+  app.add_option("--proxy-node", o.proxy_pick.node,
+                 "glTF proxy: take only the node with this name and its children, in world "
+                 "coordinates (as --node does for the original); e.g. the NAME-occludee node "
+                 "proxy-gen --gltf writes")
+      ->excludes(proxy_mesh);
   app.add_option("--html", o.html,
                  "Mesh pair: write an HTML page with the classification and an interactive 3D "
                  "view of original, proxy and the error segments (three.js embedded: one file "
@@ -297,6 +309,10 @@ int main(int argc, char** argv) {
       if (fs::path(o.inputs[0]).extension() != ".json")
         throw Error(o.inputs[0], "one input must be a scene (.json)",
                     "a mesh needs its proxy beside it", "proxy-check ORIGINAL PROXY");
+      const auto picks = [](const GltfPick& p) { return !p.mesh.empty() || !p.node.empty(); };
+      if (picks(o.original_pick) || picks(o.proxy_pick))
+        throw Error("", "--mesh, --node, --proxy-mesh and --proxy-node pick from a mesh pair",
+                    "a scene names its meshes itself", "give ORIGINAL PROXY");
       if (!o.html.empty())
         throw Error("", "--html needs a mesh pair", "the page shows one original and its proxy",
                     "run proxy-check ORIGINAL PROXY --html REPORT.html");

@@ -7,8 +7,9 @@ Checks, each against facts fixed outside the code under test:
 - proxy-gen SCENE --out-dir D --gltf D/scene.glb writes a GLB that the Khronos validator passes
   with 0 errors and 0 warnings; its default scene holds the original triangles only (100,000
   dragon + 2 ground + 2 light), the proxy is a hidden child node named "dragon-occludee" whose
-  mesh extras carry the proof (class outside, containment "contains"), and that node, picked by
-  name, is the very proxy written beside it (same triangle count and volume as the PLY);
+  mesh extras carry the proof (class outside, containment "contains"), that node, picked by
+  name, is the very proxy written beside it (same triangle count and volume as the PLY), and
+  proxy-check --node dragon --proxy-node dragon-occludee --expect outside holds within the file;
 - the GLB read back as a scene renders the image of the JSON scene (same seed and samples) up to
   float rounding: no pixel value differs by more than 1e-4 (OpenImageIO's idiff; the camera
   comes back through a matrix, so its rays differ in their last bits: 1.2e-6 seen);
@@ -65,6 +66,10 @@ def main() -> int:
         proof = doc["meshes"][proxy_nodes[0]["mesh"]].get("extras", {}).get("proxyvis", {})
         check(proof.get("class") == "outside" and proof.get("containment") == "contains",
               f"the proxy mesh's proof: class {proof.get('class')}, containment {proof.get('containment')}")
+    r = run([bin_dir / "proxy-check", glb, glb, "--node", "dragon", "--proxy-node",
+             "dragon-occludee", "--expect", "outside", "--rays", "20000", "--quiet"])
+    check(r.returncode == 0, f"proxy-check GLB GLB --node dragon --proxy-node dragon-occludee "
+          f"--expect outside: exit {r.returncode} {r.stderr.strip()[-200:]}")
     picked = mesh_info(bin_dir, glb, work, "--node", "dragon-occludee")
     ply = mesh_info(bin_dir, out / "dragon.outside.ply", work)
     check(picked.get("faces") == ply.get("faces") and
