@@ -16,7 +16,8 @@ Checks, each against facts fixed outside the code under test:
 - with --kind general the proxy is the dragon node's MSFT_lod level instead (a node outside the
   scene's root list, with the dragon's transform), and that file validates as well;
 - proxy-gen on the GLB as a scene (--out-dir) builds the dragon's proxy again, its scene.json
-  refers to the GLB's meshes by "gltf_mesh", proxy-check --expect outside holds for it, and
+  refers to the GLB's meshes by "gltf_mesh", proxy-check --expect outside holds for it, two
+  shards merged give the same files, and
   render-compare runs on the GLB scene itself and writes its report.
 """
 import json
@@ -115,6 +116,18 @@ def main() -> int:
         r = run([bin_dir / "proxy-check", original, again / dragon[0]["proxies"][0]["file"],
                  "--expect", "outside", "--rays", "20000", "--quiet"])
         check(r.returncode == 0, f"proxy-check --expect outside on it: exit {r.returncode}")
+    # In two shards merged, the same proxy and scene as the whole run.
+    shards = [work / f"shard{k}" for k in range(2)]
+    for k, folder in enumerate(shards):
+        run([bin_dir / "proxy-gen", glb, "--kind", "outside", "--out-dir", folder, "--shard",
+             f"{k}/2", "--no-cache", "--quiet"])
+    merged = work / "merged"
+    r = run([bin_dir / "proxy-gen", glb, "--kind", "outside", "--out-dir", merged,
+             "--merge-shards", *shards, "--no-cache", "--quiet"])
+    same = r.returncode == 0 and all(
+        (merged / f).exists() and (merged / f).read_bytes() == (again / f).read_bytes()
+        for f in ("dragon.outside.ply", "scene.json"))
+    check(same, f"two shards merged give the whole run's proxy and scene.json: exit {r.returncode}")
     r = run([bin_dir / "render-compare", glb, "--out", work / "report", "--spp", "2",
              "--equal-time", "0", "--reference-spp", "32", "--seeds", "1", "--estimators",
              "exact,roulette", "--quiet"])
