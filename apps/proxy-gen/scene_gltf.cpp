@@ -2,6 +2,7 @@
 
 #include "proxies/pipeline/gltf_proof.h"
 #include "scene/gltf_scene_export.h"
+#include "util/lower_case.h"
 #include "util/program_build_id.h"
 #include "util/sha256.h"
 
@@ -37,9 +38,9 @@ void addSceneGltfOutput(OutputSet& outputs, const fs::path& scene_json,
       proxies[m].push_back(std::move(p));
     }
   }
-  outputs.addText(
-      out, encodeSceneGltf(scene, originals, proxies, isGltfPath(out) && out.extension() != ".gltf",
-                           compression, out.string()));
+  const bool binary = lowerExtension(out) == ".glb";  // the caller allows .glb and .gltf only
+  outputs.addText(out,
+                  encodeSceneGltf(scene, originals, proxies, binary, compression, out.string()));
 }
 
 }  // namespace proxyvis

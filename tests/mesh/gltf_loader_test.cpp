@@ -395,6 +395,24 @@ TEST(GltfLoader, EmptyBufferIsRefusedBeforeTinygltfSeesIt) {
   EXPECT_NE(e.find("e.glb: buffers[0].byteLength is missing or 0"), std::string::npos) << e;
 }
 
+// A node's mesh or camera index beyond the file's: the same Error for the mesh and the scene
+// reader (the scene reader once indexed with at() and threw std::out_of_range).
+TEST(GltfLoader, NodeIndicesOutOfRangeAreRefusedByEveryReader) {
+  ScratchDir dir;
+  GltfBuilder b = tetra();
+  b.doc["nodes"][0]["mesh"] = 5;
+  writeBytes(dir.path() / "m.glb", b.glb());
+  EXPECT_NE(errorOf([&] { loadMesh(dir.path() / "m.glb"); }).find("nodes[0] names mesh 5"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] { readGltfScene(dir.path() / "m.glb"); }).find("nodes[0] names mesh 5"),
+            std::string::npos);
+  b = tetra();
+  b.doc["nodes"][0]["camera"] = 2;
+  writeBytes(dir.path() / "c.glb", b.glb());
+  EXPECT_NE(errorOf([&] { readGltfScene(dir.path() / "c.glb"); }).find("nodes[0] names camera 2"),
+            std::string::npos);
+}
+
 TEST(GltfLoader, NodeCyclesAndSharedChildrenAreRefused) {
   GltfBuilder b = tetra();
   b.doc["nodes"][0]["children"] = {0};

@@ -123,6 +123,12 @@ bool hiddenNode(const tinygltf::Node& node) {
   return visible.IsBool() && !visible.Get<bool>();
 }
 
+void checkIndex(int index, size_t count, const char* what, int node, const std::string& file) {
+  if (index >= 0 && size_t(index) >= count)
+    throw Error(file, fmt::format("nodes[{}] names {} {}", node, what, index),
+                fmt::format("the file has {} of them", count), "the file is corrupt; re-export it");
+}
+
 }  // namespace
 
 Mat4 identity() {
@@ -202,6 +208,9 @@ std::vector<Placement> placements(const tinygltf::Model& model, GltfAccessors& d
     picked_reached = picked_reached || f.node == picked_node;
     // A node picked by name is taken even when hidden; what it hides below it is not.
     const bool visible = f.node == picked_node || (f.visible && !hiddenNode(node));
+    // Every index a placement carries is in range: its users index the model's arrays with it.
+    checkIndex(node.mesh, model.meshes.size(), "mesh", f.node, file);
+    checkIndex(node.camera, model.cameras.size(), "camera", f.node, file);
     if (cameras && node.camera >= 0 && picked && visible)
       cameras->push_back({node.camera, world, f.node});
     if (node.mesh >= 0 && picked && visible) {

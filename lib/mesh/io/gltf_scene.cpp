@@ -120,11 +120,7 @@ void gltfSceneToMesh(const tinygltf::Model& model, const GltfPick& pick, const s
   std::vector<bool> decoded(model.meshes.size(), false);
   size_t expanded = 0;
   for (const Placement& p : placed) {
-    if (p.mesh < 0 || size_t(p.mesh) >= model.meshes.size())
-      throw Error(file, fmt::format("a node names meshes[{}]", p.mesh),
-                  fmt::format("the file has {} meshes", model.meshes.size()),
-                  "the file is corrupt; re-export it");
-    const size_t m = size_t(p.mesh);
+    const size_t m = size_t(p.mesh);  // in range: placements() checks
     if (!decoded[m]) {
       for (size_t k = 0; k < model.meshes[m].primitives.size(); ++k)
         if (!pick.surfaces_only || !isEmissive(model, model.meshes[m].primitives[k]))

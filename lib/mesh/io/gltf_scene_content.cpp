@@ -9,9 +9,9 @@
 #include "mesh/io/internal/gltf_io.h"
 #include "mesh/io/internal/gltf_nodes.h"
 #include "mesh/io/internal/gltf_primitives.h"
+#include "mesh/io/internal/mesh_file.h"
 #include "mesh/io/internal/tiny_gltf.h"
 #include "util/error.h"
-#include "util/input_file.h"
 #include "util/lower_case.h"
 
 namespace proxyvis {
@@ -33,7 +33,7 @@ Vec3f column(const Mat4& m, int c) {
 std::optional<GltfSceneContent::Camera> firstPerspectiveCamera(
     const tinygltf::Model& model, const std::vector<detail::Placement>& cameras) {
   for (const detail::Placement& p : cameras) {
-    const tinygltf::Camera& c = model.cameras.at(size_t(p.mesh));
+    const tinygltf::Camera& c = model.cameras[size_t(p.mesh)];  // placements() checks
     if (c.type != "perspective") continue;
     GltfSceneContent::Camera cam;
     cam.eye = column(p.world, 3);
@@ -43,7 +43,7 @@ std::optional<GltfSceneContent::Camera> firstPerspectiveCamera(
     cam.yfov_deg = c.perspective.yfov * 180.0 / M_PI;
     cam.aspect = c.perspective.aspectRatio;
     // The image size proxyvis wrote (glTF has none): [width, height] in the node's extras.
-    const tinygltf::Value& extras = model.nodes.at(size_t(p.node)).extras;
+    const tinygltf::Value& extras = model.nodes[size_t(p.node)].extras;
     if (extras.IsObject() && extras.Has("proxyvis") && extras.Get("proxyvis").IsObject()) {
       const tinygltf::Value& r = extras.Get("proxyvis").Get("resolution");
       if (r.IsArray() && r.ArrayLen() == 2 && r.Get(0).IsNumber() && r.Get(1).IsNumber()) {
@@ -54,6 +54,25 @@ std::optional<GltfSceneContent::Camera> firstPerspectiveCamera(
     return cam;
   }
   return std::nullopt;
+}
+
+// An emissive primitive of a mesh, decoded in the mesh's space.
+struct Emitter {
+  TriMesh triangles;
+  Vec3f radiance;
+};
+
+std::vector<Emitter> emittersOf(const tinygltf::Model& model, detail::GltfAccessors& data,
+                                size_t mesh, const std::string& file) {
+  std::vector<Emitter> out;
+  const std::vector<tinygltf::Primitive>& prims = model.meshes[mesh].primitives;
+  for (size_t k = 0; k < prims.size(); ++k)
+    if (const std::optional<Vec3f> radiance = detail::emittedRadiance(model, prims[k])) {
+      Emitter& e = out.emplace_back();
+      e.radiance = *radiance;
+      detail::appendPrimitive(model, data, mesh, k, file, e.triangles);
+    }
+  return out;
 }
 
 void noteIgnored(const tinygltf::Model& model, GltfSceneContent& out) {
@@ -74,19 +93,17 @@ void noteIgnored(const tinygltf::Model& model, GltfSceneContent& out) {
 
 GltfSceneContent readGltfScene(const std::filesystem::path& path) {
   const std::string file = path.string();
-  const std::string bytes = readTextFile(path);
-  const std::filesystem::path folder =
-      path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
-  const tinygltf::Model model =
-      detail::parseGltfModel(bytes, lowerExtension(path) == ".glb", folder, file);
+  const tinygltf::Model model = detail::parseGltfModel(
+      detail::readMeshFile(path), lowerExtension(path) == ".glb", detail::folderOf(path), file);
   detail::GltfAccessors data(model, file);
   std::vector<detail::Placement> cameras;
   const std::vector<detail::Placement> placed = detail::placements(model, data, {}, file, &cameras);
   GltfSceneContent out;
   std::vector<int> prototype(model.meshes.size(), -2);  // -2: not looked at; -1: no surface
+  std::vector<std::optional<std::vector<Emitter>>> emitters(model.meshes.size());
   for (const detail::Placement& p : placed) {
     const size_t m = size_t(p.mesh);
-    const tinygltf::Mesh& mesh = model.meshes.at(m);
+    const tinygltf::Mesh& mesh = model.meshes[m];  // in range: placements() checks
     if (prototype[m] == -2) {
       prototype[m] = -1;
       for (const tinygltf::Primitive& prim : mesh.primitives)
@@ -98,13 +115,11 @@ GltfSceneContent readGltfScene(const std::filesystem::path& path) {
         }
     }
     if (prototype[m] >= 0) out.instances.push_back({uint32_t(prototype[m]), toAffine(p.world)});
-    for (size_t k = 0; k < mesh.primitives.size(); ++k) {
-      const std::optional<Vec3f> radiance = detail::emittedRadiance(model, mesh.primitives[k]);
-      if (!radiance) continue;
-      TriMesh local;
-      detail::appendPrimitive(model, data, m, k, file, local);
+    if (!emitters[m]) emitters[m] = emittersOf(model, data, m, file);  // once per mesh
+    for (const Emitter& e : *emitters[m]) {
+      const TriMesh& local = e.triangles;
       GltfSceneContent::Light light;
-      light.radiance = *radiance;
+      light.radiance = e.radiance;
       for (const Triangle& t : local.triangles)
         light.triangles.push_back({detail::transformPoint(p.world, local.vertices[t[0]]),
                                    detail::transformPoint(p.world, local.vertices[t[1]]),

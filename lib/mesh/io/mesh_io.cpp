@@ -9,6 +9,7 @@
 #include "mesh/io/internal/draco_io.h"
 #include "mesh/io/internal/gltf_io.h"
 #include "mesh/io/internal/header_check.h"
+#include "mesh/io/internal/mesh_file.h"
 #include "mesh/io/internal/openmesh_formats.h"
 #include "mesh/io/internal/sha256_sidecar.h"
 #include "util/atomic_write.h"
@@ -63,6 +64,20 @@ void checkLoaded(const TriMesh& mesh, const std::string& file) {
 
 }  // namespace
 
+namespace detail {
+
+std::string readMeshFile(const fs::path& path) {
+  std::string bytes = readTextFile(path);  // missing, directory, unreadable -> Error
+  verifySidecar(path, bytes);
+  return bytes;
+}
+
+fs::path folderOf(const fs::path& path) {
+  return path.parent_path().empty() ? fs::path(".") : path.parent_path();
+}
+
+}  // namespace detail
+
 bool isGltfPath(const fs::path& path) {
   const std::string format = formatOf(path);
   return format == "gltf" || format == "glb";
@@ -75,10 +90,7 @@ bool isSupportedMeshExtension(const fs::path& path) {
 TriMesh loadMesh(const fs::path& path, const GltfPick& pick) {
   std::error_code ec;
   if (formatOf(path).empty() && fs::is_regular_file(path, ec)) throw unknownExtension(path);
-  std::string bytes = readTextFile(path);  // missing, directory, unreadable -> Error
-  detail::verifySidecar(path, bytes);
-  const fs::path folder = path.parent_path().empty() ? fs::path(".") : path.parent_path();
-  return parseMeshBytesIn(std::move(bytes), path, folder, pick);
+  return parseMeshBytesIn(detail::readMeshFile(path), path, detail::folderOf(path), pick);
 }
 
 TriMesh parseMeshBytes(std::string bytes, const fs::path& path) {
