@@ -32,7 +32,8 @@ struct BoundedSimplifyOptions {
 struct BoundedSimplifyStats {
   size_t faces_before = 0, faces_after = 0;
   size_t collapses = 0;
-  size_t relaxed = 0;  // vertex moves and edge flips of the relaxation (with options.bound)
+  size_t relaxed = 0;     // vertex moves and edge flips of the relaxation (with options.bound)
+  int refine_cycles = 0;  // refinement cycles that lowered the volume (with options.bound)
   bool budget_reached = false;  // false when no admissible collapse was left before the budget
 };
 

@@ -136,11 +136,7 @@ bool InputBound::allows(const std::vector<std::array<Vec3d, 3>>& old_star,
   const Impl& m = *impl_;
   Bounds3d box;
   for (const auto& t : new_star) {
-    const Triangle3 tri(toPoint(t[0]), toPoint(t[1]), toPoint(t[2]));
-    if (tri.is_degenerate()) return false;
-    TouchTraits touch(tri);
-    m.tree.traversal(tri, touch);
-    if (touch.hit()) return false;
+    if (touches(t)) return false;
     for (const Vec3d& p : t) box.extend(p);
   }
   for (const auto& t : old_star)
@@ -161,6 +157,14 @@ bool InputBound::allows(const std::vector<std::array<Vec3d, 3>>& old_star,
     if (std::abs(w) > 2 * M_PI) return false;  // winding number beyond 1/2
   }
   return true;
+}
+
+bool InputBound::touches(const std::array<Vec3d, 3>& t) const {
+  const Triangle3 tri(toPoint(t[0]), toPoint(t[1]), toPoint(t[2]));
+  if (tri.is_degenerate()) return true;
+  TouchTraits touch(tri);
+  impl_->tree.traversal(tri, touch);
+  return touch.hit();
 }
 
 Vec3d InputBound::closestPoint(const Vec3d& p) const {

@@ -15,9 +15,15 @@
 namespace proxyvis::cgal {
 
 // What TriMesh stores: candidate positions are rounded to float before any test, so that the
-// tests see the geometry that is written.
+// tests see the geometry that is written. Through a volatile: GCC 12's SLP vectorizer at -O2/-O3
+// turns the three double(float(v)) of a Vec3d into a copy, so the rounding did not happen and
+// the tests saw points that were rounded, differently, only when written.
+inline double roundToFloat(double v) {
+  volatile float f = float(v);
+  return f;
+}
 inline Vec3d roundToFloat(const Vec3d& x) {
-  return {double(float(x.x)), double(float(x.y)), double(float(x.z))};
+  return {roundToFloat(x.x), roundToFloat(x.y), roundToFloat(x.z)};
 }
 
 class InputBound {
@@ -32,6 +38,9 @@ class InputBound {
   // touches the input and no input component lies between the two stars.
   bool allows(const std::vector<std::array<Vec3d, 3>>& old_star,
               const std::vector<std::array<Vec3d, 3>>& new_star) const;
+
+  // True when triangle t touches an input triangle (what allows refuses for a new face).
+  bool touches(const std::array<Vec3d, 3>& t) const;
 
   // The input point nearest to p.
   Vec3d closestPoint(const Vec3d& p) const;

@@ -15,10 +15,13 @@
 #include <vector>
 
 #include "mesh/cgal_bridge.h"
+#include "proxies/shared/internal/face_crossing.h"
 #include "util/vec3.h"
 
 namespace proxyvis::cgal {
 namespace {
+
+using cgal::IdFace;
 
 using Tri = std::array<Vec3d, 3>;
 
@@ -103,29 +106,36 @@ class Relaxer {
       new_star.push_back({x, b, c});
     }
     if (!bound_.allows(old_star, new_star)) return false;
+    // Corner ids in the order of new_star's points: (v, then the face's order after v).
     std::vector<Triangle> corners;
-    for (uint32_t f : star) corners.push_back(mesh_.triangles[f]);
-    return crossesNothing(new_star, corners);
+    for (uint32_t f : star) {
+      const Triangle& t = mesh_.triangles[f];
+      const int k = t[0] == v ? 0 : (t[1] == v ? 1 : 2);
+      corners.push_back({v, t[(k + 1) % 3], t[(k + 2) % 3]});
+    }
+    return crossesNothing(new_star, corners, star);
   }
 
-  // No new face crosses a face of the mesh that shares no corner with it (the star itself and
-  // its neighbours are skipped: they meet it at a corner or an edge).
-  bool crossesNothing(const std::vector<Tri>& new_faces,
-                      const std::vector<Triangle>& new_corners) const {
-    for (size_t i = 0; i < new_faces.size(); ++i) {
-      const Tri& t = new_faces[i];
-      const Bounds3d box = boxOf(t);
-      const Triangle& corners = new_corners[i];
-      const Kernel::Triangle_3 moved(toPoint(t[0]), toPoint(t[1]), toPoint(t[2]));
+  // No new face crosses another new one or a face of the mesh other than the `replaced` ones
+  // (faces that share a corner are tested from that corner on: internal/face_crossing.h).
+  bool crossesNothing(const std::vector<Tri>& new_faces, const std::vector<Triangle>& new_corners,
+                      const std::vector<uint32_t>& replaced) const {
+    std::vector<IdFace> faces;
+    for (size_t i = 0; i < new_faces.size(); ++i)
+      faces.push_back(
+          {{toPoint(new_faces[i][0]), toPoint(new_faces[i][1]), toPoint(new_faces[i][2])},
+           new_corners[i]});
+    for (size_t i = 0; i < faces.size(); ++i)
+      for (size_t j = i + 1; j < faces.size(); ++j)
+        if (facesCross(faces[i], faces[j])) return false;
+    for (size_t i = 0; i < faces.size(); ++i) {
+      const Bounds3d box = boxOf(new_faces[i]);
       for (size_t f = 0; f < mesh_.triangles.size(); ++f) {
         if (!box.overlaps(boxes_[f])) continue;
-        const Triangle& g = mesh_.triangles[f];
-        bool shares = false;
-        for (uint32_t a : g) shares |= a == corners[0] || a == corners[1] || a == corners[2];
-        if (shares) continue;
+        if (std::find(replaced.begin(), replaced.end(), uint32_t(f)) != replaced.end()) continue;
         const Tri o = tri(f);
-        if (CGAL::do_intersect(moved,
-                               Kernel::Triangle_3(toPoint(o[0]), toPoint(o[1]), toPoint(o[2]))))
+        if (facesCross(faces[i],
+                       {{toPoint(o[0]), toPoint(o[1]), toPoint(o[2])}, mesh_.triangles[f]}))
           return false;
       }
     }
@@ -167,7 +177,7 @@ class Relaxer {
     const std::vector<Tri> new_star{{pc, pa, pd}, {pd, pb, pc}};
     if (!bound_.allows(old_star, new_star)) return 0;
     // Both old faces and the new ones share corners; the rest of the mesh must not be crossed.
-    if (!crossesNothing(new_star, {Triangle{c, a, d}, Triangle{d, b, c}})) return 0;
+    if (!crossesNothing(new_star, {Triangle{c, a, d}, Triangle{d, b, c}}, {f, g})) return 0;
     mesh_.triangles[f] = {c, a, d};
     mesh_.triangles[g] = {d, b, c};
     auto drop = [&](uint32_t v, uint32_t face) {
