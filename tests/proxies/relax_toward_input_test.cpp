@@ -6,6 +6,7 @@
 
 #include "mesh/validation.h"
 #include "proxies/check/containment.h"
+#include "proxies/shared/internal/face_crossing.h"
 #include "proxies/shared/internal/input_bound.h"
 #include "proxies/shared/internal/relax_toward_input.h"
 #include "tests/proxies/check_shapes.h"
@@ -49,6 +50,56 @@ TEST(RelaxTowardInput, HugsTheInputAndFlipsTheRidgeWithoutLettingTheInputOut) {
   // The proxy of 12 faces can be the input box itself, up to the float rounding of the moves.
   EXPECT_LT(relaxed.signedVolume(), 1.01 * input.signedVolume());
   EXPECT_GT(relaxed.signedVolume(), input.signedVolume());
+}
+
+// Not inlined into the test, as in the placer: a midpoint rounded to float. GCC 12 at -O2/-O3
+// compiled the plain double(float(v)) of the three components into a copy.
+[[gnu::noinline]] Vec3d roundedMidpoint(Vec3d a, Vec3d b) {
+  return cgal::roundToFloat((a + b) * 0.5);
+}
+
+TEST(RoundToFloat, GivesPointsThatFloatStoresExactly) {
+  // Read through volatiles so that the compiler cannot fold the rounding at compile time.
+  volatile double in[6] = {4.2677521705627441, 14.336340665817261, -1.0441591739654541,
+                           4.2678651809692383, 12.603463053703308, -2.2257871627807617};
+  const Vec3d a(in[0], in[1], in[2]), b(in[3], in[4], in[5]);
+  const Vec3d m = roundedMidpoint(a, b);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(m[k], double(float(m[k]))) << "component " << k;
+    EXPECT_NEAR(m[k], (a[k] + b[k]) / 2, 1e-6);
+  }
+}
+
+cgal::IdFace face(std::array<Vec3d, 3> p, std::array<uint32_t, 3> id) {
+  cgal::IdFace f;
+  for (int k = 0; k < 3; ++k) f.p[k] = cgal::Point3(p[k].x, p[k].y, p[k].z), f.id = id;
+  return f;
+}
+
+// Faces that share corners meet there; whether they cross is decided from the shared corner.
+TEST(FacesCross, SharedCornersAreNotCrossingsButFoldsThroughThemAre) {
+  const Vec3d o(0, 0, 0);
+  const auto a = face({o, Vec3d(2, 0, 0), Vec3d(0, 2, 0)}, {0, 1, 2});
+  // One shared corner, the other face standing off the plane: no crossing.
+  EXPECT_FALSE(cgal::facesCross(a, face({o, Vec3d(0, 0, 2), Vec3d(-1, -1, 1)}, {0, 3, 4})));
+  // One shared corner, the other face passing through a's interior: a crossing.
+  EXPECT_TRUE(cgal::facesCross(a, face({o, Vec3d(1, 1, -1), Vec3d(1, 1, 1)}, {0, 3, 4})));
+  // One shared corner, the other face lying inside a, in its plane: a crossing.
+  EXPECT_TRUE(cgal::facesCross(a, face({o, Vec3d(1, 0.5, 0), Vec3d(0.5, 1, 0)}, {0, 3, 4})));
+  // A shared edge: a fold onto a's side in its plane crosses, the other side does not.
+  EXPECT_TRUE(
+      cgal::facesCross(a, face({Vec3d(2, 0, 0), Vec3d(0, 2, 0), Vec3d(0.5, 0.5, 0)}, {1, 2, 3})));
+  EXPECT_FALSE(
+      cgal::facesCross(a, face({Vec3d(2, 0, 0), Vec3d(0, 2, 0), Vec3d(2, 2, 0)}, {1, 2, 3})));
+  EXPECT_FALSE(
+      cgal::facesCross(a, face({Vec3d(2, 0, 0), Vec3d(0, 2, 0), Vec3d(0.5, 0.5, 1)}, {1, 2, 3})));
+  // No shared corner: the plain triangle test.
+  EXPECT_TRUE(cgal::facesCross(
+      a, face({Vec3d(0.5, 0.5, -1), Vec3d(0.5, 0.5, 1), Vec3d(3, 3, 0)}, {5, 6, 7})));
+  EXPECT_FALSE(
+      cgal::facesCross(a, face({Vec3d(0, 0, 1), Vec3d(2, 0, 1), Vec3d(0, 2, 1)}, {5, 6, 7})));
+  // A new face must be a real triangle.
+  EXPECT_TRUE(cgal::facesCross(face({o, Vec3d(1, 0, 0), Vec3d(2, 0, 0)}, {0, 8, 9}), a));
 }
 
 }  // namespace
