@@ -346,9 +346,9 @@ void addProxyOptions(CLI::App& app, Args& a) {
       ->capture_default_str();
   app.add_option(
          "--method", a.method,
-         "outside: wrap (default; the tightest: volume ratio 1.02-1.25 at --ratio 0.02 on the "
-         "bundled closed meshes, 1.43 on a thin-legged cow), hull (convex: fastest, but 1.3-2.7); "
-         "inside: wrap (default; 0.75-0.96 of the volume at --ratio 0.02), erode (voxel erosion: "
+         "outside: wrap (default; the tightest: volume ratio 1.01-1.23 at --ratio 0.02 on the "
+         "bundled closed meshes, 1.39 on a thin-legged cow), hull (convex: fastest, but 1.3-2.7); "
+         "inside: wrap (default; 0.76-0.98 of the volume at --ratio 0.02), erode (voxel erosion: "
          "0.74-0.78 on compact shapes, 0.33 on the dragon's thin parts); general: qem (default), "
          "cgal-sms, meshopt (no guarantee). See docs/proxy_tightness.md")
       ->check(CLI::IsMember({"wrap", "hull", "erode", "qem", "cgal-sms", "meshopt"}));
