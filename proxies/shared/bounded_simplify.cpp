@@ -70,6 +70,11 @@ constexpr int kRefineCycles = 2;
 // On the dragon's 2 % (2,000 faces) two cycles reached 1.081 outside and 0.888 inside instead
 // of 1.132 and 0.844, but took 42 s and 19 s: the split mesh's input tests dominate.
 constexpr size_t kMaxRefineFaces = kMaxRelaxFaces / 4;
+// The cycles' input tests grow with proxy faces times input faces; above this product they
+// cost more than the rest of proxy-gen for little: the open camelhead scan (454 x 22,704) took
+// 18.8 s instead of 8.7 s, the dragon at 200 faces 16 s instead of 7.7 s for 1.747 instead of
+// 1.774. Fandisk (288 x 14,454), the largest product below it, gains 0.005 in 2.7 s.
+constexpr double kMaxRefineWork = 5e6;
 
 Vec3d toVec(const Point3& p) {
   return {p.x(), p.y(), p.z()};
@@ -462,7 +467,8 @@ TriMesh simplifyBounded(const TriMesh& mesh, const BoundedSimplifyOptions& optio
       if (fsm.number_of_faces() > options.max_faces) return std::nullopt;
       return cgal::fromSurfaceMesh(fsm, mesh.source);
     };
-    if (out.numTriangles() <= kMaxRefineFaces)
+    if (out.numTriangles() <= kMaxRefineFaces &&
+        double(out.numTriangles()) * double(options.bound->numTriangles()) <= kMaxRefineWork)
       st.refine_cycles = cgal::refineCycles(out, bound, kRefineCycles, kRelaxSweeps,
                                             collapse_to_budget, options.budget);
     return finish(std::move(out));
