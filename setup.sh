@@ -61,15 +61,18 @@ install_pkgs() {
 # The npm packages the tests run (tests/js/package-lock.json: the Khronos glTF-Validator and the
 # glTF producers obj2gltf, gltf-pipeline, gltf-transform). Node.js comes from Debian (nodejs, npm)
 # when the machine has none. Skipped when node_modules is newer than the lock file.
-install_js_deps() {
+# npm_ci DIR: the exact packages of DIR/package-lock.json, unless they are already in place.
+npm_ci() {
   command -v npm >/dev/null || install_pkgs nodejs npm
-  local stamp=tests/js/node_modules/.package-lock.json
-  if [ -f "$stamp" ] && [ "$stamp" -nt tests/js/package-lock.json ]; then
+  local stamp="$1/node_modules/.package-lock.json"
+  if [ -f "$stamp" ] && [ "$stamp" -nt "$1/package-lock.json" ]; then
     return
   fi
-  echo "setup: npm ci in tests/js"
-  (cd tests/js && npm ci --no-audit --no-fund --loglevel=error)
+  echo "setup: npm ci in $1"
+  (cd "$1" && npm ci --no-audit --no-fund --loglevel=error)
 }
+
+install_js_deps() { npm_ci tests/js; }
 
 # build [TARGET...]: configure, then build the targets given (default: everything, tests and
 # benches included). The demo builds only the programs it runs.
@@ -185,5 +188,6 @@ case "${1:-install}" in
   test) install_deps; install_js_deps; build; run_tests "${2:-}" ;;
   fuzz) install_deps; install_pkgs "${FUZZ_PKGS[@]}"; fuzz_build ;;
   test-sanitize) install_deps; install_js_deps; build_sanitize ;;
-  *) echo "usage: $0 [install|build|demo|test|test-sanitize|fuzz]" >&2; exit 2 ;;
+  bench-deps) install_deps; npm_ci bench/vhacd_compare ;;
+  *) echo "usage: $0 [install|build|demo|test|test-sanitize|fuzz|bench-deps]" >&2; exit 2 ;;
 esac
