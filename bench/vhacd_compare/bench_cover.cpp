@@ -83,17 +83,21 @@ bool insideConvex(const std::vector<HalfSpace>& planes, const Vec3d& p) {
 
 int run(int argc, char** argv) {
   if (argc < 4)
-    throw Error("", "usage: bench_cover INPUT (--hulls HULLS.obj | --solid PROXY) [--samples N] "
-                    "[--seed S]");
+    throw Error("",
+                "usage: bench_cover INPUT (--hulls HULLS.obj | --solid PROXY) [--samples N] "
+                "[--seed S]");
   const TriMesh input = loadMesh(argv[1]);
   const std::string mode = argv[2];
   const TriMesh other = loadMesh(argv[3]);
   uint64_t samples = 1'000'000, seed = 1;
   for (int i = 4; i + 1 < argc; i += 2) {
     const std::string flag = argv[i];
-    if (flag == "--samples") samples = std::stoull(argv[i + 1]);
-    else if (flag == "--seed") seed = std::stoull(argv[i + 1]);
-    else throw Error("", fmt::format("unknown flag {}", flag));
+    if (flag == "--samples")
+      samples = std::stoull(argv[i + 1]);
+    else if (flag == "--seed")
+      seed = std::stoull(argv[i + 1]);
+    else
+      throw Error("", fmt::format("unknown flag {}", flag));
   }
   if (mode != "--hulls" && mode != "--solid") throw Error("", "give --hulls or --solid");
 
@@ -121,8 +125,8 @@ int run(int argc, char** argv) {
     Rng rng(seed, c);
     uint64_t a = 0, b = 0, u = 0;
     for (uint64_t i = c * chunk; i < std::min(samples, (c + 1) * chunk); ++i) {
-      const Vec3d p = lo + ext * Vec3d(rng.uniformDouble(), rng.uniformDouble(),
-                                       rng.uniformDouble());
+      const Vec3d p =
+          lo + ext * Vec3d(rng.uniformDouble(), rng.uniformDouble(), rng.uniformDouble());
       const bool inside = in_input(cgal::Point3(p.x, p.y, p.z)) == CGAL::ON_BOUNDED_SIDE;
       bool covered = false;
       if (in_other) {
@@ -147,9 +151,11 @@ int run(int argc, char** argv) {
   fmt::print(
       "{{\"input\": \"{}\", \"samples\": {}, \"seed\": {}, \"pieces\": {}, "
       "\"input_volume\": {:.6g}, \"cover_volume\": {:.6g}, \"volume_ratio\": {:.5f}, "
-      "\"uncovered_share\": {:.6f}, \"uncovered_share_stderr\": {:.6f}, \"uncovered_samples\": {}}}\n",
+      "\"uncovered_share\": {:.6f}, \"uncovered_share_stderr\": {:.6f}, \"uncovered_samples\": "
+      "{}}}\n",
       input.source, samples, seed, in_other ? 1 : hulls.size(),
-      box_volume * double(n_input) / double(samples), box_volume * double(n_cover) / double(samples),
+      box_volume * double(n_input) / double(samples),
+      box_volume * double(n_cover) / double(samples),
       n_input ? double(n_cover) / double(n_input) : 0.0, share,
       n_input ? std::sqrt(share * (1 - share) / double(n_input)) : 0.0, n_uncovered.load());
   return 0;
