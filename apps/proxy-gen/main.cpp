@@ -50,7 +50,7 @@ struct Args {
   std::string input, output, out_dir, kind = "outside", method;
   std::optional<double> alpha, offset, ratio, erosion, voxel;
   std::string budget = "hard";
-  size_t max_faces = 0;
+  size_t max_faces = 0, min_faces = 12;
   double max_seconds = 600;
   bool fill_holes = false;
   bool progress = false;  // the bar also when stderr is not a terminal
@@ -83,6 +83,7 @@ ProxyGenOptions toOptions(const Args& a, const CommonOptions& common) {
   o.voxel = a.voxel;
   o.hard_budget = a.budget == "hard";
   o.max_faces = a.max_faces;
+  o.min_faces = a.min_faces;
   o.fill_holes = a.fill_holes;
   o.seed = common.seed;
   o.max_seconds = a.max_seconds;
@@ -405,6 +406,12 @@ void addProxyOptions(CLI::App& app, Args& a) {
                  "Faces kept as a fraction of the input: general (default 0.02); outside/inside "
                  "a face budget relative to each mesh (for scenes), used when --max-faces is 0")
       ->check(numberIn(kRatioRange.lo, kRatioRange.hi));
+  app.add_option("--min-faces", a.min_faces,
+                 "With --ratio (outside/inside): the budget is at least this many faces, so that "
+                 "a scene's small meshes keep proxies about as tight as their wraps (ecosys: "
+                 "--ratio 0.03 --min-faces 64, docs/proxy_tightness.md)")
+      ->check(CLI::Range(size_t(4), size_t(1000000000)))
+      ->capture_default_str();
   app.add_option("--erosion", a.erosion,
                  "erode: erosion distance as a fraction of the diagonal (default 1/75)")
       ->check(numberIn(kErosionRange.lo, kErosionRange.hi));

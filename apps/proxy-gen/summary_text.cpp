@@ -39,11 +39,14 @@ std::string budgetText(const json& r) {
   std::string budget;
   if (p.value("max_faces", 0) > 0)
     budget = fmt::format("{} faces (--max-faces)", p["max_faces"].get<uint64_t>());
-  else if (p.contains("max_faces_from_ratio"))
-    budget =
-        fmt::format("{} faces (--ratio times the input's {})",
-                    p["max_faces_from_ratio"].get<uint64_t>(), r["input"]["faces"].get<uint64_t>());
-  else if (p.contains("max_faces_auto"))
+  else if (p.contains("max_faces_from_ratio")) {
+    const uint64_t faces = p["max_faces_from_ratio"].get<uint64_t>();
+    budget = faces == p.value("min_faces", uint64_t(0))
+                 ? fmt::format("{} faces (--min-faces: --ratio asked for fewer of the input's {})",
+                               faces, r["input"]["faces"].get<uint64_t>())
+                 : fmt::format("{} faces (--ratio times the input's {})", faces,
+                               r["input"]["faces"].get<uint64_t>());
+  } else if (p.contains("max_faces_auto"))
     budget = fmt::format("{} faces (the input's count: a proxy must not cost more)",
                          p["max_faces_auto"].get<uint64_t>());
   else if (p.contains("ratio"))

@@ -44,13 +44,19 @@ std::optional<std::string> readOwnFileBytes(const fs::path& path) {
 
 nlohmann::json proxyCacheSettings(const ProxyGenOptions& o) {
   // Numbers as text with all their digits: the key must not depend on how JSON prints doubles.
-  return {
-      {"kind", proxyClassName(o.kind)},       {"method", o.method.empty() ? "default" : o.method},
-      {"alpha", optionalNumber(o.alpha)},     {"offset", optionalNumber(o.offset)},
-      {"ratio", optionalNumber(o.ratio)},     {"max_faces", o.max_faces},
-      {"erosion", optionalNumber(o.erosion)}, {"voxel", optionalNumber(o.voxel)},
-      {"fill_holes", o.fill_holes},           {"hard_budget", o.hard_budget},
-      {"seed", std::to_string(o.seed)},       {"hausdorff_samples", o.hausdorff_samples}};
+  return {{"kind", proxyClassName(o.kind)},
+          {"method", o.method.empty() ? "default" : o.method},
+          {"alpha", optionalNumber(o.alpha)},
+          {"offset", optionalNumber(o.offset)},
+          {"ratio", optionalNumber(o.ratio)},
+          {"max_faces", o.max_faces},
+          {"min_faces", o.min_faces},
+          {"erosion", optionalNumber(o.erosion)},
+          {"voxel", optionalNumber(o.voxel)},
+          {"fill_holes", o.fill_holes},
+          {"hard_budget", o.hard_budget},
+          {"seed", std::to_string(o.seed)},
+          {"hausdorff_samples", o.hausdorff_samples}};
 }
 
 std::string proxyCacheKey(const std::string& input_sha256, const nlohmann::json& settings) {

@@ -53,6 +53,10 @@ void checkOptionRanges(const ProxyGenOptions& o) {
   check(o.erosion, kErosionRange, "--erosion");
   check(o.voxel, kVoxelRange, "--voxel");
   check(o.ratio, kRatioRange, "--ratio");
+  if (o.min_faces < 4 || o.min_faces > kMaxFacesLimit)
+    throw Error("",
+                fmt::format("--min-faces must be in [4, {}], got {}", kMaxFacesLimit, o.min_faces),
+                "a closed proxy has at least 4 faces");
   if (o.max_faces > kMaxFacesLimit)
     throw Error("",
                 fmt::format("--max-faces must be at most {}, got {}", kMaxFacesLimit, o.max_faces));
@@ -175,8 +179,9 @@ size_t budgetFaces(const TriMesh& input, const ProxyGenOptions& options, const B
   size_t max_faces = options.max_faces;
   if (built.bounded && max_faces == 0 && options.ratio) {
     // Outside/inside with --ratio: a budget relative to the input (a scene's meshes differ).
-    max_faces = std::max<size_t>(12, size_t(*options.ratio * double(input.numTriangles())));
+    max_faces = requestedFaces(options, input);
     params["max_faces_from_ratio"] = max_faces;
+    params["min_faces"] = options.min_faces;
   }
   if (built.bounded && max_faces == 0 && built.mesh.numTriangles() > input.numTriangles()) {
     max_faces = std::max<size_t>(input.numTriangles(), 12);

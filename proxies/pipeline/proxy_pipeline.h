@@ -38,8 +38,11 @@ struct ProxyGenOptions {
   std::optional<double> offset;  // wrap: fraction of the diagonal (default 1/600)
   size_t max_faces = 0;          // face budget; 0 = none (general: use ratio)
   // Fraction of the input faces: general (default 0.02); outside/inside, a face budget of
-  // max(12, ratio x input faces) when max_faces is 0.
+  // max(min_faces, ratio x input faces) when max_faces is 0.
   std::optional<double> ratio;
+  // The smallest budget --ratio gives a mesh: a scene's small meshes (a flower of 565 faces
+  // in ecosys) would otherwise get proxies of a dozen faces, far looser than their wraps.
+  size_t min_faces = 12;
   std::optional<double> erosion;  // erode: fraction of the diagonal (default 1/75)
   std::optional<double> voxel;    // erode: voxel edge, fraction of the diagonal (default 1/150)
   bool fill_holes = false;        // inside: fill the holes of an open input first

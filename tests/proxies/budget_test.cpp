@@ -133,5 +133,22 @@ TEST(BudgetPolicy, InsideBudgetOfFourFacesIsMetAndVerified) {
   EXPECT_EQ(checkContainment(input, r.proxy).verdict, ContainmentVerdict::kContained);
 }
 
+// --min-faces: a ratio budget below it is raised to it (ecosys' small flowers), and the
+// report says what the ratio asked and what it became. Hull: the budget path without a wrap.
+TEST(BudgetPolicy, RatioBudgetIsRaisedToTheMinimum) {
+  const TriMesh& input = mesh("bunny.off");  // 6,966 faces: 0.001 asks for 6
+  ProxyGenOptions o = gen_test::genOptions(ProxyClass::kOutside, "hull", 0, 500);
+  o.ratio = 0.001;
+  o.min_faces = 40;
+  ProxyGenResult r = generateProxy(input, o);
+  EXPECT_EQ(r.report["parameters"]["max_faces_from_ratio"].get<size_t>(), 40u);
+  EXPECT_EQ(r.report["parameters"]["min_faces"].get<size_t>(), 40u);
+  EXPECT_LE(r.proxy.numTriangles(), 40u);
+  EXPECT_GT(r.proxy.numTriangles(), 12u);  // not the box the 12-face floor would allow
+  EXPECT_TRUE(r.verified);
+  o.min_faces = 3;
+  EXPECT_THROW(generateProxy(input, o), Error);  // below a tetrahedron
+}
+
 }  // namespace
 }  // namespace proxyvis
