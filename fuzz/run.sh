@@ -1,8 +1,15 @@
 #!/usr/bin/env bash
-# Runs the libFuzzer targets one after another, each on a fresh copy of its seed corpus, and
-# prints a table: target, executions, exec/s, findings (crash/timeout/oom/leak files).
+# Runs the libFuzzer targets one after another and prints a table: target, executions, exec/s,
+# findings (crash/timeout/oom/leak files).
 #   fuzz/run.sh [TARGET...] [-runs=N] [other libFuzzer flags]
-# TARGET: fuzz_ply fuzz_obj ... (default: every fuzz_* executable built). -runs defaults to 100000.
+#     each target on a fresh copy of its seed corpus; -runs defaults to 100000.
+#   fuzz/run.sh --minutes N [TARGET...] [libFuzzer flags]
+#     each target N minutes, resuming from the committed corpus fuzz/corpus/<target>.tar.xz (plus
+#     the seeds); what it finds new is merged into it (libFuzzer -merge=1 keeps only inputs that
+#     add coverage; the archive is packed reproducibly) and the run is added to
+#     fuzz/corpus/ledger.tsv, whose totals per target (executions across all runs) are printed at
+#     the end and quoted in fuzz/README.md.
+# TARGET: fuzz_ply fuzz_obj ... (default: every fuzz_* executable built).
 # Build first with ./setup.sh fuzz (build-fuzz/; PROXYVIS_FUZZ_BUILD_DIR overrides). Runs at
 # nice 10: the machine is shared. Work files: <build>/fuzz-work/<target>/{corpus,findings,log}.
 set -euo pipefail
@@ -11,14 +18,24 @@ BUILD_DIR=${PROXYVIS_FUZZ_BUILD_DIR:-build-fuzz}
 BIN=$BUILD_DIR/bin
 WORK=$BUILD_DIR/fuzz-work
 
-targets=() flags=() runs=100000
-for arg in "$@"; do
-  case "$arg" in
-    -runs=*) runs=${arg#-runs=} ;;
-    -*) flags+=("$arg") ;;
-    *) targets+=("$arg") ;;
+targets=() flags=() runs=100000 minutes=""
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --minutes)
+      minutes=${2:-}
+      [[ "$minutes" =~ ^[0-9]+$ ]] && [ "$minutes" -gt 0 ] || {
+        echo "run.sh: --minutes needs a whole number of minutes above 0" >&2
+        exit 2
+      }
+      shift ;;
+    -runs=*) runs=${1#-runs=} ;;
+    -*) flags+=("$1") ;;
+    *) targets+=("$1") ;;
   esac
+  shift
 done
+CORPUS=fuzz/corpus
+LEDGER=$CORPUS/ledger.tsv
 if [ ${#targets[@]} -eq 0 ]; then
   for exe in "$BIN"/fuzz_*; do [ -x "$exe" ] && targets+=("$(basename "$exe")"); done
 fi
@@ -49,11 +66,18 @@ for t in "${targets[@]}"; do
   dir=$WORK/$t
   rm -rf "$dir" && mkdir -p "$dir/corpus" "$dir/findings"
   [ -d "$WORK/seeds/$t" ] && cp -r "$WORK/seeds/$t/." "$dir/corpus/"
+  limit=("-runs=$runs")
+  if [ -n "$minutes" ]; then
+    limit=("-runs=-1" "-max_total_time=$((minutes * 60))")
+    [ -f "$CORPUS/$t.tar.xz" ] && tar -xJf "$CORPUS/$t.tar.xz" -C "$dir/corpus"
+  fi
   dict=()
   [ -f "fuzz/dict/${t#fuzz_}.dict" ] && dict=("-dict=fuzz/dict/${t#fuzz_}.dict")
-  echo "== $t: $runs runs (log: $dir/log)"
+  what="$runs runs"
+  [ -z "$minutes" ] || what="$minutes min from $CORPUS/$t.tar.xz"
+  echo "== $t: $what (log: $dir/log)"
   # A finding stops libFuzzer with a non-zero exit; the table still gets its row.
-  nice -n 10 "$exe" "$dir/corpus" "-runs=$runs" -rss_limit_mb=2048 -malloc_limit_mb=2048 \
+  nice -n 10 "$exe" "$dir/corpus" "${limit[@]}" -rss_limit_mb=2048 -malloc_limit_mb=2048 \
     -timeout=10 "-max_len=$(max_len_of "$t")" "-artifact_prefix=$dir/findings/" \
     -print_final_stats=1 "${dict[@]}" "${flags[@]}" >"$dir/log" 2>&1 || true
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$dir/log" | tail -1)
@@ -62,9 +86,31 @@ for t in "${targets[@]}"; do
     -o -name 'leak-*' \) | wc -l)
   summary+=("$(printf '%-20s %14s %10s %9s' "$t" "${execs:-?}" "${rate:-?}" "$found")")
   [ "$found" -eq 0 ] || echo "   findings in $dir/findings (reproduce: $exe FILE)"
+  if [ -n "$minutes" ]; then
+    # Keep only the inputs that add coverage to what is committed, then book the run.
+    mkdir -p "$dir/merged"
+    [ -f "$CORPUS/$t.tar.xz" ] && tar -xJf "$CORPUS/$t.tar.xz" -C "$dir/merged"
+    if nice -n 10 "$exe" -merge=1 "-max_len=$(max_len_of "$t")" "$dir/merged" "$dir/corpus" \
+      >"$dir/merge.log" 2>&1; then
+      tar --sort=name --mtime=@0 --owner=0 --group=0 --numeric-owner -C "$dir/merged" -cf - . |
+        xz -9 >"$CORPUS/$t.tar.xz.tmp" && mv "$CORPUS/$t.tar.xz.tmp" "$CORPUS/$t.tar.xz"
+    else
+      echo "   merge into $CORPUS/$t.tar.xz failed (see $dir/merge.log)"
+    fi
+    [ -f "$LEDGER" ] || printf 'date\ttarget\tminutes\texecutions\tfindings\n' >"$LEDGER"
+    printf '%s\t%s\t%s\t%s\t%s\n' "$(date -u +%Y-%m-%d)" "$t" "$minutes" "${execs:-0}" "$found" \
+      >>"$LEDGER"
+  fi
 done
 
 {
   printf '%-20s %14s %10s %9s\n' target executions exec/s findings
   printf '%s\n' "${summary[@]}"
 } | tee "$WORK/summary.txt"
+if [ -n "$minutes" ] && [ -f "$LEDGER" ]; then
+  echo
+  echo "executions across all runs ($LEDGER):"
+  awk -F '\t' 'NR > 1 { e[$2] += $4; f[$2] += $5; n[$2]++ }
+    END { for (t in e) printf "%-20s %14d executions in %d runs, %d findings\n", t, e[t], n[t], f[t] }' \
+    "$LEDGER" | sort
+fi

@@ -201,8 +201,8 @@ TEST(DracoCorruption, QuantizationFlipsAreRefused) {
 
 TEST(DracoCorruption, HeaderFaceCountIsReadForCurrentFiles) {
   EXPECT_EQ(detail::declaredDracoFaceCount(readBytes(dataFile("dragon.drc"))), 100000);
-  // Format 1.1 (the reference bunny) is not parsed: nothing to compare.
-  EXPECT_EQ(detail::declaredDracoFaceCount(readBytes(dataFile("draco/bunny.drc"))), -1);
+  // Bitstream 1.1 (the reference bunny, bun_zipper's 69,451 faces): fixed-width counts.
+  EXPECT_EQ(detail::declaredDracoFaceCount(readBytes(dataFile("draco/bunny.drc"))), 69451);
   // Sequential connectivity (speed 10) declares its count too.
   ScratchDir dir("draco_header");
   saveMesh(unitCube(), dir / "seq.drc", {.draco_speed = 10});

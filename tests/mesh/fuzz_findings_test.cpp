@@ -133,5 +133,46 @@ TEST(FuzzFindings, BinaryOffIsRefused) {
                "binary OFF is not supported");
 }
 
+// fuzz_draco: a 305-byte file of bitstream 1.0 whose edgebreaker header declares 471,604,252
+// faces made Draco allocate 5.6 GB before reading any (libFuzzer out-of-memory). The declared
+// count is read for 1.x files too and refused when the file cannot hold it.
+TEST(FuzzFindings, DracoHeaderDeclaringMoreFacesThanBytesIsRefused) {
+  const std::string hex =
+      "445241434f010001010b0000ffff5f1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c0100000000000000"
+      "1c1c"
+      "1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c01001c1c1c1c1c1c1c1c1c1c1c1c"
+      "1cc0"
+      "000c2c2a000007631e00b0600000da434f0202010100000000000000000000000000000000000000000000000000"
+      "0000"
+      "00000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000"
+      "0000"
+      "000000000000000008f4ffffff010006000003efda01ff2111000003efda01ff211101ff090004aa1c1c1c1c1c1c"
+      "1c1c"
+      "1c1c1c1c1c1c1c1c1c1c1c1c1c1c661c1c1c1c1c0500000000ffd2008059202dc95d5d5d5d5d5d5d5d5d5d5d5d5d"
+      "5d5d"
+      "5d5d5d5d5d5d5d5dbf0b000000003a400b";
+  std::string bytes;
+  for (size_t i = 0; i + 1 < hex.size(); i += 2)
+    bytes += char(std::stoi(hex.substr(i, 2), nullptr, 16));
+  ASSERT_EQ(bytes.size(), 305u);
+  EXPECT_NE(
+      refusal(bytes, "oom.drc").find("oom.drc: Draco header declares 471604252 faces in 305 bytes"),
+      std::string::npos);
+}
+
+// fuzz_draco, the next minute: the same in bitstream 1.2 with the metadata flag set, which
+// Draco ignores before 1.3 (so must the header read).
+TEST(FuzzFindings, DracoOldBitstreamIgnoresTheMetadataFlag) {
+  const std::string hex =
+      "445241434f0102010100ff00040200020000011f1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c591c1c1c1cc0000c2c9100"
+      "0007300800000000ff0700000000803f00000000000080bf000000400b";
+  std::string bytes;
+  for (size_t i = 0; i + 1 < hex.size(); i += 2)
+    bytes += char(std::stoi(hex.substr(i, 2), nullptr, 16));
+  ASSERT_EQ(bytes.size(), 75u);
+  EXPECT_NE(refusal(bytes, "flag.drc").find("declares 471604252 faces in 75 bytes"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace proxyvis

@@ -11,9 +11,10 @@ namespace proxyvis::detail {
 // Throws Error naming `file` for point clouds, corrupt data or a missing POSITION attribute.
 void decodeDraco(const std::string& bytes, const std::string& file, TriMesh& out);
 
-// The face count a Draco file's connectivity header declares, read for the format version Draco
-// 1.5 writes (2.2) without metadata; -1 for anything else (older versions, metadata first).
-// decodeDraco refuses a mesh that decodes to another count.
+// The face count a Draco file's connectivity header declares, read for the bitstream Draco 1.5
+// writes (2.2) and for 1.x, without metadata; -1 for anything else (2.0, 2.1, metadata first).
+// decodeDraco refuses a declared count that the file's size cannot hold, and a mesh that
+// decodes to another count.
 int64_t declaredDracoFaceCount(const std::string& bytes);
 
 // Encodes positions and triangles; quantization_bits 0 keeps float positions losslessly.
