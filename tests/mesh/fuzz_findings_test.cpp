@@ -26,6 +26,14 @@ std::string refusal(const std::string& bytes, const std::string& name, double se
   return message;
 }
 
+// Reproducers too long to spell as escapes, written as hex.
+std::string fromHex(const std::string& hex) {
+  std::string bytes;
+  for (size_t i = 0; i + 1 < hex.size(); i += 2)
+    bytes += char(std::stoi(hex.substr(i, 2), nullptr, 16));
+  return bytes;
+}
+
 // fuzz_off: a first word of binary bytes that only ended in "4OFF" passed the header check (the
 // 4D variant was left to OpenMesh), and OpenMesh then read 84 million empty faces from these 262
 // bytes (a second of CPU, and more for a larger count).
@@ -137,7 +145,7 @@ TEST(FuzzFindings, BinaryOffIsRefused) {
 // faces made Draco allocate 5.6 GB before reading any (libFuzzer out-of-memory). The declared
 // count is read for 1.x files too and refused when the file cannot hold it.
 TEST(FuzzFindings, DracoHeaderDeclaringMoreFacesThanBytesIsRefused) {
-  const std::string hex =
+  const std::string bytes = fromHex(
       "445241434f010001010b0000ffff5f1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c0100000000000000"
       "1c1c"
       "1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c01001c1c1c1c1c1c1c1c1c1c1c1c"
@@ -150,10 +158,7 @@ TEST(FuzzFindings, DracoHeaderDeclaringMoreFacesThanBytesIsRefused) {
       "1c1c"
       "1c1c1c1c1c1c1c1c1c1c1c1c1c1c661c1c1c1c1c0500000000ffd2008059202dc95d5d5d5d5d5d5d5d5d5d5d5d5d"
       "5d5d"
-      "5d5d5d5d5d5d5d5dbf0b000000003a400b";
-  std::string bytes;
-  for (size_t i = 0; i + 1 < hex.size(); i += 2)
-    bytes += char(std::stoi(hex.substr(i, 2), nullptr, 16));
+      "5d5d5d5d5d5d5d5dbf0b000000003a400b");
   ASSERT_EQ(bytes.size(), 305u);
   EXPECT_NE(
       refusal(bytes, "oom.drc").find("oom.drc: Draco header declares 471604252 faces in 305 bytes"),
@@ -163,12 +168,9 @@ TEST(FuzzFindings, DracoHeaderDeclaringMoreFacesThanBytesIsRefused) {
 // fuzz_draco, the next minute: the same in bitstream 1.2 with the metadata flag set, which
 // Draco ignores before 1.3 (so must the header read).
 TEST(FuzzFindings, DracoOldBitstreamIgnoresTheMetadataFlag) {
-  const std::string hex =
+  const std::string bytes = fromHex(
       "445241434f0102010100ff00040200020000011f1c1c1c1c1c1c1c1c1c1c1c1c1c1c1c591c1c1c1cc0000c2c9100"
-      "0007300800000000ff0700000000803f00000000000080bf000000400b";
-  std::string bytes;
-  for (size_t i = 0; i + 1 < hex.size(); i += 2)
-    bytes += char(std::stoi(hex.substr(i, 2), nullptr, 16));
+      "0007300800000000ff0700000000803f00000000000080bf000000400b");
   ASSERT_EQ(bytes.size(), 75u);
   EXPECT_NE(refusal(bytes, "flag.drc").find("declares 471604252 faces in 75 bytes"),
             std::string::npos);
