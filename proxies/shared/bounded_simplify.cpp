@@ -44,7 +44,6 @@ namespace PMP = CGAL::Polygon_mesh_processing;
 using cgal::Point3;
 using cgal::SurfaceMesh;
 using Profile = SMS::Edge_profile<SurfaceMesh>;
-using cgal::facesCross;
 using cgal::IdFace;
 
 // With an input bound, nested collapses run down to this many times the budget, the tight
@@ -173,17 +172,6 @@ std::vector<IdFace> newStar(const Profile& profile, const Point3& x) {
   return out;
 }
 
-// The new faces cross neither each other (a fan folding over itself) nor `other`.
-bool foldsOrCrosses(const std::vector<IdFace>& star, const IdFace* other) {
-  for (size_t i = 0; i < star.size(); ++i) {
-    if (other ? facesCross(star[i], *other) : false) return true;
-    if (!other)
-      for (size_t j = i + 1; j < star.size(); ++j)
-        if (facesCross(star[i], star[j])) return true;
-  }
-  return false;
-}
-
 bool inStar(const IdFace& f, const Profile& profile) {
   const uint32_t v0 = idOf(profile.v0()), v1 = idOf(profile.v1());
   for (uint32_t id : f.id)
@@ -199,7 +187,7 @@ bool inStar(const IdFace& f, const Profile& profile) {
 bool locallyFree(const Profile& profile, const Vec3d& xv) {
   const SurfaceMesh& sm = profile.surface_mesh();
   const std::vector<IdFace> star = newStar(profile, Point3(xv[0], xv[1], xv[2]));
-  if (foldsOrCrosses(star, nullptr)) return false;
+  if (cgal::anyTwoCross(star)) return false;
   std::vector<SurfaceMesh::Face_index> ring;
   for (auto u : profile.link())
     for (auto f : CGAL::faces_around_target(sm.halfedge(u), sm))
@@ -208,7 +196,7 @@ bool locallyFree(const Profile& profile, const Vec3d& xv) {
   ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
   for (auto f : ring) {
     const IdFace other = meshFace(sm, f);
-    if (!inStar(other, profile) && foldsOrCrosses(star, &other)) return false;
+    if (!inStar(other, profile) && cgal::anyCrosses(star, other)) return false;
   }
   return true;
 }
@@ -234,14 +222,14 @@ class GlobalFreeCheck {
 
   bool allows(const Profile& profile, const Vec3d& xv) const {
     const std::vector<IdFace> star = newStar(profile, Point3(xv[0], xv[1], xv[2]));
-    if (foldsOrCrosses(star, nullptr)) return false;
+    if (cgal::anyTwoCross(star)) return false;
     CGAL::Bbox_3 box;
     for (const IdFace& t : star)
       for (const Point3& p : t.p) box += p.bbox();
     for (auto f : sm_.faces()) {
       if (!CGAL::do_overlap(box, boxes_[f])) continue;
       const IdFace other = meshFace(sm_, f);
-      if (!inStar(other, profile) && foldsOrCrosses(star, &other)) return false;
+      if (!inStar(other, profile) && cgal::anyCrosses(star, other)) return false;
     }
     return true;
   }
@@ -452,8 +440,7 @@ TriMesh simplifyBounded(const TriMesh& mesh, const BoundedSimplifyOptions& optio
     TriMesh relaxed = out;
     st.relaxed = cgal::relaxTowardInput(relaxed, bound, kRelaxSweeps, options.budget);
     checkBudget(options.budget, "the face budget's relaxation");
-    SurfaceMesh check;
-    if (st.relaxed > 0 && cgal::toSurfaceMesh(relaxed, check) && !PMP::does_self_intersect(check))
+    if (st.relaxed > 0 && !cgal::crossesItself(relaxed))
       out = std::move(relaxed);
     else
       st.relaxed = 0;

@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstdint>
+#include <vector>
 
 #include "mesh/cgal_bridge.h"
 
@@ -46,6 +47,21 @@ inline bool facesCross(const IdFace& a, const IdFace& b) {
            CGAL::coplanar_orientation(u, w, a.p[i], b.p[j]) == CGAL::POSITIVE;
   }
   return false;  // the same face
+}
+
+// Two of the new faces cross: a fan folding over itself.
+inline bool anyTwoCross(const std::vector<IdFace>& faces) {
+  for (size_t i = 0; i < faces.size(); ++i)
+    for (size_t j = i + 1; j < faces.size(); ++j)
+      if (facesCross(faces[i], faces[j])) return true;
+  return false;
+}
+
+// One of the new faces crosses `other`, a face of the mesh.
+inline bool anyCrosses(const std::vector<IdFace>& faces, const IdFace& other) {
+  for (const IdFace& f : faces)
+    if (facesCross(f, other)) return true;
+  return false;
 }
 
 }  // namespace proxyvis::cgal

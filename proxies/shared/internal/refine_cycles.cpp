@@ -42,12 +42,12 @@ bool touchesInput(const TriMesh& mesh, const InputBound& bound) {
   return false;
 }
 
+}  // namespace
+
 bool crossesItself(const TriMesh& mesh) {
   SurfaceMesh sm;
   return !toSurfaceMesh(mesh, sm) || CGAL::Polygon_mesh_processing::does_self_intersect(sm);
 }
-
-}  // namespace
 
 int refineCycles(TriMesh& mesh, const InputBound& bound, int cycles, int relax_sweeps,
                  const CollapseToBudget& collapse_to_budget, const TimeBudget* budget) {

@@ -15,6 +15,10 @@
 
 namespace proxyvis::cgal {
 
+// True when CGAL cannot load the mesh as a 2-manifold or a pair of its faces crosses
+// (CGAL's does_self_intersect): a relaxed or refined result that does is dropped.
+bool crossesItself(const TriMesh& mesh);
+
 // Collapses a closed mesh to the face budget under the input test; nothing when it cannot.
 using CollapseToBudget = std::function<std::optional<TriMesh>(const TriMesh&)>;
 

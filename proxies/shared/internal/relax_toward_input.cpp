@@ -21,8 +21,6 @@
 namespace proxyvis::cgal {
 namespace {
 
-using cgal::IdFace;
-
 using Tri = std::array<Vec3d, 3>;
 
 Bounds3d boxOf(const Tri& t) {
@@ -125,9 +123,7 @@ class Relaxer {
       faces.push_back(
           {{toPoint(new_faces[i][0]), toPoint(new_faces[i][1]), toPoint(new_faces[i][2])},
            new_corners[i]});
-    for (size_t i = 0; i < faces.size(); ++i)
-      for (size_t j = i + 1; j < faces.size(); ++j)
-        if (facesCross(faces[i], faces[j])) return false;
+    if (anyTwoCross(faces)) return false;
     for (size_t i = 0; i < faces.size(); ++i) {
       const Bounds3d box = boxOf(new_faces[i]);
       for (size_t f = 0; f < mesh_.triangles.size(); ++f) {
