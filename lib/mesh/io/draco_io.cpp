@@ -27,10 +27,21 @@ bool readVarint(const std::string& bytes, size_t& pos, uint64_t& value) {
   return false;
 }
 
+// Draco allocates its connectivity from the counts in the header before it reads a face: a
+// 305-byte file of bitstream 1.0 made it ask for 5.6 GB (fuzz_draco). Edgebreaker needs about a
+// bit per face and a regular grid's positions almost nothing, so 1,000 faces per byte leaves
+// real files far inside the bound.
+constexpr int64_t kMaxDracoFacesPerByte = 1000;
+
+void checkDeclaredSize(int64_t declared, size_t bytes, const std::string& file) {
+  if (declared > kMaxDracoFacesPerByte * int64_t(bytes) + 1000)
+    throw Error(file, fmt::format("Draco header declares {} faces in {} bytes", declared, bytes),
+                "no encoding holds that many", "the file is corrupt");
+}
+
 // A decoder fed corrupt connectivity can still return a mesh; one whose face count differs from
 // what the header declares is refused.
-void checkFaceCount(const std::string& bytes, uint32_t decoded, const std::string& file) {
-  const int64_t declared = declaredDracoFaceCount(bytes);
+void checkFaceCount(int64_t declared, uint32_t decoded, const std::string& file) {
   if (declared >= 0 && uint64_t(declared) != decoded)
     throw Error(file, "Draco mesh decodes to " + std::to_string(decoded) + " faces",
                 "its header declares " + std::to_string(declared), "the file is corrupt");
@@ -107,8 +118,6 @@ void checkAxesKeepTheirSpread(const draco::PointAttribute& quantized,
 
 }  // namespace
 
-constexpr int64_t kMaxDracoFacesPerByte = 1000;
-
 int64_t declaredDracoFaceCount(const std::string& bytes) {
   // "DRACO", version major, minor, encoder type, method, 16-bit flags.
   if (bytes.size() < 11 || bytes.compare(0, 5, "DRACO") != 0) return -1;
@@ -139,20 +148,9 @@ int64_t declaredDracoFaceCount(const std::string& bytes) {
   return int64_t(value);
 }
 
-// Draco allocates its connectivity from the counts in the header before it reads a face: a
-// 305-byte file of bitstream 1.0 made it ask for 5.6 GB (fuzz_draco). Edgebreaker needs about a
-// bit per face and a regular grid's positions almost nothing, so 1,000 faces per byte leaves
-// real files far inside the bound.
-static void checkDeclaredSize(const std::string& bytes, const std::string& file) {
-  const int64_t declared = declaredDracoFaceCount(bytes);
-  if (declared > kMaxDracoFacesPerByte * int64_t(bytes.size()) + 1000)
-    throw Error(file,
-                fmt::format("Draco header declares {} faces in {} bytes", declared, bytes.size()),
-                "no encoding holds that many", "the file is corrupt");
-}
-
 void decodeDraco(const std::string& bytes, const std::string& file, TriMesh& out) {
-  checkDeclaredSize(bytes, file);
+  const int64_t declared_faces = declaredDracoFaceCount(bytes);
+  checkDeclaredSize(declared_faces, bytes.size(), file);
   draco::DecoderBuffer buffer;
   buffer.Init(bytes.data(), bytes.size());
   auto type = draco::Decoder::GetEncodedGeometryType(&buffer);
@@ -197,7 +195,7 @@ void decodeDraco(const std::string& bytes, const std::string& file, TriMesh& out
                   "positions must be integers or floats", "re-encode it with float positions");
   }
   const uint32_t num_points = mesh.num_points();
-  checkFaceCount(bytes, mesh.num_faces(), file);
+  checkFaceCount(declared_faces, mesh.num_faces(), file);
 
   // `values` holds the float positions; `pos` maps points to value indices (the same in both).
   const draco::PointAttribute* values = pos;
