@@ -79,7 +79,7 @@ std::string coarserName(const BudgetContext& ctx, const ProxyGenOptions& c) {
 size_t requestedFaces(const ProxyGenOptions& options, const TriMesh& input) {
   if (options.max_faces > 0) return options.max_faces;
   if (options.ratio)
-    return std::max({kBoxFaces, options.min_faces, size_t(*options.ratio * input.numTriangles())});
+    return std::max(options.min_faces, size_t(*options.ratio * input.numTriangles()));
   return 0;
 }
 

@@ -45,7 +45,7 @@ struct BudgetContext {
 };
 
 // The face budget the caller gave for an outside/inside proxy, known before it is built:
-// max_faces, else max(12, ratio x input faces); 0 = none.
+// max_faces, else max(min_faces (default 12), ratio x input faces); 0 = none.
 size_t requestedFaces(const ProxyGenOptions& options, const TriMesh& input);
 
 // Checks `mesh` as a proxy of the context's kind (validation with self-intersections; for

@@ -146,6 +146,11 @@ TEST(BudgetPolicy, RatioBudgetIsRaisedToTheMinimum) {
   EXPECT_LE(r.proxy.numTriangles(), 40u);
   EXPECT_GT(r.proxy.numTriangles(), 12u);  // not the box the 12-face floor would allow
   EXPECT_TRUE(r.verified);
+  o.min_faces = 8;  // below the 12 of the default: the floor is what was asked
+  r = generateProxy(input, o);
+  EXPECT_EQ(r.report["parameters"]["max_faces_from_ratio"].get<size_t>(), 8u);
+  EXPECT_LE(r.proxy.numTriangles(), 8u);
+  EXPECT_TRUE(r.verified);
   o.min_faces = 3;
   EXPECT_THROW(generateProxy(input, o), Error);  // below a tetrahedron
 }
