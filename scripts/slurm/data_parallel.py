@@ -25,8 +25,9 @@ import subprocess
 import sys
 import time
 
-from submit import (POLL_FIRST_SECONDS, POLL_GROWTH, POLL_MAX_SECONDS, TERMINAL_STATES,
-                    Failure, bad_input, exit_status, integer_in, job_records, memory)
+from slurm_jobs import (POLL_FIRST_SECONDS, POLL_GROWTH, POLL_MAX_SECONDS, TERMINAL_STATES,
+                        Failure, bad_input, exit_status, job_records, sbatch_options)
+from submit import integer_in, memory
 
 PROG = "data_parallel.sh"
 PROGRAMS = ("render", "render-compare")
@@ -83,14 +84,11 @@ def memory_per_cpu(mem, cpus):
 
 def job_script(args, program, prog_args):
     name = os.path.basename(program)
+    mem_per_cpu = args.mem_per_rank and memory_per_cpu(args.mem_per_rank, args.cpus_per_rank)
     directives = [f"--job-name={name}-dp", f"--ntasks={args.ranks}",
                   f"--cpus-per-task={args.cpus_per_rank}"]
-    if args.mem_per_rank:
-        directives.append(f"--mem-per-cpu={memory_per_cpu(args.mem_per_rank, args.cpus_per_rank)}")
-    if args.time:
-        directives.append(f"--time={args.time}")
-    if args.partition:
-        directives.append(f"--partition={args.partition}")
+    directives += sbatch_options([("mem-per-cpu", mem_per_cpu), ("time", args.time),
+                                  ("partition", args.partition)])
     sbatch_lines = "\n".join(f"#SBATCH {d}" for d in directives)
     cwd = os.getcwd()
     command = " ".join(shlex.quote(a) for a in [program] + prog_args)
