@@ -30,18 +30,19 @@ struct TimedTracer {
 
   template <class S>
   bool proxyVisible(const S& s) const {
-    if (!timed) return tracer.proxyVisible(s);
-    const uint64_t a = cpuTicks();
-    const bool r = tracer.proxyVisible(s);
-    proxy_ticks = cpuTicks() - a;
-    return r;
+    return answer(proxy_ticks, [&] { return tracer.proxyVisible(s); });
   }
   template <class S>
   bool originalVisible(const S& s) const {
-    if (!timed) return tracer.originalVisible(s);
+    return answer(original_ticks, [&] { return tracer.originalVisible(s); });
+  }
+  // What `trace` answers; when timed, its cost goes to `ticks`.
+  template <class F>
+  bool answer(uint64_t& ticks, F&& trace) const {
+    if (!timed) return trace();
     const uint64_t a = cpuTicks();
-    const bool r = tracer.originalVisible(s);
-    original_ticks = cpuTicks() - a;
+    const bool r = trace();
+    ticks = cpuTicks() - a;
     return r;
   }
 };

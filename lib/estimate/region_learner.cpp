@@ -13,23 +13,13 @@ namespace proxyvis {
 
 namespace {
 
+// The constants of model(), which estimates a region from its tallies.
 // Pseudo-counts for the error-rate estimate: (errors + 1/2) / (samples + 1).
 constexpr double kErrorPriorErrors = 0.5, kErrorPriorSamples = 1.0;
 // Timed rays a region needs before its own cost outweighs the global mean of the class.
 constexpr double kCostShrinkage = 32.0;
 // Variance pairs a region needs before its own V(1-V) estimate replaces the pooled one.
 constexpr double kMinVariancePairs = 16.0;
-// The tick cap of one timed ray: kTickCapOverWorstMean times the costliest class mean (a ray
-// rarely costs more; a preempted one does), never below kMinTickCap ticks (before costs are
-// known, and so that a cheap scene's slowest honest rays are not cut).
-constexpr double kTickCapOverWorstMean = 64;
-constexpr uint64_t kMinTickCap = 1000;
-// Measured efficiency when roulette adds no variance but exact has some: roulette wins outright
-// (the ratio would be infinite); any large finite value passes every threshold.
-constexpr double kNoAddedVarianceEfficiency = 1e9;
-// Hysteresis: a region already on roulette stays there while its measured efficiency is at least
-// this (switching needs 1 + margin), so timing noise does not flip it every pass.
-constexpr double kStayOnRouletteEfficiency = 1.05;
 
 uint64_t nextLearnerId() {
   static std::atomic<uint64_t> next{1};
@@ -199,11 +189,26 @@ RouletteModel RegionLearner::model(uint32_t region) const {
 }
 
 namespace {
+
+// The constants of beginPass, which sets each pass's tick cap and each region's mode.
+// The tick cap of one timed ray: kTickCapOverWorstMean times the costliest class mean (a ray
+// rarely costs more; a preempted one does), never below kMinTickCap ticks (before costs are
+// known, and so that a cheap scene's slowest honest rays are not cut).
+constexpr double kTickCapOverWorstMean = 64;
+constexpr uint64_t kMinTickCap = 1000;
+// Measured efficiency when roulette adds no variance but exact has some: roulette wins outright
+// (the ratio would be infinite); any large finite value passes every threshold.
+constexpr double kNoAddedVarianceEfficiency = 1e9;
+// Hysteresis: a region already on roulette stays there while its measured efficiency is at least
+// this (switching needs 1 + margin), so timing noise does not flip it every pass.
+constexpr double kStayOnRouletteEfficiency = 1.05;
+
 int64_t steadyNs() {
   return std::chrono::duration_cast<std::chrono::nanoseconds>(
              std::chrono::steady_clock::now().time_since_epoch())
       .count();
 }
+
 }  // namespace
 
 void RegionLearner::beginPass() {
