@@ -48,44 +48,38 @@ ClassCosts costs(double cp0, double cp1, double co0, double co1, double per_samp
   return c;
 }
 
+// The same scenario with `ns` of shading added to every light sample.
+Scenario withShading(Scenario s, double ns) {
+  s.name += fmt::format(", +{:g} ns shading", ns);
+  s.costs.per_sample = ns;
+  return s;
+}
+
 std::vector<Scenario> scenarios() {
+  // ecosys-like: proxy-visible segments cost the same against both; blocked ones 100 / 250.
+  const ClassCosts foliage = costs(100, 60, 250, 58);
+  // dragon over a plane: most segments never come near the dragon.
+  const Scenario dragon{"dragon-plane, outside",
+                        ProxyClass::kOutside,
+                        {0.15, 0.0, 0.02, 0.83},
+                        costs(60, 23, 120, 23)};
+  // a proxy 10x cheaper than the original everywhere.
+  const ClassCosts cheap = costs(10, 10, 100, 100);
+  const Scenario cheap_outside{
+      "cheap proxy, outside", ProxyClass::kOutside, {0.30, 0.0, 0.05, 0.65}, cheap};
   return {
-      // ecosys-like: proxy-visible segments cost the same against both; blocked ones 100 / 250.
-      {"foliage, outside, P(MH')=0.20",
-       ProxyClass::kOutside,
-       {0.05, 0.0, 0.20, 0.75},
-       costs(100, 60, 250, 58)},
+      {"foliage, outside, P(MH')=0.20", ProxyClass::kOutside, {0.05, 0.0, 0.20, 0.75}, foliage},
       {"foliage, outside, P(MH')=0.16",
        ProxyClass::kOutside,
        {0.12, 0.0, 0.16, 0.72},
        costs(90, 60, 190, 60)},
-      {"foliage, general", ProxyClass::kGeneral, {0.06, 0.03, 0.17, 0.74}, costs(100, 60, 250, 58)},
-      // dragon over a plane: most segments never come near the dragon.
-      {"dragon-plane, outside",
-       ProxyClass::kOutside,
-       {0.15, 0.0, 0.02, 0.83},
-       costs(60, 23, 120, 23)},
-      {"dragon-plane, outside, +30 ns shading",
-       ProxyClass::kOutside,
-       {0.15, 0.0, 0.02, 0.83},
-       costs(60, 23, 120, 23, 30)},
-      // a proxy 10x cheaper than the original everywhere.
-      {"cheap proxy, outside",
-       ProxyClass::kOutside,
-       {0.30, 0.0, 0.05, 0.65},
-       costs(10, 10, 100, 100)},
-      {"cheap proxy, outside, +100 ns shading",
-       ProxyClass::kOutside,
-       {0.30, 0.0, 0.05, 0.65},
-       costs(10, 10, 100, 100, 100)},
-      {"cheap proxy, general",
-       ProxyClass::kGeneral,
-       {0.30, 0.03, 0.05, 0.62},
-       costs(10, 10, 100, 100)},
-      {"cheap proxy, inside",
-       ProxyClass::kInside,
-       {0.35, 0.08, 0.0, 0.57},
-       costs(10, 10, 100, 100)},
+      {"foliage, general", ProxyClass::kGeneral, {0.06, 0.03, 0.17, 0.74}, foliage},
+      dragon,
+      withShading(dragon, 30),
+      cheap_outside,
+      withShading(cheap_outside, 100),
+      {"cheap proxy, general", ProxyClass::kGeneral, {0.30, 0.03, 0.05, 0.62}, cheap},
+      {"cheap proxy, inside", ProxyClass::kInside, {0.35, 0.08, 0.0, 0.57}, cheap},
   };
 }
 
@@ -172,18 +166,15 @@ void printScenario(const Scenario& s, uint64_t samples) {
                        s.cls == ProxyClass::kOutside ? 0.0 : 1.0};
   add(EstimatorKind::kCulling, s.cls == ProxyClass::kGeneral ? "= exact (general)" : "",
       v * (1 - v), s.cls == ProxyClass::kGeneral ? exactCost(model) : rouletteCost(model, cull));
-  const SelectionProbabilities pe = equalProbabilities(s.cls);
-  add(EstimatorKind::kPaperEqual,
-      fmt::format("p=({:.2f},{:.2f},{:.2f})", pe.p0, pe.p_plus, pe.p_minus),
-      selectionVariance(c, pe), selectionCost(s, pe, false));
+  // A paper estimator's row; `probes`: it pays one probe per light sample.
+  auto add_paper = [&](EstimatorKind kind, const SelectionProbabilities& p, bool probes) {
+    add(kind, fmt::format("p=({:.2f},{:.2f},{:.2f})", p.p0, p.p_plus, p.p_minus),
+        selectionVariance(c, p), selectionCost(s, p, probes));
+  };
+  add_paper(EstimatorKind::kPaperEqual, equalProbabilities(s.cls), false);
   const SelectionProbabilities po = optimalProbabilities(c, s.cls);
-  add(EstimatorKind::kPaperOptimal,
-      fmt::format("p=({:.2f},{:.2f},{:.2f})", po.p0, po.p_plus, po.p_minus),
-      selectionVariance(c, po), selectionCost(s, po, true));
-  const SelectionProbabilities pc = costHeuristicProbabilities(po, c.error());
-  add(EstimatorKind::kPaperCost,
-      fmt::format("p=({:.2f},{:.2f},{:.2f})", pc.p0, pc.p_plus, pc.p_minus),
-      selectionVariance(c, pc), selectionCost(s, pc, true));
+  add_paper(EstimatorKind::kPaperOptimal, po, true);
+  add_paper(EstimatorKind::kPaperCost, costHeuristicProbabilities(po, c.error()), true);
   const RegionDecision d = decideRegion(model, s.cls, 0.05, 0.05);
   const RouletteQ q = d.q;
   add(EstimatorKind::kRoulette,
