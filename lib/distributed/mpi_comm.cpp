@@ -22,6 +22,12 @@ int checkedCount(size_t n) {
 
 constexpr int kRequestTag = 11, kReplyTag = 12;
 
+// Every rank's `v` combined element-wise by `op`, in place on every rank.
+template <class T>
+void allReduce(std::span<T> v, MPI_Datatype type, MPI_Op op) {
+  MPI_Allreduce(MPI_IN_PLACE, v.data(), checkedCount(v.size()), type, op, MPI_COMM_WORLD);
+}
+
 }  // namespace
 
 MpiComm::MpiComm(int* argc, char*** argv) {
@@ -47,17 +53,14 @@ void MpiComm::barrier() const {
 }
 
 void MpiComm::sum(std::span<double> v) const {
-  MPI_Allreduce(MPI_IN_PLACE, v.data(), checkedCount(v.size()), MPI_DOUBLE, MPI_SUM,
-                MPI_COMM_WORLD);
+  allReduce(v, MPI_DOUBLE, MPI_SUM);
 }
 void MpiComm::sum(std::span<uint64_t> v) const {
-  MPI_Allreduce(MPI_IN_PLACE, v.data(), checkedCount(v.size()), MPI_UINT64_T, MPI_SUM,
-                MPI_COMM_WORLD);
+  allReduce(v, MPI_UINT64_T, MPI_SUM);
 }
 void MpiComm::sum(std::span<float> v, bool to_root_only) const {
   if (!to_root_only) {
-    MPI_Allreduce(MPI_IN_PLACE, v.data(), checkedCount(v.size()), MPI_FLOAT, MPI_SUM,
-                  MPI_COMM_WORLD);
+    allReduce(v, MPI_FLOAT, MPI_SUM);
   } else if (rank_ == 0) {
     MPI_Reduce(MPI_IN_PLACE, v.data(), checkedCount(v.size()), MPI_FLOAT, MPI_SUM, 0,
                MPI_COMM_WORLD);
@@ -66,23 +69,20 @@ void MpiComm::sum(std::span<float> v, bool to_root_only) const {
   }
 }
 void MpiComm::max(std::span<uint64_t> v) const {
-  MPI_Allreduce(MPI_IN_PLACE, v.data(), checkedCount(v.size()), MPI_UINT64_T, MPI_MAX,
-                MPI_COMM_WORLD);
+  allReduce(v, MPI_UINT64_T, MPI_MAX);
 }
 void MpiComm::max(std::span<double> v) const {
-  MPI_Allreduce(MPI_IN_PLACE, v.data(), checkedCount(v.size()), MPI_DOUBLE, MPI_MAX,
-                MPI_COMM_WORLD);
+  allReduce(v, MPI_DOUBLE, MPI_MAX);
 }
 void MpiComm::min(std::span<float> v) const {
-  MPI_Allreduce(MPI_IN_PLACE, v.data(), checkedCount(v.size()), MPI_FLOAT, MPI_MIN, MPI_COMM_WORLD);
+  allReduce(v, MPI_FLOAT, MPI_MIN);
 }
 void MpiComm::max(std::span<float> v) const {
-  MPI_Allreduce(MPI_IN_PLACE, v.data(), checkedCount(v.size()), MPI_FLOAT, MPI_MAX, MPI_COMM_WORLD);
+  allReduce(v, MPI_FLOAT, MPI_MAX);
 }
 void MpiComm::minLoc(std::span<ValueKey> v) const {
   static_assert(sizeof(ValueKey) == sizeof(float) + sizeof(int));
-  MPI_Allreduce(MPI_IN_PLACE, v.data(), checkedCount(v.size()), MPI_FLOAT_INT, MPI_MINLOC,
-                MPI_COMM_WORLD);
+  allReduce(v, MPI_FLOAT_INT, MPI_MINLOC);
 }
 void MpiComm::broadcast(std::span<uint8_t> bytes, int root) const {
   MPI_Bcast(bytes.data(), checkedCount(bytes.size()), MPI_BYTE, root, MPI_COMM_WORLD);

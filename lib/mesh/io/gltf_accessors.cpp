@@ -6,6 +6,8 @@
 #include <fmt/format.h>
 #include <algorithm>
 #include <cstring>
+#include <limits>
+#include <type_traits>
 
 #include "util/error.h"
 
@@ -32,32 +34,35 @@ size_t componentSize(int type) {
   }
 }
 
+template <class T>
+T readAs(const char* p) {
+  T v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+// A component of integer type T; normalized: signed ones map to [-1, 1], unsigned to [0, 1].
+template <class T>
+double readInteger(const char* p, bool normalized) {
+  const double v = readAs<T>(p), top = double(std::numeric_limits<T>::max());
+  if (!normalized) return v;
+  return std::is_signed_v<T> ? std::max(v / top, -1.0) : v / top;
+}
+
 double readComponent(const char* p, int type, bool normalized) {
-  auto get = [p](auto v) {
-    std::memcpy(&v, p, sizeof v);
-    return v;
-  };
   switch (type) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE: {
-      const double v = get(int8_t());
-      return normalized ? std::max(v / 127.0, -1.0) : v;
-    }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: {
-      const double v = get(uint8_t());
-      return normalized ? v / 255.0 : v;
-    }
-    case TINYGLTF_COMPONENT_TYPE_SHORT: {
-      const double v = get(int16_t());
-      return normalized ? std::max(v / 32767.0, -1.0) : v;
-    }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-      const double v = get(uint16_t());
-      return normalized ? v / 65535.0 : v;
-    }
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+      return readInteger<int8_t>(p, normalized);
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return readInteger<uint8_t>(p, normalized);
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+      return readInteger<int16_t>(p, normalized);
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+      return readInteger<uint16_t>(p, normalized);
     case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-      return get(uint32_t());
+      return readAs<uint32_t>(p);
     default:
-      return get(float());
+      return readAs<float>(p);
   }
 }
 
