@@ -4,15 +4,20 @@
 #   ./setup.sh build    install + configure + build (build/)
 #   ./setup.sh demo     install + build + the main job on the bundled dragon-plane scene:
 #                       proxy-gen -> proxy-check -> render-compare (MSE table + HTML report)
-#   ./setup.sh test     install (with the npm packages of tests/js) + build + the whole test
-#                       suite (ctest)
+#   ./setup.sh test     install (with the npm packages of tests/js) + build + the correctness
+#                       suite (ctest -LE long: every test but those labelled long)
+#   ./setup.sh test-long
+#                       install + build + only the tests labelled long: the local Slurm cluster
+#                       (label slurm_cluster) and headless Chromium (label browser); they check
+#                       orchestration and what a browser shows, not results the suite does not
 #   ./setup.sh test --changed
 #                       install + build + only the tests of the areas whose files changed since
 #                       the last commit (PROXYVIS_CHANGED_BASE=REF: since REF); a quick check
 #                       while working, never a substitute for the whole suite
 #   ./setup.sh test-sanitize
 #                       install + a second build tree (build-asan) with AddressSanitizer and
-#                       UndefinedBehaviorSanitizer, then the whole test suite under them
+#                       UndefinedBehaviorSanitizer, then the whole test suite under them (long
+#                       tests included, not_sanitized ones left out)
 #   ./setup.sh fuzz     install + clang-14 and libFuzzer, configure build-fuzz/ (ASan + UBSan +
 #                       coverage) and build the fuzz targets of fuzz/ (run them: fuzz/run.sh)
 set -euo pipefail
@@ -152,6 +157,7 @@ changed_labels() {
   printf '%s\n' "${labels[@]}" | sort -u | sed 's/.*/^&$/' | paste -sd'|'
 }
 
+# The tests labelled long (local Slurm cluster, headless Chromium) run only with test-long.
 run_tests() {
   if [ "${1:-}" = "--changed" ]; then
     local expr
@@ -160,14 +166,19 @@ run_tests() {
       none) echo "setup: no changed file selects a test area"; return ;;
       all) echo "setup: a change everything depends on: the whole suite" ;;
       *) echo "setup: the tests labelled $expr"
-         ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$JOBS" -L "$expr"
+         ctest_run -L "$expr" -LE long
          return ;;
     esac
   elif [ -n "${1:-}" ]; then
     echo "usage: $0 test [--changed]" >&2
     exit 2
   fi
-  ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$JOBS"
+  ctest_run -LE long
+}
+
+# ctest on the build tree (ctest starts the tests that took longest in earlier runs first).
+ctest_run() {
+  ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$JOBS" "$@"
 }
 
 demo() {
@@ -186,8 +197,9 @@ case "${1:-install}" in
   build) install_deps; build ;;
   demo) install_deps; build proxy-gen proxy-check render-compare; demo ;;
   test) install_deps; install_js_deps; build; run_tests "${2:-}" ;;
+  test-long) install_deps; install_js_deps; build; ctest_run -L long ;;
   fuzz) install_deps; install_pkgs "${FUZZ_PKGS[@]}"; fuzz_build ;;
   test-sanitize) install_deps; install_js_deps; build_sanitize ;;
   bench-deps) install_deps; npm_ci bench/vhacd_compare ;;
-  *) echo "usage: $0 [install|build|demo|test|test-sanitize|fuzz|bench-deps]" >&2; exit 2 ;;
+  *) echo "usage: $0 [install|build|demo|test|test-long|test-sanitize|fuzz|bench-deps]" >&2; exit 2 ;;
 esac

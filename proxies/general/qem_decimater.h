@@ -9,7 +9,7 @@
 // only say legal or not. So the candidates can be ordered by their quadric cost first and tested
 // in that order until one is legal: the first legal one is the one OpenMesh picks (the cheapest
 // legal candidate, the earliest among equal costs), from the same random samples, so the result
-// is the same mesh (tests/proxies/qem_decimater_test.cpp compares them).
+// is the same mesh (tests/proxies/general/qem_decimater_test.cpp compares them).
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Tools/Decimater/BaseDecimaterT.hh>
 #include <OpenMesh/Tools/Decimater/ModQuadricT.hh>

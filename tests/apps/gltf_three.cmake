@@ -10,4 +10,5 @@ add_test(NAME app.gltf_three
   COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_LIST_DIR}/gltf_three.py
           $<TARGET_FILE_DIR:proxy-gen> ${PROXYVIS_DATA_DIR} ${CMAKE_SOURCE_DIR}/tests/js
           ${CMAKE_CURRENT_BINARY_DIR}/gltf_three)
-set_tests_properties(app.gltf_three PROPERTIES TIMEOUT 300)
+# Labels long and browser: `./setup.sh test-long` runs it, `./setup.sh test` does not.
+set_tests_properties(app.gltf_three PROPERTIES TIMEOUT 300 LABELS "long;browser")

@@ -5,12 +5,12 @@
 if(CMAKE_SCRIPT_MODE_FILE)
   return()
 endif()
-find_package(Python3 REQUIRED COMPONENTS Interpreter)
-add_test(NAME app.proxy_check.view3d
-  COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_LIST_DIR}/proxy_check_view3d.py
-          $<TARGET_FILE_DIR:proxy-check> ${PROXYVIS_DATA_DIR}
-          ${CMAKE_CURRENT_BINARY_DIR}/proxy_check_view3d)
-set_tests_properties(app.proxy_check.view3d PROPERTIES TIMEOUT 300 SKIP_RETURN_CODE 77)
+proxyvis_python_test(app.proxy_check.view3d proxy_check_view3d.py
+  $<TARGET_FILE_DIR:proxy-check> ${PROXYVIS_DATA_DIR}
+  ${CMAKE_CURRENT_BINARY_DIR}/proxy_check_view3d)
+# Labels long and browser: `./setup.sh test-long` runs it, `./setup.sh test` does not.
+set_tests_properties(app.proxy_check.view3d PROPERTIES TIMEOUT 300 SKIP_RETURN_CODE 77
+  LABELS "long;browser")
 
 proxyvis_app_test_dir(v3d_dir proxy_check_view3d_inputs)
 proxyvis_write_box_off(${v3d_dir}/cube.off 0 1)

@@ -4,9 +4,7 @@
 if(CMAKE_SCRIPT_MODE_FILE)
   return()
 endif()
-find_package(Python3 REQUIRED COMPONENTS Interpreter)
-add_test(NAME app.proxy_gen_scene_cache
-  COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_LIST_DIR}/proxy_gen_scene_cache.py
-          $<TARGET_FILE_DIR:proxy-gen> ${PROXYVIS_DATA_DIR}
-          ${CMAKE_CURRENT_BINARY_DIR}/proxy_gen_scene_cache)
+proxyvis_python_test(app.proxy_gen_scene_cache proxy_gen_scene_cache.py
+  $<TARGET_FILE_DIR:proxy-gen> ${PROXYVIS_DATA_DIR}
+  ${CMAKE_CURRENT_BINARY_DIR}/proxy_gen_scene_cache)
 set_tests_properties(app.proxy_gen_scene_cache PROPERTIES TIMEOUT 600)

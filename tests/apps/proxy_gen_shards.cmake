@@ -5,11 +5,9 @@
 if(CMAKE_SCRIPT_MODE_FILE)
   return()
 endif()
-find_package(Python3 REQUIRED COMPONENTS Interpreter)
-add_test(NAME app.proxy_gen_shards
-  COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_LIST_DIR}/proxy_gen_shards.py
-          $<TARGET_FILE_DIR:proxy-gen> ${PROXYVIS_DATA_DIR}
-          ${CMAKE_CURRENT_BINARY_DIR}/proxy_gen_shards ${CMAKE_SOURCE_DIR}/scripts/slurm/submit.sh)
+proxyvis_python_test(app.proxy_gen_shards proxy_gen_shards.py
+  $<TARGET_FILE_DIR:proxy-gen> ${PROXYVIS_DATA_DIR}
+  ${CMAKE_CURRENT_BINARY_DIR}/proxy_gen_shards ${CMAKE_SOURCE_DIR}/scripts/slurm/submit.sh)
 # not_sanitized: it runs proxy-gen some 25 times (6 minutes under ASan). The sanitizer build still runs
 # the shard code: slurm.proxy_gen_cluster (3 shards and their merge) and the 17 bad_inputs.shard_*.
 set_tests_properties(app.proxy_gen_shards PROPERTIES TIMEOUT 600 LABELS not_sanitized)

@@ -3,9 +3,7 @@
 if(CMAKE_SCRIPT_MODE_FILE)
   return()
 endif()
-find_package(Python3 REQUIRED COMPONENTS Interpreter)
-add_test(NAME app.render_compare.ceiling_unit
-  COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_LIST_DIR}/render_compare_ceiling_unit.py
-          $<TARGET_FILE:render-compare> ${CMAKE_SOURCE_DIR}
-          ${CMAKE_CURRENT_BINARY_DIR}/render_compare_ceiling_unit)
+proxyvis_python_test(app.render_compare.ceiling_unit render_compare_ceiling_unit.py
+  $<TARGET_FILE:render-compare> ${CMAKE_SOURCE_DIR}
+  ${CMAKE_CURRENT_BINARY_DIR}/render_compare_ceiling_unit)
 set_tests_properties(app.render_compare.ceiling_unit PROPERTIES TIMEOUT 300)

@@ -5,8 +5,6 @@
 if(CMAKE_SCRIPT_MODE_FILE)
   return()
 endif()
-find_package(Python3 REQUIRED COMPONENTS Interpreter)
-add_test(NAME app.render_compare.units
-  COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_LIST_DIR}/render_compare_units.py
-          $<TARGET_FILE:render-compare> ${CMAKE_SOURCE_DIR} --local)
+proxyvis_python_test(app.render_compare.units render_compare_units.py
+  $<TARGET_FILE:render-compare> ${CMAKE_SOURCE_DIR} --local)
 set_tests_properties(app.render_compare.units PROPERTIES TIMEOUT 600)

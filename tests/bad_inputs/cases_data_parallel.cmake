@@ -8,16 +8,16 @@ macro(dp_case name)
   bad_input_test(${name} ${ARGN})
   list(APPEND dp_cases bad_inputs.${name})
 endmacro()
-dp_case(dp_unknown_forwarding render "${rs} --data-parallel --forwarding nearest -o @OUT@/x.exr"
-  REGEX "--forwarding: unknown policy 'nearest'" OUTPUTS @OUT@/x.exr TIMEOUT 30)
-dp_case(dp_estimator_not_available render "${rs} --data-parallel --estimator culling -o @OUT@/x.exr"
-  REGEX "--estimator culling is not available with --data-parallel" OUTPUTS @OUT@/x.exr TIMEOUT 30)
-dp_case(dp_time_budget render "${rs} --data-parallel --time 1 -o @OUT@/x.exr"
-  REGEX "--time is not available with --data-parallel" OUTPUTS @OUT@/x.exr TIMEOUT 30)
-dp_case(dp_passes_per_round_zero render "${rs} --data-parallel --passes-per-round 0 -o @OUT@/x.exr"
-  REGEX "--passes-per-round: must be in" OUTPUTS @OUT@/x.exr TIMEOUT 30)
-dp_case(dp_forward_cost_negative render "${rs} --data-parallel --forward-cost-us -3 -o @OUT@/x.exr"
-  REGEX "--forward-cost-us" OUTPUTS @OUT@/x.exr TIMEOUT 30)
+# dp_flags(NAME "FLAGS" REGEX): render --data-parallel FLAGS on the corpus's scene is refused.
+macro(dp_flags name flags regex)
+  bad_render_flags(${name} "--data-parallel ${flags}" "${regex}" TIMEOUT 30)
+  list(APPEND dp_cases bad_inputs.${name})
+endmacro()
+dp_flags(dp_unknown_forwarding "--forwarding nearest" "--forwarding: unknown policy 'nearest'")
+dp_flags(dp_estimator_not_available "--estimator culling" "--estimator culling is not available with --data-parallel")
+dp_flags(dp_time_budget "--time 1" "--time is not available with --data-parallel")
+dp_flags(dp_passes_per_round_zero "--passes-per-round 0" "--passes-per-round: must be in")
+dp_flags(dp_forward_cost_negative "--forward-cost-us -3" "--forward-cost-us")
 dp_case(dp_garbage_mesh render
   "@CORPUS@/render_garbage_mesh.json --data-parallel -o @OUT@/x.exr --json @OUT@/x.json"
   REGEX "render_garbage\\.obj" INPUTS @CORPUS@/render_garbage_mesh.json @CORPUS@/render_garbage.obj

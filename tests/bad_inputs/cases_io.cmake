@@ -6,37 +6,38 @@
 set(io @CORPUS@/io)
 set(pair "${io}/cube.off ${io}/around.off --rays 2000 --quiet")
 
-# Output equal to an input.
-bad_input_test(io_proxy_gen_output_is_input proxy-gen "${io}/cube.off -o ${io}/cube.off"
-  REGEX "cube.off: -o names the input" INPUTS ${io}/cube.off WATCH ${io} TIMEOUT 20)
-bad_input_test(io_proxy_gen_output_is_input_via_symlink proxy-gen
-  "${io}/cube.off -o ${io}/link_to_cube.off" REGEX "link_to_cube.off: -o names the input"
-  INPUTS ${io}/cube.off WATCH ${io} TIMEOUT 20)
-bad_input_test(io_proxy_gen_output_is_input_via_hard_link proxy-gen
-  "${io}/cube.off -o ${io}/hard_cube.off" REGEX "hard_cube.off: -o names the input"
-  INPUTS ${io}/cube.off ${io}/hard_cube.off WATCH ${io} TIMEOUT 20)
-bad_input_test(io_proxy_gen_output_is_input_via_dotdot proxy-gen
-  "${io}/cube.off -o ${io}/../io/./cube.off" REGEX "-o names the input"
-  INPUTS ${io}/cube.off WATCH ${io} TIMEOUT 20)
-bad_input_test(io_proxy_gen_json_is_input proxy-gen
-  "${io}/cube.off -o @OUT@/p.ply --json ${io}/cube.off" REGEX "--json names the input"
-  INPUTS ${io}/cube.off WATCH ${io} TIMEOUT 20)
-bad_input_test(io_mesh_info_json_is_input mesh-info "${io}/cube.off --json ${io}/link_to_cube.off"
-  REGEX "--json names the input" INPUTS ${io}/cube.off WATCH ${io} TIMEOUT 20)
-bad_input_test(io_proxy_check_dump_errors_is_proxy proxy-check
-  "${pair} --dump-errors ${io}/around.off" REGEX "--dump-errors names the input"
-  INPUTS ${io}/around.off ${io}/cube.off WATCH ${io} TIMEOUT 20)
-bad_input_test(io_proxy_check_json_is_input proxy-check "${pair} --json ${io}/hard_cube.off"
-  REGEX "--json names the input" INPUTS ${io}/cube.off WATCH ${io} TIMEOUT 20)
-bad_input_test(io_render_compare_json_is_scene render-compare
+# io_refused(NAME TARGET "ARGS" REGEX [bad_input_test options]): TARGET ARGS is refused (exit 2)
+# with REGEX before any work, and writes nothing into the corpus's io folder.
+function(io_refused name target args regex)
+  bad_input_test(io_${name} ${target} "${args}" REGEX "${regex}" WATCH ${io} TIMEOUT 20 ${ARGN})
+endfunction()
+
+# Output equal to an input: -o under every spelling of the input's path (NAME:PATH in io/).
+foreach(io_spelling "input:cube.off" "input_via_symlink:link_to_cube.off"
+                    "input_via_hard_link:hard_cube.off" "input_via_dotdot:../io/./cube.off")
+  string(REPLACE ":" ";" io_spelling ${io_spelling})
+  list(GET io_spelling 0 io_name)
+  list(GET io_spelling 1 io_path)
+  get_filename_component(io_file ${io_path} NAME)
+  io_refused(proxy_gen_output_is_${io_name} proxy-gen "${io}/cube.off -o ${io}/${io_path}"
+    "${io_file}: -o names the input" INPUTS ${io}/cube.off ${io}/hard_cube.off)
+endforeach()
+io_refused(proxy_gen_json_is_input proxy-gen "${io}/cube.off -o @OUT@/p.ply --json ${io}/cube.off"
+  "--json names the input" INPUTS ${io}/cube.off)
+io_refused(mesh_info_json_is_input mesh-info "${io}/cube.off --json ${io}/link_to_cube.off"
+  "--json names the input" INPUTS ${io}/cube.off)
+io_refused(proxy_check_dump_errors_is_proxy proxy-check "${pair} --dump-errors ${io}/around.off"
+  "--dump-errors names the input" INPUTS ${io}/around.off ${io}/cube.off)
+io_refused(proxy_check_json_is_input proxy-check "${pair} --json ${io}/hard_cube.off"
+  "--json names the input" INPUTS ${io}/cube.off)
+io_refused(render_compare_json_is_scene render-compare
   "${io}/scene.json --out @OUT@/r --json ${io}/link_to_scene.json --quiet"
-  REGEX "--json names the input" INPUTS ${io}/scene.json WATCH ${io} TIMEOUT 20)
-bad_input_test(io_render_compare_out_holds_scene render-compare
-  "${io}/scene.json --out ${io} --quiet" REGEX "would contain the input"
-  INPUTS ${io}/scene.json WATCH ${io} TIMEOUT 20)
-bad_input_test(io_render_compare_out_is_a_folder_of_other_files render-compare
-  "${io}/scene.json --out @DATA@ --quiet" REGEX "holds other files"
-  INPUTS ${io}/scene.json WATCH ${io} TIMEOUT 20)
+  "--json names the input" INPUTS ${io}/scene.json)
+io_refused(render_compare_out_holds_scene render-compare "${io}/scene.json --out ${io} --quiet"
+  "would contain the input" INPUTS ${io}/scene.json)
+io_refused(render_compare_out_is_a_folder_of_other_files render-compare
+  "${io}/scene.json --out @DATA@ --quiet"
+  "holds other files" INPUTS ${io}/scene.json)
 bad_input_test(io_two_outputs_one_file proxy-check "${pair} --json @OUT@/x --dump-errors @OUT@/x"
   REGEX "name the same output" TIMEOUT 20)
 

@@ -20,17 +20,10 @@ bad_input_test(render_output_is_scene render "${rs} -o ${rs}" REGEX "names the i
 bad_input_test(render_output_under_a_file render "${rs} -o @CORPUS@/render_a_file/x.exr" CODE 3
   REGEX "x\\.exr: cannot write output" INPUTS ${rs} @CORPUS@/render_a_file TIMEOUT 20)
 # Flags parsed strictly with their range.
-bad_input_test(render_spp_zero render "${rs} -o @OUT@/x.exr --spp 0" REGEX "--spp: must be in"
-  OUTPUTS @OUT@/x.exr TIMEOUT 20)
-bad_input_test(render_spp_huge render "${rs} -o @OUT@/x.exr --spp 99999999999"
-  REGEX "--spp: must be in" OUTPUTS @OUT@/x.exr TIMEOUT 20)
-bad_input_test(render_time_negative render "${rs} -o @OUT@/x.exr --time -1" REGEX "--time"
-  OUTPUTS @OUT@/x.exr TIMEOUT 20)
-bad_input_test(render_spp_and_time render "${rs} -o @OUT@/x.exr --spp 4 --time 1"
-  REGEX "--spp excludes --time" OUTPUTS @OUT@/x.exr TIMEOUT 20)
-bad_input_test(render_unknown_estimator render "${rs} -o @OUT@/x.exr --estimator magic"
-  REGEX "magic" OUTPUTS @OUT@/x.exr TIMEOUT 20)
-bad_input_test(render_bad_roulette_costs render "${rs} -o @OUT@/x.exr --roulette-costs 1,2,x"
-  REGEX "--roulette-costs" OUTPUTS @OUT@/x.exr TIMEOUT 20)
-bad_input_test(render_width_over_limit render "${rs} -o @OUT@/x.exr --width 20000"
-  REGEX "--width: must be in \\[1, 16384\\]" OUTPUTS @OUT@/x.exr TIMEOUT 20)
+bad_render_flags(render_spp_zero "--spp 0" "--spp: must be in" TIMEOUT 20)
+bad_render_flags(render_spp_huge "--spp 99999999999" "--spp: must be in" TIMEOUT 20)
+bad_render_flags(render_time_negative "--time -1" "--time" TIMEOUT 20)
+bad_render_flags(render_spp_and_time "--spp 4 --time 1" "--spp excludes --time" TIMEOUT 20)
+bad_render_flags(render_unknown_estimator "--estimator magic" "magic" TIMEOUT 20)
+bad_render_flags(render_bad_roulette_costs "--roulette-costs 1,2,x" "--roulette-costs" TIMEOUT 20)
+bad_render_flags(render_width_over_limit "--width 20000" "--width: must be in \\[1, 16384\\]" TIMEOUT 20)

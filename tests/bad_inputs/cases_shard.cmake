@@ -17,18 +17,16 @@ macro(shard_case name args)
   list(APPEND shard_cases bad_inputs.${name})
 endmacro()
 
-shard_case(shard_merge_other_scene "${shard_merge} @CORPUS@/shard/s2_0 @CORPUS@/shard/other_1"
-  REGEX "other_1/shard\\.json: a shard of another scene"
-  INPUTS @CORPUS@/shard/other_1/shard.json @CORPUS@/shard/scene.json)
-shard_case(shard_merge_other_settings "${shard_merge} @CORPUS@/shard/s2_0 @CORPUS@/shard/seed_1"
-  REGEX "seed_1/shard\\.json: a shard made with other settings"
-  INPUTS @CORPUS@/shard/seed_1/shard.json)
-shard_case(shard_merge_other_build "${shard_merge} @CORPUS@/shard/s2_0 @CORPUS@/shard/build_1"
-  REGEX "build_1/shard\\.json: a shard of another build"
-  INPUTS @CORPUS@/shard/build_1/shard.json)
-shard_case(shard_merge_other_split "${shard_merge} @CORPUS@/shard/s2_0 @CORPUS@/shard/s3_1"
-  REGEX "s3_1/shard\\.json: shard 1/3 of another split"
-  INPUTS @CORPUS@/shard/s3_1/shard.json)
+# merge_refused(NAME SHARD MESSAGE [INPUTS...]): merging shard s2_0 with the corpus's shard folder
+# SHARD is refused with "SHARD/shard.json: MESSAGE", SHARD's manifest untouched.
+macro(merge_refused name shard message)
+  shard_case(${name} "${shard_merge} @CORPUS@/shard/s2_0 @CORPUS@/shard/${shard}"
+    REGEX "${shard}/shard\\.json: ${message}" INPUTS @CORPUS@/shard/${shard}/shard.json ${ARGN})
+endmacro()
+merge_refused(shard_merge_other_scene other_1 "a shard of another scene" @CORPUS@/shard/scene.json)
+merge_refused(shard_merge_other_settings seed_1 "a shard made with other settings")
+merge_refused(shard_merge_other_build build_1 "a shard of another build")
+merge_refused(shard_merge_other_split s3_1 "shard 1/3 of another split")
 shard_case(shard_merge_missing "${shard_merge} @CORPUS@/shard/s2_1"
   REGEX "shard/scene\\.json: shard 0/2 is missing from the merge"
   INPUTS @CORPUS@/shard/s2_1/shard.json)
@@ -36,10 +34,7 @@ shard_case(shard_merge_duplicate
   "${shard_merge} @CORPUS@/shard/s2_0 @CORPUS@/shard/s2_1 @CORPUS@/shard/s2_0"
   REGEX "s2_0/shard\\.json: shard 0/2 given twice"
   INPUTS @CORPUS@/shard/s2_0/shard.json)
-shard_case(shard_merge_truncated_manifest
-  "${shard_merge} @CORPUS@/shard/s2_0 @CORPUS@/shard/trunc_manifest_1"
-  REGEX "trunc_manifest_1/shard\\.json: not a proxy-gen shard manifest"
-  INPUTS @CORPUS@/shard/trunc_manifest_1/shard.json)
+merge_refused(shard_merge_truncated_manifest trunc_manifest_1 "not a proxy-gen shard manifest")
 shard_case(shard_merge_truncated_proxy
   "${shard_merge} @CORPUS@/shard/s2_0 @CORPUS@/shard/trunc_proxy_1"
   REGEX "trunc_proxy_1/b\\.outside\\.ply: not the proxy its shard wrote"

@@ -128,6 +128,13 @@ int sentences(const std::string& text) {
       std::distance(std::sregex_iterator(text.begin(), text.end(), kEnd), std::sregex_iterator()));
 }
 
+// The explanation of `s` (with proxies or not) opens with `first` and has two sentences.
+void expectExplanation(const CeilingSummary& s, bool has_proxies, const std::string& first) {
+  const std::string text = explainCeiling(s, has_proxies);
+  EXPECT_EQ(text.rfind(first, 0), 0u) << text;
+  EXPECT_EQ(sentences(text), 2) << text;
+}
+
 // A scene summary where no rule fires: cheap proxy, rare errors, small shading share.
 CeilingSummary paying() {
   CeilingSummary s;
@@ -148,39 +155,26 @@ TEST(CeilingExplanation, ProxyErrorsExceedVariance) {
   CeilingSummary s = paying();
   s.p_mh = 0.07;
   s.visibility_var = 0.04;
-  const std::string text = explainCeiling(s, true);
-  EXPECT_EQ(text.rfind("P(MH') = 0.070 exceeds the visibility variance V(1-V) = 0.040, so "
-                       "correcting the proxy's errors costs more variance than it saves time.",
-                       0),
-            0u)
-      << text;
-  EXPECT_EQ(sentences(text), 2) << text;
+  expectExplanation(s, true,
+                    "P(MH') = 0.070 exceeds the visibility variance V(1-V) = 0.040, so "
+                    "correcting the proxy's errors costs more variance than it saves time.");
 }
 
 TEST(CeilingExplanation, ProxyNoCheaperWhereVisible) {
   CeilingSummary s = paying();
   s.costs.proxy[1] = 58;
   s.costs.original[1] = 56;
-  const std::string text = explainCeiling(s, true);
-  EXPECT_EQ(text.rfind("The proxy is no cheaper than the original where it says visible (c_p|1 = "
-                       "58 ns vs c_o|1 = 56 ns).",
-                       0),
-            0u)
-      << text;
-  EXPECT_EQ(sentences(text), 2) << text;
+  expectExplanation(s, true,
+                    "The proxy is no cheaper than the original where it says visible (c_p|1 = "
+                    "58 ns vs c_o|1 = 56 ns).");
 }
 
 TEST(CeilingExplanation, ShadingCapsTheGain) {
   CeilingSummary s = paying();
   s.costs.per_sample = 70;
   s.cost_exact = 1000 * 100;  // exact costs 100 ns per sample, 70 of them shading
-  const std::string text = explainCeiling(s, true);
-  EXPECT_EQ(text.rfind("Shading costs 70 % of each sample, which caps any visibility gain at "
-                       "1.4x.",
-                       0),
-            0u)
-      << text;
-  EXPECT_EQ(sentences(text), 2) << text;
+  expectExplanation(s, true,
+                    "Shading costs 70 % of each sample, which caps any visibility gain at 1.4x.");
 }
 
 TEST(CeilingExplanation, TwoLimitsInOrder) {
@@ -206,9 +200,7 @@ TEST(CeilingExplanation, WhenTheProxyPays) {
 }
 
 TEST(CeilingExplanation, NoProxies) {
-  const std::string text = explainCeiling(paying(), false);
-  EXPECT_EQ(text.rfind("No proxies", 0), 0u) << text;
-  EXPECT_EQ(sentences(text), 2) << text;
+  expectExplanation(paying(), false, "No proxies");
 }
 
 }  // namespace

@@ -150,6 +150,20 @@ ImageRun runImage(const std::vector<ClassProbabilities>& mixes, ProxyClass cls, 
 const std::vector<ClassProbabilities> kTwoRegions = {{0.50, 0.01, 0.01, 0.48},
                                                      {0.05, 0.10, 0.25, 0.60}};
 
+// Unbiased: the mean over each region of kTwoRegions of its points' estimates (segments random)
+// is the region's V_avg, within the Sidak bound over the two regions.
+void expectRegionMeansAreVAvg(const ImageRun& run) {
+  const double z = sidakZ(kAlpha, 2);
+  for (int r = 0; r < 2; ++r) {
+    std::vector<double> all;
+    for (int p = r * kPointsPerRegion; p < (r + 1) * kPointsPerRegion; ++p)
+      all.insert(all.end(), run.estimates[p].begin(), run.estimates[p].end());
+    const test::Moments m = test::moments(all);
+    EXPECT_LE(std::abs(m.mean - kTwoRegions[r].vAvg()), z * std::sqrt(m.variance / m.n))
+        << "region " << r << " seed " << kSeed;
+  }
+}
+
 // What the estimator records lands in the tally as counts by the proxy's answer; ray and query
 // times are capped, so one preempted ray cannot swamp a mean of nanoseconds.
 TEST(Recording, SegmentsCountClassErrorsAndCappedTimes) {
@@ -227,15 +241,7 @@ TEST(Learning, ChoosesProxyWhereItPaysAndExactElsewhereAndStaysUnbiased) {
   EXPECT_NEAR(run.summary.predicted_efficiency, expected, 0.15 * expected);
 
   // Unbiased: the mean over a region's estimates (segments random) is its V_avg.
-  const double z = sidakZ(kAlpha, 2);
-  for (int r = 0; r < 2; ++r) {
-    std::vector<double> all;
-    for (int p = r * kPointsPerRegion; p < (r + 1) * kPointsPerRegion; ++p)
-      all.insert(all.end(), run.estimates[p].begin(), run.estimates[p].end());
-    const test::Moments m = test::moments(all);
-    EXPECT_LE(std::abs(m.mean - kTwoRegions[r].vAvg()), z * std::sqrt(m.variance / m.n))
-        << "region " << r << " seed " << kSeed;
-  }
+  expectRegionMeansAreVAvg(run);
 }
 
 // Warm-up explores one point in eight (both rays), not every point: at a few dozen samples per
@@ -294,15 +300,7 @@ TEST(Learning, MeasuredCostsStayUnbiased) {
   constexpr int kPasses = 60;
   const ImageRun run =
       runImage(kTwoRegions, ProxyClass::kGeneral, kPasses, 2, false, true, 1, true);
-  const double z = sidakZ(kAlpha, 2);
-  for (int r = 0; r < 2; ++r) {
-    std::vector<double> all;
-    for (int p = r * kPointsPerRegion; p < (r + 1) * kPointsPerRegion; ++p)
-      all.insert(all.end(), run.estimates[p].begin(), run.estimates[p].end());
-    const test::Moments m = test::moments(all);
-    EXPECT_LE(std::abs(m.mean - kTwoRegions[r].vAvg()), z * std::sqrt(m.variance / m.n))
-        << "region " << r;
-  }
+  expectRegionMeansAreVAvg(run);
   EXPECT_GT(run.summary.costs.proxy[1], 0.0);  // something was timed (no claim about speed)
 }
 

@@ -17,9 +17,7 @@ using test::ScratchDir;
 
 TEST(CeilingStats, CountsTheRenderersSegmentsByRegion) {
   ScratchDir dir;
-  BoxScene b;
-  b.proxies_json = test::kOutsideProxy;
-  const auto scene = loadRenderScene(b.write(dir), test::quiet());
+  const auto scene = test::loadBoxScene(dir, test::kOutsideProxy);
   ASSERT_TRUE(scene->usesProxies());
   RenderSettings settings;
   settings.seed = 5;

@@ -14,7 +14,6 @@
 namespace proxyvis {
 namespace {
 
-using test::BoxScene;
 using test::ScratchDir;
 
 TEST(Integrator, UnoccludedPlaneMatchesLambertPerPixel) {
@@ -26,9 +25,7 @@ TEST(Integrator, UnoccludedPlaneMatchesLambertPerPixel) {
                 "radiance": [5, 4, 3]}],
     "meshes": [{"name": "ground", "file": "ground.obj", "albedo": [0.8, 0.5, 0.25]}]})");
   const auto scene = loadRenderScene(path, test::quiet());
-  RenderSettings settings;
-  settings.spp = 8;
-  settings.quiet = true;
+  RenderSettings settings = test::quietSettings(8);
   // The shading point of each pixel: the origin of its pass-0 segment (same for every pass).
   const PassSegments ps = passSegments(*scene, settings, 0);
   const int w = 12, h = 10, seeds = 40;
@@ -61,14 +58,9 @@ RenderResult renderIn(int threads, const RenderScene& scene, const RenderSetting
 
 TEST(Integrator, BitIdenticalAtOneAndTwoThreads) {
   ScratchDir dir;
-  BoxScene b;
-  b.proxies_json = test::kOutsideProxy;
-  const auto scene = loadRenderScene(b.write(dir), test::quiet());
-  RenderSettings settings;
-  settings.spp = 6;
-  settings.seed = 5;
+  const auto scene = test::loadBoxScene(dir, test::kOutsideProxy);
+  RenderSettings settings = test::quietSettings(6, 5);
   settings.tile_size = 7;  // tiles that do not divide the image
-  settings.quiet = true;
   test::CullingTestEstimator culling;
   const RenderResult one = renderIn(1, *scene, settings, culling);
   const RenderResult two = renderIn(2, *scene, settings, culling);
@@ -82,12 +74,8 @@ TEST(Integrator, BitIdenticalAtOneAndTwoThreads) {
 
 TEST(Integrator, CullingWithVerifiedOutsideProxyEqualsExact) {
   ScratchDir dir;
-  BoxScene b;
-  b.proxies_json = test::kOutsideProxy;
-  const auto scene = loadRenderScene(b.write(dir), test::quiet());
-  RenderSettings settings;
-  settings.spp = 4;
-  settings.quiet = true;
+  const auto scene = test::loadBoxScene(dir, test::kOutsideProxy);
+  RenderSettings settings = test::quietSettings(4);
   test::ExactTestEstimator exact;
   test::CullingTestEstimator culling;
   const RenderResult e = render(*scene, settings, exact);
@@ -114,12 +102,8 @@ TEST(Integrator, CullingWithVerifiedOutsideProxyEqualsExact) {
 
 TEST(Integrator, TimeBudgetRunsWholePasses) {
   ScratchDir dir;
-  BoxScene b;
-  const auto scene = loadRenderScene(b.write(dir), test::quiet());
-  RenderSettings settings;
-  settings.spp = 0;  // no cap
-  settings.time_budget = 0.05;
-  settings.quiet = true;
+  const auto scene = test::loadBoxScene(dir);
+  RenderSettings settings = test::timeBudgetSettings(0.05);
   test::ExactTestEstimator exact;
   const RenderResult r = render(*scene, settings, exact);
   EXPECT_GE(r.spp, 1);
@@ -135,8 +119,7 @@ TEST(Integrator, TimeBudgetRunsWholePasses) {
 
 TEST(Integrator, BadSettingsAreErrors) {
   ScratchDir dir;
-  BoxScene b;
-  const auto scene = loadRenderScene(b.write(dir), test::quiet());
+  const auto scene = test::loadBoxScene(dir);
   test::ExactTestEstimator exact;
   RenderSettings s;
   s.spp = 0;

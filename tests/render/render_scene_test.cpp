@@ -39,9 +39,7 @@ SegmentClasses classify(const RenderScene& scene, int object, int pass = 0) {
 
 TEST(RenderScene, SelfShadowingTracesOwnOriginal) {
   ScratchDir dir;
-  BoxScene b;
-  b.proxies_json = test::kOutsideProxy;
-  const auto scene = loadRenderScene(b.write(dir), test::quiet());
+  const auto scene = test::loadBoxScene(dir, test::kOutsideProxy);
   ASSERT_EQ(scene->objects().size(), 2u);
   EXPECT_EQ(scene->proxyClass(), ProxyClass::kOutside);
   EXPECT_TRUE(scene->usesProxies());
@@ -206,9 +204,7 @@ TEST(RenderScene, ClassesUnverifiedMixedAndSelection) {
 
 TEST(RenderScene, GeneralProxyHasBothErrorKinds) {
   ScratchDir dir;
-  BoxScene b;
-  b.proxies_json = test::kGeneralProxy;
-  const auto scene = loadRenderScene(b.write(dir), test::quiet());
+  const auto scene = test::loadBoxScene(dir, test::kGeneralProxy);
   EXPECT_EQ(scene->proxyClass(), ProxyClass::kGeneral);
   const SegmentClasses c = classify(*scene, -1);
   EXPECT_GT(c.hm, 0u);

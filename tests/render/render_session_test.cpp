@@ -19,7 +19,6 @@
 namespace proxyvis {
 namespace {
 
-using test::BoxScene;
 using test::ScratchDir;
 
 // Roulette with fixed costs (deterministic, learns across passes) told the box's outside proxy is
@@ -73,9 +72,7 @@ void expectSameImage(const RenderResult& a, const RenderResult& b) {
 
 TEST(RenderSession, SlicesAreBitIdenticalToOneRenderAtOneAndTwoThreads) {
   ScratchDir dir;
-  BoxScene b;
-  b.proxies_json = test::kOutsideProxy;
-  const auto scene = loadRenderScene(b.write(dir), test::quiet());
+  const auto scene = test::loadBoxScene(dir, test::kOutsideProxy);
   const RenderSettings settings = rouletteSettings();
   const RenderResult reference = whole(1, *scene, settings);
   ASSERT_EQ(reference.passes, 24);
@@ -100,9 +97,7 @@ TEST(RenderSession, SlicesAreBitIdenticalToOneRenderAtOneAndTwoThreads) {
 
 TEST(RenderSession, ProbePassesSplitLikeOneRender) {
   ScratchDir dir;
-  BoxScene b;
-  b.proxies_json = test::kGeneralProxy;
-  const auto scene = loadRenderScene(b.write(dir), test::quiet());
+  const auto scene = test::loadBoxScene(dir, test::kGeneralProxy);
   RenderSettings settings;
   settings.estimator.kind = EstimatorKind::kPaperOptimal;
   settings.estimator.probes_per_point = 4;
@@ -119,11 +114,8 @@ TEST(RenderSession, ProbePassesSplitLikeOneRender) {
 
 TEST(RenderSession, PassesStopAtTheSppCap) {
   ScratchDir dir;
-  BoxScene b;
-  const auto scene = loadRenderScene(b.write(dir), test::quiet());
-  RenderSettings settings;
-  settings.spp = 5;
-  settings.quiet = true;
+  const auto scene = test::loadBoxScene(dir);
+  RenderSettings settings = test::quietSettings(5);
   RenderSession session(*scene, settings);
   EXPECT_EQ(session.runPasses(3), 3);
   EXPECT_EQ(session.spp(), 3);
@@ -136,12 +128,8 @@ TEST(RenderSession, PassesStopAtTheSppCap) {
 
 TEST(RenderSession, ClockCountsOnlyItsOwnSlices) {
   ScratchDir dir;
-  BoxScene b;
-  const auto scene = loadRenderScene(b.write(dir), test::quiet());
-  RenderSettings settings;
-  settings.spp = 0;
-  settings.time_budget = 0.3;
-  settings.quiet = true;
+  const auto scene = test::loadBoxScene(dir);
+  RenderSettings settings = test::timeBudgetSettings(0.3);
   const Stopwatch wall;
   RenderSession session(*scene, settings);
   double slices = session.seconds();  // construction: primary rays, buffers
@@ -179,12 +167,8 @@ TEST(RenderSession, ClockCountsOnlyItsOwnSlices) {
 
 TEST(RenderSession, InterleavedTurnsRotateUntilEachSpentItsOwnBudget) {
   ScratchDir dir;
-  BoxScene b;
-  const auto scene = loadRenderScene(b.write(dir), test::quiet());
-  RenderSettings settings;
-  settings.spp = 0;
-  settings.time_budget = 0.3;
-  settings.quiet = true;
+  const auto scene = test::loadBoxScene(dir);
+  RenderSettings settings = test::timeBudgetSettings(0.3);
   std::vector<std::unique_ptr<RenderSession>> owned;
   std::vector<RenderSession*> sessions;
   std::vector<double> construction;  // on each clock before the schedule

@@ -7,11 +7,13 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "estimate/visibility_estimator.h"
 #include "render/render_scene.h"
+#include "render/renderer.h"
 #include "tests/support/scratch_dir.h"
 #include "util/vec3.h"
 
@@ -37,13 +39,12 @@ inline std::string groundObj(float h) {
 
 // Scene options without warnings on stderr.
 inline RenderSceneOptions quiet(const std::string& proxy_kind = {}, bool use_proxies = true) {
-  RenderSceneOptions o;
-  o.proxy_kind = proxy_kind;
-  o.use_proxies = use_proxies;
-  o.quiet = true;
   // The test scenes give small meshes box proxies with more triangles: keep them.
-  o.keep_larger_proxies = true;
-  return o;
+  return {.proxy_kind = proxy_kind,
+          .use_proxies = use_proxies,
+          .keep_larger_proxies = true,
+          .trace = {},
+          .quiet = true};
 }
 
 // Exact visibility from the original geometry.
@@ -124,6 +125,30 @@ struct BoxScene {
     return dir.write("scene.json", s + "}");
   }
 };
+
+// BoxScene with `proxies_json` as the box's proxies, written to `dir` and loaded without warnings.
+inline std::unique_ptr<RenderScene> loadBoxScene(const ScratchDir& dir,
+                                                 const std::string& proxies_json = "[]") {
+  BoxScene b;
+  b.proxies_json = proxies_json;
+  return loadRenderScene(b.write(dir), quiet());
+}
+
+// Settings of a quiet render of `spp` samples per pixel from `seed`.
+inline RenderSettings quietSettings(int spp, uint64_t seed = 0) {
+  RenderSettings s;
+  s.spp = spp;
+  s.seed = seed;
+  s.quiet = true;
+  return s;
+}
+
+// Settings of a quiet render that stops after `seconds` on its clock (no sample cap).
+inline RenderSettings timeBudgetSettings(double seconds) {
+  RenderSettings s = quietSettings(0);
+  s.time_budget = seconds;
+  return s;
+}
 
 inline const char* kOutsideProxy =
     R"([{"kind": "outside", "file": "box_out.obj", "class": "outside"}])";

@@ -3,6 +3,7 @@
 // written out here, not produced by the loader's formatting code.
 #include <gtest/gtest.h>
 
+#include <initializer_list>
 #include <string>
 
 #include "scene/scene_desc.h"
@@ -49,15 +50,26 @@ struct SceneRanges : ::testing::Test {
 
 #define EXPECT_CONTAINS(text, part) EXPECT_NE((text).find(part), std::string::npos) << (text)
 
+// The error message holds every one of `parts`.
+void expectContainsAll(const std::string& error, std::initializer_list<const char*> parts) {
+  for (const char* part : parts) EXPECT_CONTAINS(error, part);
+}
+
+// An edit of the scene (`from` replaced by `to`) and what its error says.
+struct Refusal {
+  const char* from;
+  const char* to;
+  const char* message;
+};
+
 TEST_F(SceneRanges, TheUnchangedSceneLoads) {
   EXPECT_TRUE(loads("", ""));
 }
 
 TEST_F(SceneRanges, HugeRadianceIsRefusedWithItsRange) {
-  const std::string e = errorFor("\"radiance\": [5, 5, 5]", "\"radiance\": [5, 1e38, 5]");
-  EXPECT_CONTAINS(e, "ranges.json: lights[0].radiance: radiance 1e+38 out of range");
-  EXPECT_CONTAINS(e, "[0, 1e+06]");
-  EXPECT_CONTAINS(e, "(express the radiances in a larger unit");
+  expectContainsAll(errorFor("\"radiance\": [5, 5, 5]", "\"radiance\": [5, 1e38, 5]"),
+                    {"ranges.json: lights[0].radiance: radiance 1e+38 out of range", "[0, 1e+06]",
+                     "(express the radiances in a larger unit"});
   EXPECT_TRUE(loads("\"radiance\": [5, 5, 5]", "\"radiance\": [1000000, 0, 5]"));
   EXPECT_CONTAINS(errorFor("\"radiance\": [5, 5, 5]", "\"radiance\": [5, -0.5, 5]"),
                   "radiance -0.5 out of range");
@@ -74,14 +86,14 @@ TEST_F(SceneRanges, FarEyeIsOutOfRangeNotParallelUp) {
 }
 
 TEST_F(SceneRanges, EachCameraProblemHasItsOwnMessage) {
-  EXPECT_CONTAINS(errorFor("\"look_at\": [0, 0, 0]", "\"look_at\": [0, 1, 5]"),
-                  "ranges.json: camera: eye and look_at coincide");
-  EXPECT_CONTAINS(errorFor("\"up\": [0, 1, 0]", "\"up\": [0, 0, 0]"),
-                  "camera.up: length 0 out of range");
-  EXPECT_CONTAINS(errorFor("\"up\": [0, 1, 0]", "\"up\": [0, 1e-30, 0]"),
-                  "camera.up: length 1e-30 out of range");
-  EXPECT_CONTAINS(errorFor("\"up\": [0, 1, 0]", "\"up\": [0, 2, 10]"),
-                  "camera.up: up is parallel to the view direction");
+  const Refusal refused[] = {
+      {"\"look_at\": [0, 0, 0]", "\"look_at\": [0, 1, 5]",
+       "ranges.json: camera: eye and look_at coincide"},
+      {"\"up\": [0, 1, 0]", "\"up\": [0, 0, 0]", "camera.up: length 0 out of range"},
+      {"\"up\": [0, 1, 0]", "\"up\": [0, 1e-30, 0]", "camera.up: length 1e-30 out of range"},
+      {"\"up\": [0, 1, 0]", "\"up\": [0, 2, 10]",
+       "camera.up: up is parallel to the view direction"}};
+  for (const Refusal& r : refused) EXPECT_CONTAINS(errorFor(r.from, r.to), r.message);
   EXPECT_TRUE(loads("\"up\": [0, 1, 0]", "\"up\": [0, 1e-3, 0]"));
   // Looking straight down with the default up: reported at "camera", not as a missing "up".
   EXPECT_CONTAINS(
@@ -105,16 +117,17 @@ TEST_F(SceneRanges, ResolutionLimitIsTheNamedConstant) {
 }
 
 TEST_F(SceneRanges, TransformsMayNotScaleBeyondTheRange) {
-  const std::string up = errorFor("\"scale\": 1", "\"scale\": 1e7");
-  EXPECT_CONTAINS(up, "meshes[0].transform: transform scales by 1e+07, more than 1e+06");
-  const std::string down = errorFor("\"scale\": 1", "\"scale\": 1e-7");
-  EXPECT_CONTAINS(down, "meshes[0].transform: transform scales down by 1e+07, more than 1e+06");
-  EXPECT_CONTAINS(errorFor("\"translate\": [0, 0, 0]", "\"translate\": [0, 3e6, 0]"),
-                  "meshes[0].transform: translation coordinate 3e+06 out of range");
-  EXPECT_CONTAINS(errorFor("{\"translate\": [0, 0, 0], \"scale\": 1}",
-                           "[1, 0, 0, 0, 0, 1e30, 0, 0, 0, 0, 1, 0]"),
-                  "transform scales by 1e+30");
-  EXPECT_CONTAINS(errorFor("\"scale\": 1", "\"scale\": 0"), "singular transform");
+  const Refusal refused[] = {
+      {"\"scale\": 1", "\"scale\": 1e7",
+       "meshes[0].transform: transform scales by 1e+07, more than 1e+06"},
+      {"\"scale\": 1", "\"scale\": 1e-7",
+       "meshes[0].transform: transform scales down by 1e+07, more than 1e+06"},
+      {"\"translate\": [0, 0, 0]", "\"translate\": [0, 3e6, 0]",
+       "meshes[0].transform: translation coordinate 3e+06 out of range"},
+      {"{\"translate\": [0, 0, 0], \"scale\": 1}", "[1, 0, 0, 0, 0, 1e30, 0, 0, 0, 0, 1, 0]",
+       "transform scales by 1e+30"},
+      {"\"scale\": 1", "\"scale\": 0", "singular transform"}};
+  for (const Refusal& r : refused) EXPECT_CONTAINS(errorFor(r.from, r.to), r.message);
   EXPECT_TRUE(loads("\"scale\": 1", "\"scale\": [1e6, 1e-6, 1]"));
 }
 

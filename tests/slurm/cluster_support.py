@@ -2,11 +2,21 @@
 the test process is gone (ctest's timeout kills a test without running its finally: clauses)."""
 import os
 import shlex
+import shutil
 import subprocess
 import sys
 import time
 
 SKIP = 77  # ctest's SKIP_RETURN_CODE for the cluster tests
+
+
+class TestFailure(Exception):
+    """A check of a cluster test failed (the test prints it and exits 1)."""
+
+
+def check(condition, message):
+    if not condition:
+        raise TestFailure(message)
 
 
 def cluster(repo, cluster_dir, command):
@@ -76,3 +86,21 @@ def stop_and_wait(repo, cluster_dir, timeout=15):
     while any(alive(p) for p in pids) and time.monotonic() - t0 < timeout:
         time.sleep(0.1)
     return r, [p for p in pids if alive(p)], time.monotonic() - t0
+
+
+def stop_checked(repo, cluster_dir):
+    """A test's last step on the cluster: its three daemons left pid files, stop exits 0 and none
+    of them is alive 15 s later (else TestFailure). Returns the seconds waited for them."""
+    pids = daemon_pids(cluster_dir)
+    check(len(pids) == 3, f"pid files of the three daemons: {pids}")
+    r, left, waited = stop_and_wait(repo, cluster_dir)
+    check(r.returncode == 0, f"stop: exit {r.returncode}: {r.stderr}")
+    check(not left, f"daemons alive 15 s after stop: {left}")
+    return waited
+
+
+def clean_up(repo, cluster_dir, started, folder):
+    """A cluster test's finally: stops the cluster if a failure left it running, removes FOLDER."""
+    if started:
+        cluster(repo, cluster_dir, "stop")
+    shutil.rmtree(folder, ignore_errors=True)

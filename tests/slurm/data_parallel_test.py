@@ -1,15 +1,16 @@
 #!/usr/bin/env python3
 """scripts/slurm/data_parallel.sh: one Slurm job that runs render data-parallel over N ranks.
 
-  data_parallel_test.py cli REPO RENDER PROXY_GEN DATA_DIR SCENES_DIR WORK_DIR
+  data_parallel_test.py cli REPO RENDER PROXY_GEN DATA_DIR SCENES_DIR WORK_DIR PROXY_CACHE
       the sbatch script of --dry-run (resources; the command it runs, executed with a stand-in
       srun to check every argument's quoting), bad arguments refused with one line and exit 2,
       and a --local run of 2 ranks equal to the single-process exact render (R, G, B)
-  data_parallel_test.py cluster REPO RENDER PROXY_GEN DATA_DIR SCENES_DIR WORK_DIR
+  data_parallel_test.py cluster REPO RENDER PROXY_GEN DATA_DIR SCENES_DIR WORK_DIR PROXY_CACHE
       a real single-node Slurm (local_cluster.sh): sbatch's refusal is one line, a 2-rank render
       submitted with --wait equals the single-process exact render bit for bit (R, G, B) and says
       2 ranks, a failing job's exit status is data_parallel.sh's; exits 77 (skipped) only when
       Slurm cannot start here. The cluster is stopped at the end, also on failure.
+  PROXY_CACHE: the folder of the test scene's proxies (tests/mpi's, made by its make_proxies).
 """
 import importlib.util
 import json
@@ -21,10 +22,10 @@ import sys
 import tempfile
 import time
 
-from cluster_support import (SKIP, cluster, daemon_pids, slurm_env, start_cluster,  # noqa: E402
-                             stop_and_wait)
+from cluster_support import (SKIP, TestFailure, check, clean_up, slurm_env,  # noqa: E402
+                             start_cluster, stop_checked)
 
-mode, repo, render, proxy_gen, data_dir, scenes_dir, work = sys.argv[1:8]
+mode, repo, render, proxy_gen, data_dir, scenes_dir, work, proxy_cache = sys.argv[1:9]
 spec = importlib.util.spec_from_file_location(
     "mpi_support", os.path.join(repo, "tests", "mpi", "mpi_support.py"))
 mpi_support = importlib.util.module_from_spec(spec)
@@ -32,15 +33,6 @@ spec.loader.exec_module(mpi_support)
 
 SCRIPT = os.path.join(repo, "scripts", "slurm", "data_parallel.sh")
 SPP, SEED = "8", "5"
-
-
-class TestFailure(Exception):
-    pass
-
-
-def check(condition, message):
-    if not condition:
-        raise TestFailure(message)
 
 
 def dp(*argv, env=None, cwd=None, timeout=300):
@@ -233,17 +225,12 @@ def on_cluster(scene):
         print(f"timing: failing job (--wait): {r.seconds:.1f} s")
         print("ok: a failed job's exit status 2 is passed on")
 
-        check(len(daemon_pids(cluster_dir)) == 3, "pid files of the three daemons")
-        r, left, waited = stop_and_wait(repo, cluster_dir)
+        waited = stop_checked(repo, cluster_dir)
         started = False
-        check(r.returncode == 0, f"stop: exit {r.returncode}: {r.stderr}")
-        check(not left, f"daemons alive 15 s after stop: {left}")
         print(f"timing: daemons gone {waited:.1f} s after stop returned")
         return 0
     finally:
-        if started:
-            cluster(repo, cluster_dir, "stop")
-        shutil.rmtree(tmp, ignore_errors=True)
+        clean_up(repo, cluster_dir, started, tmp)
 
 
 def main():
@@ -251,7 +238,7 @@ def main():
     os.makedirs(work)
     t0 = time.monotonic()
     scene = mpi_support.make_unique_scene(os.path.join(work, "scene"), data_dir, scenes_dir,
-                                          proxy_gen)
+                                          proxy_gen, proxy_cache=proxy_cache)
     print(f"timing: test scene: {time.monotonic() - t0:.1f} s")
     try:
         code = cli(scene) if mode == "cli" else on_cluster(scene)

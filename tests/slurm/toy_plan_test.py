@@ -18,20 +18,12 @@ import sys
 import tempfile
 import time
 
-from cluster_support import SKIP, cluster, daemon_pids, start_cluster, stop_and_wait
+from cluster_support import (SKIP, TestFailure, check, clean_up, cluster, start_cluster,
+                             stop_checked)
 
 UNITS = 8
 # Passed through the generated job scripts unchanged: spaces, quotes, $ and a glob.
 TAG = "a $HOME \"q\" 'b' *"
-
-
-class TestFailure(Exception):
-    pass
-
-
-def check(condition, message):
-    if not condition:
-        raise TestFailure(message)
 
 
 def expected_merge():
@@ -190,21 +182,15 @@ def main():
         scenario(repo, mode, Runner(repo, mode, env), work)
         if started:
             refuse_second_submission(repo, env, work)
-            pids = daemon_pids(cluster_dir)
-            check(len(pids) == 3, f"pid files of the three daemons: {pids}")
-            r, left, _ = stop_and_wait(repo, cluster_dir)
+            stop_checked(repo, cluster_dir)
             started = False
-            check(r.returncode == 0, f"stop: exit {r.returncode}: {r.stderr}")
-            check(not left, f"daemons alive 15 s after stop: {left}")
         print("PASS")
         return 0
     except (TestFailure, subprocess.TimeoutExpired) as e:
         print(f"FAIL: {e}")
         return 1
     finally:
-        if started:
-            cluster(repo, cluster_dir, "stop")
-        shutil.rmtree(work, ignore_errors=True)
+        clean_up(repo, cluster_dir, started, work)
 
 
 if __name__ == "__main__":

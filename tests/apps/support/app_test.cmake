@@ -27,6 +27,13 @@ function(proxyvis_app_test name target code args)
   endif()
 endfunction()
 
+# proxyvis_python_test(NAME SCRIPT ARGS...): registers test NAME running the Python file SCRIPT
+# of the calling file's folder with ARGS.
+function(proxyvis_python_test name script)
+  find_package(Python3 REQUIRED COMPONENTS Interpreter)
+  add_test(NAME ${name} COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_LIST_DIR}/${script} ${ARGN})
+endfunction()
+
 # Sets VAR to the test folder NAME in this build folder and creates it.
 function(proxyvis_app_test_dir var name)
   set(${var} ${CMAKE_CURRENT_BINARY_DIR}/${name} PARENT_SCOPE)

@@ -46,6 +46,14 @@ function(expect_json_keys what json)
   endforeach()
 endfunction()
 
+# For APP_CHECKS: fails unless the value at the keys ARGN of `json` is `expected` (as text).
+function(expect_json_value what json expected)
+  string(JSON value GET "${json}" ${ARGN})
+  if(NOT value STREQUAL expected)
+    message(FATAL_ERROR "${what}: ${ARGN} = '${value}', expected '${expected}'\n${json}")
+  endif()
+endfunction()
+
 # For APP_CHECKS of `--json -` runs: fails unless stdout is one JSON value enclosed in `open` and
 # `close` ("[" "]" or "{" "}") and nothing else, and stderr matches `err_regex` (the human report
 # went there). Sets `json` in the caller.

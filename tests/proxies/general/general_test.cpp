@@ -6,7 +6,7 @@
 
 #include "proxies/general/general_proxy.h"
 #include "proxies/pipeline/proxy_pipeline.h"
-#include "tests/proxies/gen_test_util.h"
+#include "tests/proxies/shared/gen_test_util.h"
 #include "util/error.h"
 
 namespace proxyvis {

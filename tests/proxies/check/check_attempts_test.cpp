@@ -5,7 +5,7 @@
 
 #include "proxies/check/pair_check.h"
 #include "proxies/check/ray_classify.h"
-#include "tests/proxies/check_shapes.h"
+#include "tests/proxies/check/check_shapes.h"
 
 namespace proxyvis {
 namespace {
@@ -26,12 +26,7 @@ struct Pair {
 };
 
 ClassifyOptions options(uint64_t n, uint64_t max_attempts, uint32_t batch) {
-  ClassifyOptions opt;
-  opt.segments = n;
-  opt.max_attempts = max_attempts;
-  opt.batch = batch;
-  opt.quiet = true;
-  return opt;
+  return {.segments = n, .max_attempts = max_attempts, .batch = batch, .quiet = true};
 }
 
 TEST(ClassifyAttempts, DrawsUntilNSegmentsAreClassified) {

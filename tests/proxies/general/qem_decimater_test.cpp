@@ -11,7 +11,7 @@
 
 #include "proxies/general/general_proxy.h"
 #include "proxies/general/qem_decimater.h"
-#include "tests/proxies/gen_test_util.h"
+#include "tests/proxies/shared/gen_test_util.h"
 
 namespace proxyvis {
 namespace {

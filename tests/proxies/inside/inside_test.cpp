@@ -9,7 +9,7 @@
 #include "proxies/check/containment.h"
 #include "proxies/inside/inside_proxy.h"
 #include "proxies/pipeline/proxy_pipeline.h"
-#include "tests/proxies/gen_test_util.h"
+#include "tests/proxies/shared/gen_test_util.h"
 #include "util/error.h"
 
 namespace proxyvis {

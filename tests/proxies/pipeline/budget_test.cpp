@@ -12,7 +12,7 @@
 #include "proxies/general/openmesh_faces.h"
 #include "proxies/pipeline/budget_shapes.h"
 #include "proxies/pipeline/proxy_pipeline.h"
-#include "tests/proxies/gen_test_util.h"
+#include "tests/proxies/shared/gen_test_util.h"
 #include "util/error.h"
 
 namespace proxyvis {

@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "proxies/check/mesh_distance.h"
-#include "tests/proxies/check_shapes.h"
+#include "tests/proxies/check/check_shapes.h"
 #include "util/error.h"
 
 namespace proxyvis {

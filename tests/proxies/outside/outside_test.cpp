@@ -10,7 +10,7 @@
 #include "proxies/outside/outside_proxy.h"
 #include "proxies/pipeline/proxy_pipeline.h"
 #include "proxies/shared/bounded_simplify.h"
-#include "tests/proxies/gen_test_util.h"
+#include "tests/proxies/shared/gen_test_util.h"
 #include "util/error.h"
 
 namespace proxyvis {

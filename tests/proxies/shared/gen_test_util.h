@@ -9,6 +9,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <tuple>
 
 #include "mesh/io/mesh_io.h"
 #include "proxies/check/containment.h"
@@ -51,10 +52,8 @@ inline const TriMesh& mesh(const std::string& relative) {
 inline ProxyGenOptions genOptions(ProxyClass kind, const std::string& method, size_t max_faces,
                                   uint64_t hausdorff_samples) {
   ProxyGenOptions o;
-  o.kind = kind;
-  o.method = method;
-  o.max_faces = max_faces;
-  o.hausdorff_samples = hausdorff_samples;
+  std::tie(o.kind, o.method, o.max_faces, o.hausdorff_samples) =
+      std::tuple(kind, method, max_faces, hausdorff_samples);
   return o;
 }
 

@@ -9,7 +9,7 @@
 #include "proxies/shared/internal/face_crossing.h"
 #include "proxies/shared/internal/input_bound.h"
 #include "proxies/shared/internal/relax_toward_input.h"
-#include "tests/proxies/check_shapes.h"
+#include "tests/proxies/check/check_shapes.h"
 
 namespace proxyvis {
 namespace {

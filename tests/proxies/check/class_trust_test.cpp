@@ -7,11 +7,12 @@
 
 #include <filesystem>
 #include <fstream>
+#include <optional>
 
-#include "check_shapes.h"
 #include "mesh/io/mesh_io.h"
 #include "render/render_scene.h"
 #include "scene/scene_desc.h"
+#include "tests/proxies/check/check_shapes.h"
 #include "util/sha256.h"
 
 namespace proxyvis {
@@ -36,47 +37,50 @@ struct FakeCheck {
   }
 };
 
+// The decision on a claimed class (none: nullopt) with recorded and current file hashes, the
+// stand-in check answering `verdict`: it must give `status` and `trusted` after `calls` runs of
+// the check. Returns the decision for the test's further checks.
+ClassTrust expectDecision(std::optional<ProxyClass> claim, const std::string& recorded,
+                          const std::string& current, ContainmentVerdict verdict,
+                          ClassStatus status, ProxyClass trusted, int calls) {
+  FakeCheck check{verdict};
+  const ClassTrust t = decideClassTrust(claim, recorded, current, check.fn());
+  EXPECT_EQ(t.status, status) << t.reason;
+  EXPECT_EQ(t.trusted, trusted);
+  EXPECT_EQ(check.calls, calls);
+  return t;
+}
+
 TEST(ClassTrustDecision, NoClaimIsUnverifiedGeneralWithoutCheck) {
-  FakeCheck check{ContainmentVerdict::kContains};
-  const ClassTrust t = decideClassTrust(std::nullopt, "", "", check.fn());
-  EXPECT_EQ(t.status, ClassStatus::kUnverified);
-  EXPECT_EQ(t.trusted, ProxyClass::kGeneral);
-  EXPECT_EQ(check.calls, 0);
+  expectDecision(std::nullopt, "", "", ContainmentVerdict::kContains, ClassStatus::kUnverified,
+                 ProxyClass::kGeneral, 0);
 }
 
 TEST(ClassTrustDecision, GeneralClaimNeedsNoCheck) {
-  FakeCheck check{ContainmentVerdict::kIntersecting};
-  const ClassTrust t = decideClassTrust(ProxyClass::kGeneral, "", kHashA, check.fn());
-  EXPECT_EQ(t.status, ClassStatus::kGeneral);
-  EXPECT_EQ(t.trusted, ProxyClass::kGeneral);
-  EXPECT_EQ(check.calls, 0);
+  expectDecision(ProxyClass::kGeneral, "", kHashA, ContainmentVerdict::kIntersecting,
+                 ClassStatus::kGeneral, ProxyClass::kGeneral, 0);
 }
 
 TEST(ClassTrustDecision, MatchingHashIsTrustedWithoutCheck) {
-  FakeCheck check{ContainmentVerdict::kIntersecting};  // would downgrade if it ran
-  const ClassTrust t = decideClassTrust(ProxyClass::kOutside, kHashA, kHashA, check.fn());
-  EXPECT_EQ(t.status, ClassStatus::kVerifiedByHash);
-  EXPECT_EQ(t.trusted, ProxyClass::kOutside);
-  EXPECT_EQ(check.calls, 0);
+  // The check would downgrade if it ran.
+  const ClassTrust t =
+      expectDecision(ProxyClass::kOutside, kHashA, kHashA, ContainmentVerdict::kIntersecting,
+                     ClassStatus::kVerifiedByHash, ProxyClass::kOutside, 0);
   EXPECT_STREQ(classStatusName(t.status), "verified-by-hash");
 }
 
 TEST(ClassTrustDecision, MissingHashRunsTheCheckWhichReVerifies) {
-  FakeCheck check{ContainmentVerdict::kContains};
-  const ClassTrust t = decideClassTrust(ProxyClass::kOutside, "", kHashA, check.fn());
-  EXPECT_EQ(t.status, ClassStatus::kReVerified);
-  EXPECT_EQ(t.trusted, ProxyClass::kOutside);
-  EXPECT_EQ(check.calls, 1);
+  const ClassTrust t =
+      expectDecision(ProxyClass::kOutside, "", kHashA, ContainmentVerdict::kContains,
+                     ClassStatus::kReVerified, ProxyClass::kOutside, 1);
   EXPECT_NE(t.reason.find("no recorded sha256"), std::string::npos) << t.reason;
   EXPECT_STREQ(classStatusName(t.status), "re-verified");
 }
 
 TEST(ClassTrustDecision, ChangedFileThatFailsTheCheckIsDowngraded) {
-  FakeCheck check{ContainmentVerdict::kIntersecting};
-  const ClassTrust t = decideClassTrust(ProxyClass::kOutside, kHashA, kHashB, check.fn());
-  EXPECT_EQ(t.status, ClassStatus::kDowngraded);
-  EXPECT_EQ(t.trusted, ProxyClass::kGeneral);
-  EXPECT_EQ(check.calls, 1);
+  const ClassTrust t =
+      expectDecision(ProxyClass::kOutside, kHashA, kHashB, ContainmentVerdict::kIntersecting,
+                     ClassStatus::kDowngraded, ProxyClass::kGeneral, 1);
   EXPECT_NE(t.reason.find("sha256 differs"), std::string::npos) << t.reason;
   EXPECT_NE(t.reason.find("intersecting"), std::string::npos) << t.reason;
   EXPECT_STREQ(classStatusName(t.status), "downgraded");
@@ -95,10 +99,9 @@ TEST(ClassTrustDecision, EachClassNeedsItsOwnVerdict) {
 
 TEST(ClassTrustDecision, UndecidableOrDisjointIsDowngraded) {
   for (ContainmentVerdict v : {ContainmentVerdict::kUndecidable, ContainmentVerdict::kDisjoint}) {
-    FakeCheck check{v};
-    const ClassTrust t = decideClassTrust(ProxyClass::kOutside, "", kHashA, check.fn());
-    EXPECT_EQ(t.status, ClassStatus::kDowngraded) << containmentName(v);
-    EXPECT_EQ(t.trusted, ProxyClass::kGeneral);
+    SCOPED_TRACE(containmentName(v));
+    expectDecision(ProxyClass::kOutside, "", kHashA, v, ClassStatus::kDowngraded,
+                   ProxyClass::kGeneral, 1);
   }
 }
 

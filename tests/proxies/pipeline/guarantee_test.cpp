@@ -13,7 +13,7 @@
 #include "proxies/check/pair_check.h"
 #include "proxies/pipeline/proxy_pipeline.h"
 #include "proxies/shared/parity_solid.h"
-#include "tests/proxies/gen_test_util.h"
+#include "tests/proxies/shared/gen_test_util.h"
 #include "util/error.h"
 
 namespace proxyvis {

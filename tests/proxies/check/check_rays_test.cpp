@@ -6,8 +6,8 @@
 
 #include "proxies/check/pair_check.h"
 #include "proxies/check/ray_classify.h"
-#include "tests/proxies/check_shapes.h"
-#include "tests/proxies/pair_check_util.h"
+#include "tests/proxies/check/check_shapes.h"
+#include "tests/proxies/check/pair_check_util.h"
 
 namespace proxyvis {
 namespace {
@@ -58,11 +58,9 @@ Classification classify(const TriMesh& original, const TriMesh& proxy, uint64_t 
     return b.build();
   };
   auto o = build(original), p = build(proxy);
-  ClassifyOptions opt;
-  opt.segments = n;
-  opt.batch = 4096;  // several batches, one partial
-  opt.quiet = true;
-  opt.max_error_segments = keep_errors;
+  // Batches of 4096: several, one partial.
+  const ClassifyOptions opt{
+      .segments = n, .batch = 4096, .max_error_segments = keep_errors, .quiet = true};
   return classifySegments(
       *o, *p, sphereSegments(enclosingSphere(original.bounds(), proxy.bounds()), seed), opt);
 }
@@ -120,27 +118,29 @@ PairCheckReport check(const TriMesh& original, const TriMesh& proxy) {
   return test::testCheckPair(original, proxy, 1);
 }
 
-TEST(PairCheck, BoundingBoxIsOutside) {
-  const TriMesh s = sphere();
-  const TriMesh box = makeBox(kCenter - Vec3f(1.1f, 1.1f, 1.1f), kCenter + Vec3f(1.1f, 1.1f, 1.1f));
-  const PairCheckReport r = check(s, box);
-  EXPECT_EQ(r.exact.verdict, ContainmentVerdict::kContains) << r.exact.detail;
-  EXPECT_EQ(r.sampled.counts.hm, 0u);
-  EXPECT_GT(r.sampled.counts.mh, 0u);
-  EXPECT_EQ(r.sampled_class, SampledClass::kOutside);
+// A cube of half-side `half` about the sphere's centre, checked against the sphere: the exact
+// verdict is `verdict`, the sampled class `sampled` (outside: no HM' and some MH'; inside: the
+// reverse), and the two agree.
+PairCheckReport expectCubeClass(float half, ContainmentVerdict verdict, SampledClass sampled) {
+  const Vec3f h(half, half, half);
+  const PairCheckReport r = check(sphere(), makeBox(kCenter - h, kCenter + h));
+  EXPECT_EQ(r.exact.verdict, verdict) << r.exact.detail;
+  const bool outside = sampled == SampledClass::kOutside;
+  EXPECT_EQ(outside ? r.sampled.counts.hm : r.sampled.counts.mh, 0u);
+  EXPECT_GT(outside ? r.sampled.counts.mh : r.sampled.counts.hm, 0u);
+  EXPECT_EQ(r.sampled_class, sampled);
   EXPECT_FALSE(r.mismatch);
+  return r;
+}
+
+TEST(PairCheck, BoundingBoxIsOutside) {
+  const PairCheckReport r =
+      expectCubeClass(1.1f, ContainmentVerdict::kContains, SampledClass::kOutside);
   EXPECT_GT(r.proxy.volume, r.original.volume);
 }
 
 TEST(PairCheck, InnerBoxIsInside) {
-  const TriMesh s = sphere();
-  const TriMesh box = makeBox(kCenter - Vec3f(0.4f, 0.4f, 0.4f), kCenter + Vec3f(0.4f, 0.4f, 0.4f));
-  const PairCheckReport r = check(s, box);
-  EXPECT_EQ(r.exact.verdict, ContainmentVerdict::kContained) << r.exact.detail;
-  EXPECT_EQ(r.sampled.counts.mh, 0u);
-  EXPECT_GT(r.sampled.counts.hm, 0u);
-  EXPECT_EQ(r.sampled_class, SampledClass::kInside);
-  EXPECT_FALSE(r.mismatch);
+  expectCubeClass(0.4f, ContainmentVerdict::kContained, SampledClass::kInside);
 }
 
 TEST(PairCheck, ShiftedCopyIsGeneralAndExpectationsFail) {

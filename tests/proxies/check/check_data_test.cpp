@@ -9,8 +9,8 @@
 #include "mesh/io/mesh_io.h"
 #include "proxies/check/pair_check.h"
 #include "proxies/outside/outside_proxy.h"
-#include "tests/proxies/check_shapes.h"
-#include "tests/proxies/pair_check_util.h"
+#include "tests/proxies/check/check_shapes.h"
+#include "tests/proxies/check/pair_check_util.h"
 
 namespace proxyvis {
 namespace {

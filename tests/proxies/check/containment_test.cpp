@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "tests/proxies/check_shapes.h"
+#include "tests/proxies/check/check_shapes.h"
 #include "util/error.h"
 
 namespace proxyvis {

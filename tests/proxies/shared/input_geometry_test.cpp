@@ -14,7 +14,7 @@
 #include "proxies/pipeline/proxy_pipeline.h"
 #include "proxies/shared/input_geometry.h"
 #include "proxies/shared/time_budget.h"
-#include "tests/proxies/gen_test_util.h"
+#include "tests/proxies/shared/gen_test_util.h"
 #include "util/error.h"
 
 namespace proxyvis {
