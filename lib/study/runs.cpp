@@ -1,4 +1,4 @@
-#include "runs.h"
+#include "study/runs.h"
 
 #include <fmt/core.h>
 
@@ -13,27 +13,6 @@
 #include "util/rng.h"
 
 namespace proxyvis {
-
-namespace {
-
-ReportLearned toReportLearned(const LearnedSummary& l) {
-  ReportLearned r;
-  r.regions = int(l.regions);
-  r.regions_roulette = int(l.regions_roulette);
-  r.p_proxy_blocked = l.p_proxy_blocked;
-  r.error_given_blocked = l.error_given_blocked;
-  r.error_given_visible = l.error_given_visible;
-  r.var_exact = l.var_exact;
-  for (int i = 0; i < 2; ++i) {
-    r.cost_proxy[i] = l.costs.proxy[i];
-    r.cost_original[i] = l.costs.original[i];
-  }
-  r.cost_per_sample = l.costs.per_sample;
-  r.predicted_efficiency = l.predicted_efficiency;
-  return r;
-}
-
-}  // namespace
 
 RenderSettings runSettings(const CompareOptions& options, EstimatorKind kind, int spp,
                            double time_budget, int run) {
@@ -68,7 +47,7 @@ void addRun(CellResult& cell, RenderResult r, const std::filesystem::path& scene
   cell.radiance_per_seed.push_back(run == 0 ? r.radiance : std::move(r.radiance));
   if (run == 0) {
     row.proxy_class = proxyClassName(r.proxy_class);
-    if (kind == EstimatorKind::kRoulette) row.learned = toReportLearned(r.learned);
+    if (kind == EstimatorKind::kRoulette) row.learned = r.learned;
     cell.first = std::move(r);
     cell.first_seed = options.common.seed;
   }

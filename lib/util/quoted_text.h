@@ -1,10 +1,11 @@
 #pragma once
-// Quoting text from a scene or instance list in an error message: at most kMaxQuoted bytes, so
-// a 1 MB token cannot become a 1 MB error line (util/error.h escapes unprintable bytes).
+// Quoting text from an input file (a scene, an instance list, a JSON key) in an error message: at
+// most kMaxQuoted bytes, so a 1 MB token cannot become a 1 MB error line (util/error.h escapes
+// unprintable bytes).
 #include <string>
 #include <string_view>
 
-namespace proxyvis::detail {
+namespace proxyvis {
 
 inline constexpr size_t kMaxQuoted = 60;
 
@@ -23,4 +24,4 @@ inline std::string quoteInput(std::string_view text) {
   return out;
 }
 
-}  // namespace proxyvis::detail
+}  // namespace proxyvis

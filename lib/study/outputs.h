@@ -8,8 +8,8 @@
 #include "image/image_io.h"  // autoExposure: the same for every image so they compare
 #include "metrics/heat_map.h"
 #include "metrics/html_report.h"
-#include "reference.h"
-#include "runs.h"
+#include "study/reference.h"
+#include "study/runs.h"
 
 namespace proxyvis {
 

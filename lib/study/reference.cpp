@@ -1,4 +1,4 @@
-#include "reference.h"
+#include "study/reference.h"
 
 #include <fmt/format.h>
 
@@ -8,7 +8,7 @@
 #include "image/image_io.h"
 #include "metrics/image_variance.h"
 #include "render/image_metadata.h"
-#include "runs.h"
+#include "study/runs.h"
 #include "util/atomic_write.h"
 #include "util/error.h"
 #include "util/fnv1a.h"

@@ -1,12 +1,18 @@
-#include "compare_options.h"
-
-#include <algorithm>
-#include <cmath>
-#include <cstdint>
+#include "compare_flags.h"
 
 #include "util/error.h"
 
 namespace proxyvis {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string absoluteText(const std::string& path) {
+  return fs::absolute(path).lexically_normal().string();
+}
+
+}  // namespace
 
 void addCompareOptions(CLI::App& app, CompareOptions& o) {
   app.add_option("scene", o.scene, "Scene file (JSON, scenes/FORMAT.md)")->required();
@@ -41,40 +47,38 @@ void addCompareOptions(CLI::App& app, CompareOptions& o) {
   addCommonOptions(app, o.common);
 }
 
-void CompareOptions::resolve() {
-  estimator_list.clear();
-  for (const std::string& name : splitCommaList(estimators)) {
-    EstimatorKind kind = parseEstimatorName(name);
-    if (std::find(estimator_list.begin(), estimator_list.end(), kind) == estimator_list.end())
-      estimator_list.push_back(kind);
+std::vector<std::string> studyArgs(const CLI::App& app, const CompareOptions& o) {
+  std::vector<std::string> args;
+  for (const CLI::Option* opt : app.get_options()) {
+    if (opt->count() == 0) continue;
+    if (opt->get_positional()) {
+      args.push_back(absoluteText(o.scene.string()));
+      continue;
+    }
+    PV_CHECK_MSG(!opt->get_lnames().empty(), "every render-compare option has a long name");
+    const std::string name = "--" + opt->get_lnames().front();
+    if (name == "--plan" || name == "--help" || name == "--version") continue;
+    // One "--name=value" per value given: flags read back their "true" this way too.
+    for (const std::string& value : opt->results())
+      args.push_back(
+          name + "=" +
+          (name == "--out" || (name == "--json" && value != "-") ? absoluteText(value) : value));
   }
-  if (estimator_list.empty())
-    throw Error({}, "--estimators is empty", {},
-                "name at least one estimator, e.g. exact,roulette");
-  spp_list.clear();
-  const CLI::Validator spp_check = integerIn(1, kMaxSpp);
-  for (std::string item : splitCommaList(spp)) {
-    const std::string problem = spp_check(item);
-    if (!problem.empty())
-      throw Error({}, "--spp: " + problem, {}, "give a comma-separated list such as 4,16");
-    spp_list.push_back(std::stoi(item));
-  }
-  render.resolve();
-  std::sort(spp_list.begin(), spp_list.end());
-  spp_list.erase(std::unique(spp_list.begin(), spp_list.end()), spp_list.end());
-  if (spp_list.empty() && !(equal_time > 0))
-    throw Error({}, "nothing to compare", "--spp is empty and --equal-time is 0");
-  if (repeats > 1 && !(equal_time > 0))
-    throw Error({}, "--repeats has nothing to repeat", "it repeats the equal-time table",
-                "give --equal-time a budget, or drop --repeats");
+  return args;
 }
-
-int CompareOptions::referenceSpp(int largest_spp_reached) const {
-  if (reference_spp > 0) return reference_spp;
-  int64_t wanted = std::max<int64_t>(1024, 16 * int64_t(largest_spp_reached));
-  int64_t spp = 1;
-  while (spp < wanted) spp *= 2;
-  return int(std::min<int64_t>(spp, int64_t(kMaxSpp)));
+void parseStudyArgs(const std::vector<std::string>& args, CompareOptions& options,
+                    const fs::path& file) {
+  CLI::App app{"render-compare", "render-compare"};
+  addCompareOptions(app, options);
+  std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 parses from the back
+  try {
+    app.parse(reversed);
+  } catch (const CLI::ParseError& e) {
+    throw Error(file.string(), "not a render-compare plan",
+                std::string("its render-compare flags do not parse: ") + e.what(),
+                "write it again with render-compare SCENE ... --plan DIR");
+  }
+  options.resolve();
 }
 
 }  // namespace proxyvis

@@ -1,13 +1,15 @@
-#include "ceiling_phase.h"
+#include "study/ceiling_phase.h"
 
 #include <algorithm>
 #include <cstdio>
 #include <iterator>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "estimate/ceiling.h"
 #include "render/ceiling_stats.h"
 #include "render/render_scene.h"
+#include "util/json_field.h"
 #include "util/rng.h"
 #include "util/stopwatch.h"
 
@@ -107,50 +109,17 @@ ReportCeiling finishCeiling(const CeilingUnitMeasurement& unit,
   return c;
 }
 
-nlohmann::json ceilingMeasurementToJson(const CeilingUnitMeasurement& unit) {
-  const CeilingMeasurement& m = unit.measurement;
-  // One array per region, in CeilingRegionStats' order: a 512x512 image has 2 k regions per light.
-  nlohmann::json regions = nlohmann::json::array();
-  for (const CeilingRegionStats& r : m.regions)
-    regions.push_back({r.light, r.segments, r.blocked, r.mh, r.hm, r.visibility_var, r.var_fv,
-                       r.f2_mh, r.f2_hm, r.cost_proxy[0], r.cost_proxy[1], r.cost_original[0],
-                       r.cost_original[1]});
-  return {{"seconds", unit.seconds},
-          {"pixels", unit.pixels},
-          {"num_lights", m.num_lights},
-          {"passes", m.passes},
-          {"measurement_seconds", m.seconds},
-          {"ticks_per_ns", m.ticks_per_ns},
-          {"cpu_per_wall", m.cpu_per_wall},
-          {"segments", m.segments},
-          {"regions", regions}};
+void to_json(nlohmann::json& j, const CeilingUnitMeasurement& unit) {
+  j = unit.measurement;
+  j["seconds"] = unit.seconds;
+  j["pixels"] = unit.pixels;
 }
 
-CeilingUnitMeasurement ceilingMeasurementFromJson(const nlohmann::json& j) {
-  CeilingUnitMeasurement unit;
-  CeilingMeasurement& m = unit.measurement;
-  unit.seconds = j.at("seconds").get<double>();
-  unit.pixels = j.at("pixels").get<double>();
-  m.num_lights = j.at("num_lights").get<uint32_t>();
-  m.passes = j.at("passes").get<int>();
-  m.seconds = j.at("measurement_seconds").get<double>();
-  m.ticks_per_ns = j.at("ticks_per_ns").get<double>();
-  m.cpu_per_wall = j.at("cpu_per_wall").get<double>();
-  m.segments = j.at("segments").get<uint64_t>();
-  for (const nlohmann::json& a : j.at("regions")) {
-    CeilingRegionStats r;
-    // clang-format off
-    double* fields[] = {&r.segments, &r.blocked, &r.mh, &r.hm, &r.visibility_var, &r.var_fv,
-                        &r.f2_mh, &r.f2_hm, &r.cost_proxy[0], &r.cost_proxy[1],
-                        &r.cost_original[0], &r.cost_original[1]};
-    // clang-format on
-    if (!a.is_array() || a.size() != std::size(fields) + 1)
-      throw nlohmann::json::type_error::create(302, "a ceiling region is not 13 numbers", &a);
-    r.light = a.at(0).get<uint32_t>();
-    for (size_t i = 0; i < std::size(fields); ++i) *fields[i] = a.at(i + 1).get<double>();
-    m.regions.push_back(r);
-  }
-  return unit;
+void from_json(const nlohmann::json& j, CeilingUnitMeasurement& unit) {
+  const JsonField f(j);
+  unit.measurement = f.get<CeilingMeasurement>();
+  unit.seconds = f["seconds"].asDouble();
+  unit.pixels = f["pixels"].asDouble();
 }
 
 void applyCeiling(Report& report, const ReportCeiling& ceiling) {

@@ -1,37 +1,65 @@
-#include "study.h"
+#include "study/study.h"
 
 #include <fmt/format.h>
-#include <tbb/global_control.h>
-#include <tbb/info.h>
 
 #include <algorithm>
 #include <map>
 #include <tuple>
 
-#include "parallel_in_order.h"
+#include "study/reference.h"
 #include "util/error.h"
+#include "util/parallel_in_order.h"
 #include "util/program_build_id.h"
 
 namespace proxyvis {
 
 namespace fs = std::filesystem;
 
-namespace {
-
-// Units and merge must be the build that planned: another build may trace or round differently.
-void requirePlanningBuild(const StudyPlan& plan, const fs::path& plan_file, const char* to_do) {
-  if (plan.build != programBuildId())
-    throw Error(
-        plan_file.string(),
-        fmt::format("the plan was written by another build of render-compare ({}; this is {})",
-                    plan.build, programBuildId()),
-        "units and merge must be one build, or the tables could mix renderers", to_do);
+std::vector<PlannedUnit> planCellUnits(const CompareOptions& o) {
+  std::vector<PlannedUnit> units;
+  const size_t n = o.estimator_list.size();
+  for (int spp : o.spp_list)
+    for (int k = 0; k < o.seeds; ++k)
+      for (size_t turn = 0; turn < n; ++turn) {
+        // Seed k starts with estimator k mod n: no estimator always renders first (or last).
+        PlannedUnit u;
+        u.kind = UnitKind::kEqualSpp;
+        u.estimator = o.estimator_list[(turn + size_t(k)) % n];
+        u.spp = spp;
+        u.run = k;
+        units.push_back(u);
+      }
+  if (o.equal_time > 0)
+    for (int run = 0; run < o.seeds * o.repeats; ++run) {
+      PlannedUnit u;
+      u.kind = UnitKind::kEqualTime;
+      u.run = run;
+      units.push_back(u);
+    }
+  PlannedUnit ceiling;
+  ceiling.kind = UnitKind::kCeiling;
+  units.push_back(ceiling);
+  return units;
 }
 
-// The plan's options and the scene description they give, refused when the scene's content
-// changed since the plan was written.
-SceneDesc plannedScene(const StudyPlan& plan, CompareOptions& o, const fs::path& plan_file) {
-  parseStudyArgs(plan.args, o, plan_file);
+void planReference(StudyPlan& plan, int spp, int cached_spp) {
+  if (cached_spp > 0) {
+    plan.reference_cached = true;
+    plan.reference_spp = cached_spp;
+    return;
+  }
+  plan.reference_partials = std::min(kReferencePartials, spp);
+  plan.reference_per_partial = (spp + plan.reference_partials - 1) / plan.reference_partials;
+  plan.reference_spp = plan.reference_per_partial * plan.reference_partials;
+  for (int r = 0; r < plan.reference_partials; ++r) {
+    PlannedUnit u;
+    u.kind = UnitKind::kReference;
+    u.partial = r;
+    plan.units.push_back(u);
+  }
+}
+
+SceneDesc plannedScene(const StudyPlan& plan, const CompareOptions& o) {
   SceneDesc desc = loadSceneDesc(o.scene);
   o.render.applyTo(desc);
   if (sceneHash(desc) != plan.scene_hash)
@@ -42,11 +70,10 @@ SceneDesc plannedScene(const StudyPlan& plan, CompareOptions& o, const fs::path&
   return desc;
 }
 
-}  // namespace
-
-StudyPlan newStudyPlan(const CLI::App& app, const CompareOptions& o, const SceneDesc& desc) {
+StudyPlan newStudyPlan(const std::vector<std::string>& args, const CompareOptions& o,
+                       const SceneDesc& desc) {
   StudyPlan plan;
-  plan.args = studyArgs(app, o);
+  plan.args = args;
   plan.scene = fs::absolute(o.scene).lexically_normal().string();
   plan.scene_hash = sceneHash(desc);
   plan.build = programBuildId();
@@ -55,8 +82,8 @@ StudyPlan newStudyPlan(const CLI::App& app, const CompareOptions& o, const Scene
   return plan;
 }
 
-int writeStudyPlan(const CLI::App& app, const CompareOptions& o, const SceneDesc& desc,
-                   const fs::path& dir) {
+StudyPlan writeStudyPlan(const std::vector<std::string>& args, const CompareOptions& o,
+                         const SceneDesc& desc, const fs::path& dir) {
   if (o.equal_time > 0 && o.reference_spp == 0)
     throw Error({}, "--plan with --equal-time needs --reference-spp",
                 "the automatic reference is sized from the samples the equal-time renders reach, "
@@ -71,17 +98,12 @@ int writeStudyPlan(const CLI::App& app, const CompareOptions& o, const SceneDesc
     throw Error(plan_dir.string(), "the plan folder is inside --out",
                 "the merge replaces the report folder as a whole",
                 "choose a plan folder outside it");
-  StudyPlan plan = newStudyPlan(app, o, desc);
+  StudyPlan plan = newStudyPlan(args, o, desc);
   int largest = 0;
   for (int spp : o.spp_list) largest = std::max(largest, spp);
   planReference(plan, o.referenceSpp(largest));
   writePlanFolder(plan_dir, plan);
-  std::printf(
-      "render-compare: plan %s: %zu units (%d reference partials); run them with "
-      "scripts/slurm/submit.sh %s\n",
-      (plan_dir / "plan.json").string().c_str(), plan.units.size(), plan.reference_partials,
-      plan_dir.string().c_str());
-  return kExitOk;
+  return plan;
 }
 
 int largestSppReached(const StudyPlan& plan, const std::vector<UnitResult>& results) {
@@ -92,27 +114,14 @@ int largestSppReached(const StudyPlan& plan, const std::vector<UnitResult>& resu
   return largest;
 }
 
-MergeInputs readMergeInputs(const fs::path& dir) {
-  MergeInputs in;
-  in.plan = readPlan(dir);
-  const fs::path plan_file = dir / "plan.json";
-  requirePlanningBuild(in.plan, plan_file,
-                       "merge with the program named in the plan, or plan again");
-  in.desc = plannedScene(in.plan, in.options, plan_file);
+std::vector<UnitResult> readUnitResults(const fs::path& dir, const StudyPlan& plan,
+                                        const SceneDesc& desc) {
   // Units are read in parallel; the first bad one in unit order is the one reported.
-  in.results.resize(in.plan.units.size());
-  parallelInOrder(in.results.size(), [&](size_t k) {
-    in.results[k] = readUnitResult(dir, in.plan, k);
-    for (const RenderResult& r : in.results[k].renders)
-      if (r.radiance.width != in.desc.camera.width || r.radiance.height != in.desc.camera.height ||
-          r.radiance.channels != 3)
-        throw Error(unitResultPath(dir, k).string(), "this unit result has the wrong image size",
-                    fmt::format("{}x{}x{}, the study renders {}x{} RGB", r.radiance.width,
-                                r.radiance.height, r.radiance.channels, in.desc.camera.width,
-                                in.desc.camera.height),
-                    "delete it and its .done marker, then run the unit again");
+  std::vector<UnitResult> results(plan.units.size());
+  parallelInOrder(results.size(), [&](size_t k) {
+    results[k] = readUnitResult(dir, plan, k, desc.camera.width, desc.camera.height);
   });
-  return in;
+  return results;
 }
 
 StudyCells assembleCells(const CompareOptions& o, const StudyPlan& plan,
@@ -186,30 +195,6 @@ std::vector<const Image*> referencePartials(const StudyPlan& plan,
       seconds += results[k].renders.at(0).seconds;
     }
   return partials;
-}
-
-int runUnitCommand(const fs::path& dir, size_t unit, bool quiet) {
-  const StudyPlan plan = readPlan(dir);
-  const fs::path plan_file = dir / "plan.json";
-  if (unit >= plan.units.size())
-    throw Error(plan_file.string(), fmt::format("the plan has no unit {}", unit),
-                fmt::format("its units are 0..{}", plan.units.size() - 1),
-                "give a unit of the plan");
-  requirePlanningBuild(plan, plan_file, "run the program named in the plan, or plan again");
-  CompareOptions o;
-  SceneDesc desc = plannedScene(plan, o, plan_file);
-  o.common.quiet = o.common.quiet || quiet;
-  // The plan's --threads, within the SLURM_CPUS_PER_TASK the caller already applied (the smaller
-  // of two limits wins).
-  const tbb::global_control limit(
-      tbb::global_control::max_allowed_parallelism,
-      o.common.threads > 0 ? size_t(o.common.threads) : size_t(tbb::info::default_concurrency()));
-  TrustedRenderScene loaded =
-      loadTrustedRenderScene(desc, o.render.sceneOptions(o.common.quiet), "render-compare");
-  const UnitResult result =
-      runUnit(*loaded.scene, sceneFacts(*loaded.scene, loaded.trust), o, plan, unit);
-  writeUnitResult(dir, plan, unit, result);
-  return kExitOk;
 }
 
 }  // namespace proxyvis

@@ -3,13 +3,13 @@
 // original (render/ceiling_stats.h), made by the study's ceiling unit, priced at the merge with
 // the exact cells' shading cost, gives the oracle ceiling (estimate/ceiling.h) that every report
 // row is compared with.
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <vector>
 
-#include "compare_options.h"
 #include "metrics/report.h"
 #include "render/ceiling_stats.h"
-#include "runs.h"
+#include "study/compare_options.h"
+#include "study/runs.h"
 
 namespace proxyvis {
 
@@ -24,6 +24,8 @@ struct CeilingUnitMeasurement {
   CeilingMeasurement measurement;
   double seconds = 0;  // wall time of the unit's measurement (and of its own render, if made)
   double pixels = 0;   // of the image (the per-pixel MSE of exact at 1 spp)
+
+  bool operator==(const CeilingUnitMeasurement&) const = default;
 };
 
 // True when no cell of the study is an exact render: then the ceiling unit makes its own short
@@ -45,9 +47,10 @@ ReportCeiling finishCeiling(const CeilingUnitMeasurement& unit,
                             ProxyClass proxy_class, bool uses_proxies,
                             const CompareOptions& options);
 
-// The measurement in a unit result's header, and back (every number, exactly).
-nlohmann::json ceilingMeasurementToJson(const CeilingUnitMeasurement& unit);
-CeilingUnitMeasurement ceilingMeasurementFromJson(const nlohmann::json& j);
+// The measurement in a unit result's header, every number exactly: the CeilingMeasurement's keys
+// (render/ceiling_stats.h) with "seconds" and "pixels".
+void to_json(nlohmann::json& j, const CeilingUnitMeasurement& unit);
+void from_json(const nlohmann::json& j, CeilingUnitMeasurement& unit);
 
 // Puts the ceiling in the report and on every row (rows' `ceiling`, hence `of_ceiling`).
 void applyCeiling(Report& report, const ReportCeiling& ceiling);

@@ -10,7 +10,7 @@
 #include <memory>
 
 #include "render/render_session.h"
-#include "runs.h"
+#include "study/runs.h"
 
 namespace proxyvis {
 

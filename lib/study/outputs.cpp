@@ -1,4 +1,4 @@
-#include "outputs.h"
+#include "study/outputs.h"
 
 #include <fmt/format.h>
 
@@ -7,8 +7,8 @@
 
 #include "image/color_map.h"
 #include "image/image_io.h"
-#include "parallel_in_order.h"
 #include "render/image_metadata.h"
+#include "util/parallel_in_order.h"
 
 namespace proxyvis {
 

@@ -1,4 +1,4 @@
-#include "data_parallel_study.h"
+#include "study/data_parallel_study.h"
 
 #include <fmt/format.h>
 
@@ -102,16 +102,16 @@ std::string htmlTable(const std::vector<Row>& rows, double cost_us) {
 }
 
 // What the flags and the scene file ask for, checked on every rank.
-struct StudyPlan {
+struct DataParallelPlan {
   std::vector<Forwarding> policies;
   std::vector<std::string> estimators;
   SceneDesc desc;
   double cost_us = kDefaultForwardCostUs;
 };
 
-StudyPlan planStudy(CompareOptions& o, const DataParallelFlags& flags, bool estimators_given,
-                    const MpiComm& comm) {
-  StudyPlan plan;
+DataParallelPlan planStudy(CompareOptions& o, const DataParallelFlags& flags, bool estimators_given,
+                           const MpiComm& comm) {
+  DataParallelPlan plan;
   comm.collectively([&] {
     if (o.out.empty()) throw Error("", "--out is required", {}, "name the report's folder");
     if (!estimators_given) o.estimators = "exact,roulette";
@@ -143,8 +143,8 @@ StudyPlan planStudy(CompareOptions& o, const DataParallelFlags& flags, bool esti
 // rank; the images and errors are rank 0's.
 class StudyRenders {
  public:
-  StudyRenders(const CompareOptions& o, const DataParallelFlags& flags, const StudyPlan& plan,
-               const DistributedScene& scene, const MpiComm& comm)
+  StudyRenders(const CompareOptions& o, const DataParallelFlags& flags,
+               const DataParallelPlan& plan, const DistributedScene& scene, const MpiComm& comm)
       : o_(o), flags_(flags), plan_(plan), scene_(scene), comm_(comm) {}
 
   // The reference: exact, any policy (all give the same image), its own seed stream.
@@ -220,7 +220,7 @@ class StudyRenders {
 
   const CompareOptions& o_;
   const DataParallelFlags& flags_;
-  const StudyPlan& plan_;
+  const DataParallelPlan& plan_;
   const DistributedScene& scene_;
   const MpiComm& comm_;
 };
@@ -298,7 +298,7 @@ std::string studyHtml(const std::string& title, int ranks, const std::string& mo
 int runDataParallelStudy(CompareOptions& o, const DataParallelFlags& flags, bool estimators_given) {
   MpiComm comm(nullptr, nullptr);
   try {
-    const StudyPlan plan = planStudy(o, flags, estimators_given, comm);
+    const DataParallelPlan plan = planStudy(o, flags, estimators_given, comm);
     const SceneDesc& desc = plan.desc;
     const double cost_us = plan.cost_us;
     const bool proxies = std::find(plan.policies.begin(), plan.policies.end(),

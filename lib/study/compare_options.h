@@ -1,12 +1,11 @@
 #pragma once
-// render-compare's settings (the CLI flags) and the pieces of work derived from them.
+// A render-compare study's settings (its flags: render-compare parses them with CLI11) and the
+// lists derived from them.
 #include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <CLI/CLI.hpp>
 
 #include "estimate/visibility_estimator.h"
 #include "render/render_options.h"
@@ -41,7 +40,5 @@ struct CompareOptions {
   // rounded up to a power of two so that the cache key stays put from run to run.
   int referenceSpp(int largest_spp_reached) const;
 };
-
-void addCompareOptions(CLI::App& app, CompareOptions& options);
 
 }  // namespace proxyvis

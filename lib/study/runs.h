@@ -9,10 +9,10 @@
 #include <string_view>
 #include <vector>
 
-#include "compare_options.h"
 #include "metrics/report.h"
 #include "render/render_scene.h"
 #include "render/renderer.h"
+#include "study/compare_options.h"
 
 namespace proxyvis {
 

@@ -1,5 +1,5 @@
 #pragma once
-// The file a render-compare work unit writes (units/K.result): a JSON header and raw float
+// The file a work unit of a plan writes (units/K.result): a JSON header and raw float
 // images, closed by a checksum, so that the merge reads back exactly the bits the unit had and
 // refuses a truncated or altered file.
 //
@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
-#include "image/image_io.h"
+#include "util/image.h"
 
 namespace proxyvis {
 

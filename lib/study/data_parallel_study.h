@@ -4,8 +4,8 @@
 // against a data-parallel exact reference; the report (report.json, report.md, report.html and
 // the images) has the forward counts, bytes, messages, per-rank peak memory, measured time, MSE,
 // and efficiency measured and modelled at --forward-cost-us (docs/data_parallel.md).
-#include "compare_options.h"
 #include "distributed/data_parallel_job.h"
+#include "study/compare_options.h"
 
 namespace proxyvis {
 
