@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <future>
 #include <optional>
+#include <utility>
 
 #include "compare_flags.h"
 #include "huge_page_malloc.h"
@@ -21,6 +22,7 @@
 #include "study/data_parallel_study.h"
 #include "study/reference.h"
 #include "study/study.h"
+#include "study/study_merge.h"
 #include "study/study_report.h"
 #include "util/app_main.h"
 #include "util/error.h"
@@ -115,39 +117,61 @@ int runCompare(CompareOptions& o, const CLI::App& app, const fs::path& plan_dir)
   const RenderScene& scene = *loaded.scene;
   const SceneFacts facts = trustedSceneFacts(loaded);
   StudyPlan plan = newStudyPlan(studyArgs(app, o), o, desc);
-  std::vector<UnitResult> results;
-  for (size_t k = 0; k < plan.units.size(); ++k)  // each render draws its own progress bar
-    results.push_back(runUnit(scene, facts, o, plan, k));
-  // The reference is sized by the samples every cell actually reached (equal-time renders may
-  // reach far more than --spp); a cached one with as many is reused.
-  const int reference_spp = o.referenceSpp(largestSppReached(plan, results));
+  const size_t cell_units = plan.units.size();
+  StudyMerge merge(o, plan, desc);
+  // The reference first when its size is known before the cells (--reference-spp, or no
+  // equal-time table: the automatic size from --spp, as --plan sizes it): then each cell unit is
+  // scored as it renders and only its first seed's images stay. Otherwise the reference is sized
+  // by the samples every cell actually reached (equal-time renders may reach far more than
+  // --spp), and the cells' renders wait for it.
+  const bool reference_first = o.reference_spp > 0 || !(o.equal_time > 0);
+  auto renderCell = [&](size_t k) { return runUnit(scene, facts, o, plan, k); };
+  std::vector<UnitResult> waiting;
+  if (!reference_first)
+    for (size_t k = 0; k < cell_units; ++k) waiting.push_back(renderCell(k));
+  const int largest = reference_first ? (o.spp_list.empty() ? 0 : o.spp_list.back())
+                                      : largestSppReached(plan, waiting);
+  const int reference_spp = o.referenceSpp(largest);
+  // A cached reference with as many samples is reused.
   std::optional<Reference> cached =
       loadCachedReference(desc, scene.instancesFlattened(), o.out, reference_spp, folder.path());
-  const size_t first_reference = plan.units.size();
   planReference(plan, reference_spp, cached ? cached->spp : 0);
   // The reference's partial renders are quiet: one bar for all of them.
   Progress reference_progress(fmt::format("reference ({} spp)", plan.reference_spp),
-                              uint64_t(plan.units.size() - first_reference), o.common.quiet);
-  for (size_t k = first_reference; k < plan.units.size(); ++k) {
-    results.push_back(runUnit(scene, facts, o, plan, k));
+                              uint64_t(plan.units.size() - cell_units), o.common.quiet);
+  for (size_t k = cell_units; k < plan.units.size(); ++k) {
+    merge.addReferencePartial(runUnit(scene, facts, o, plan, k).renders.at(0));
     reference_progress.update();
   }
   reference_progress.done();
-  return printReport(o, reportStudy(o, desc, plan, results, folder, std::move(cached)));
+  if (cached)
+    merge.useCachedReference(std::move(*cached));
+  else
+    merge.finishReference(scene.instancesFlattened(), folder.path());
+  auto addCell = [&](size_t k, UnitResult r) {
+    const std::vector<RunScore> scores = merge.score(r);
+    merge.addCellUnit(k, std::move(r), scores);
+  };
+  for (size_t k = 0; k < cell_units; ++k)  // each render draws its own progress bar
+    addCell(k, reference_first ? renderCell(k) : std::exchange(waiting[k], UnitResult{}));
+  return printReport(o, reportStudy(o, desc, merge.finish(), merge.reference(), folder));
 }
 
-// `render-compare --merge DIR`: the report of a plan folder whose units have all run.
+// `render-compare --merge DIR`: the report of a plan folder whose units have all run, read unit
+// by unit (study/study_merge.h).
 int mergeStudy(const fs::path& dir) {
   // Loading OpenImageIO (~0.4 s of CPU in the dynamic loader, one thread) overlaps the reading of
-  // the units instead of adding to it. A missing module still fails before anything is written.
+  // the units instead of adding to it. A missing module still fails before the report is
+  // committed.
   std::future<void> module = std::async(std::launch::async, [] { oiioModule(); });
   PlannedStudy in =
       readPlannedStudy(dir, "merge with the program named in the plan, or plan again");
-  std::vector<UnitResult> results = readUnitResults(dir, in.plan, in.desc);
-  module.get();
   StagedFolder folder(in.options.out, "render-compare", "report.json");
+  StudyMerge merge(in.options, in.plan, in.desc);
+  StudyMerge::Cells cells = mergeUnitFiles(merge, dir, in.plan, in.desc, folder.path());
+  module.get();
   return printReport(in.options,
-                     reportStudy(in.options, in.desc, in.plan, results, folder, std::nullopt));
+                     reportStudy(in.options, in.desc, std::move(cells), merge.reference(), folder));
 }
 
 // `render-compare --run-unit DIR K`: reads the plan, loads the scene (checking its hash against

@@ -13,6 +13,7 @@
 #include "util/error.h"
 #include "util/fnv1a.h"
 #include "util/input_file.h"
+#include "util/json_field.h"
 #include "util/rng.h"
 
 namespace proxyvis {
@@ -30,9 +31,10 @@ bool loadCached(Reference& ref, const fs::path& json_file, int width, int height
   std::error_code ec;
   if (!fs::exists(ref.file, ec) || !fs::exists(json_file, ec)) return false;
   try {
-    nlohmann::json j = nlohmann::json::parse(readTextFile(json_file));
+    const nlohmann::json j = nlohmann::json::parse(readTextFile(json_file));
+    const JsonField f(j, "", json_file);
     Image image = readImage(ref.file);
-    if (j.at("key") != ref.key || j.at("spp").get<int>() < min_spp || image.width != width ||
+    if (f["key"].asString() != ref.key || f["spp"].asInt() < min_spp || image.width != width ||
         image.height != height || image.channels < 3)
       return false;
     for (float v : image.pixels)
@@ -45,10 +47,10 @@ bool loadCached(Reference& ref, const fs::path& json_file, int width, int height
       image = std::move(rgb);
     }
     ref.radiance = std::move(image);
-    ref.spp = j.at("spp").get<int>();
-    ref.partials = j.at("partials").get<int>();
-    ref.variance_of_mean = j.at("variance_of_mean").get<double>();
-    ref.seconds = j.at("seconds").get<double>();
+    ref.spp = f["spp"].asInt();
+    ref.partials = f["partials"].asInt();
+    ref.variance_of_mean = f["variance_of_mean"].asDouble();
+    ref.seconds = f["seconds"].asDouble();
     ref.cached = true;
     return true;
   } catch (const std::exception&) {
@@ -108,16 +110,14 @@ RenderSettings referencePartialSettings(int partial, int per_partial) {
 }
 
 Reference finishReference(const SceneDesc& desc, bool flattened,
-                          const std::vector<const Image*>& partials, int per_partial,
-                          double seconds, const fs::path& write_dir) {
+                          const ImageVarianceAccumulator& acc, int per_partial, double seconds,
+                          const fs::path& write_dir) {
   Reference ref;
   ref.key = referenceKey(desc, flattened);
-  ref.partials = int(partials.size());
+  ref.partials = acc.count();
   ref.spp = per_partial * ref.partials;
   ref.file = write_dir / ("reference-" + ref.key + ".exr");
   const fs::path json_file = write_dir / ("reference-" + ref.key + ".json");
-  ImageVarianceAccumulator acc;
-  for (const Image* p : partials) acc.add(p->pixels);
   ref.seconds = seconds;
   ref.variance_of_mean = acc.meanVarianceOfMean();
   ref.radiance = Image{desc.camera.width, desc.camera.height, 3, acc.mean()};

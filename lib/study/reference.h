@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "image/image_io.h"
+#include "metrics/image_variance.h"
 #include "render/renderer.h"
 #include "scene/scene_desc.h"
 
@@ -45,11 +46,12 @@ std::optional<Reference> loadCachedReference(const SceneDesc& desc, bool flatten
 // --seed, so one cached reference serves every seed).
 RenderSettings referencePartialSettings(int partial, int per_partial);
 
-// The reference as the mean of its partial renders (in partial order), written to `write_dir`
-// (EXR and its settings as JSON). `seconds` is the partials' summed render time.
+// The reference as the mean of its partial renders (added to `partials` in partial order, each
+// dropped once added), written to `write_dir` (EXR and its settings as JSON). `seconds` is the
+// partials' summed render time.
 Reference finishReference(const SceneDesc& desc, bool flattened,
-                          const std::vector<const Image*>& partials, int per_partial,
-                          double seconds, const std::filesystem::path& write_dir);
+                          const ImageVarianceAccumulator& partials, int per_partial, double seconds,
+                          const std::filesystem::path& write_dir);
 // The reference's image metadata (render/image_metadata.h); `content` says what the file shows.
 std::vector<ImageAttribute> referenceAttributes(const SceneDesc& scene, const Reference& ref,
                                                 const std::string& content);

@@ -25,9 +25,14 @@ RenderSettings runSettings(const CompareOptions& options, EstimatorKind kind, in
   return settings;
 }
 
-void addRun(CellResult& cell, RenderResult r, const std::filesystem::path& scene,
-            const CompareOptions& options, EstimatorKind kind, std::string_view table, int run,
-            int runs) {
+RunScore scoreRun(const Image& radiance, const Image& reference) {
+  return {meanSquaredError(radiance.pixels, reference.pixels),
+          relativeMeanSquaredError(radiance.pixels, reference.pixels)};
+}
+
+void addRun(CellResult& cell, RenderResult r, const RunScore& score, const Image& reference,
+            const std::filesystem::path& scene, const CompareOptions& options, EstimatorKind kind,
+            std::string_view table, int run, int runs) {
   requireFinitePixels(r.radiance, scene,
                       fmt::format("the {} render (seed {})", estimatorName(kind), run + 1));
   ReportRow& row = cell.row;
@@ -42,10 +47,10 @@ void addRun(CellResult& cell, RenderResult r, const std::filesystem::path& scene
   if (!options.common.quiet)
     std::fprintf(stderr, "render-compare: %-13s %-10s seed %d/%d: %5d spp %7.3f s\n",
                  estimatorName(kind), std::string(table).c_str(), run + 1, runs, r.spp, r.seconds);
-  // The first run's radiance is kept twice (the cell's images use it after scoring); the
-  // others are moved, not copied: a merge holds hundreds of megabytes of them.
-  cell.radiance_per_seed.push_back(run == 0 ? r.radiance : std::move(r.radiance));
+  cell.mse_per_run.push_back(score.mse);
+  cell.relmse_per_run.push_back(score.relmse);
   if (run == 0) {
+    cell.error_map = squaredErrorPerPixel(r.radiance.pixels, reference.pixels, 3);
     row.proxy_class = proxyClassName(r.proxy_class);
     if (kind == EstimatorKind::kRoulette) row.learned = r.learned;
     cell.first = std::move(r);
@@ -101,16 +106,10 @@ void requireFiniteRows(const std::vector<ReportRow>& rows, const std::filesystem
                   "scale the scene's light and material values down");
 }
 
-void scoreCell(CellResult& cell, const Image& reference) {
+void scoreCell(CellResult& cell) {
   // One MSE per run, in run order (ReportRow::mse_per_seed pairs with seconds_per_seed).
-  std::vector<double> mse, relmse;
-  for (const Image& image : cell.radiance_per_seed) {
-    mse.push_back(meanSquaredError(image.pixels, reference.pixels));
-    relmse.push_back(relativeMeanSquaredError(image.pixels, reference.pixels));
-  }
-  cell.error_map = squaredErrorPerPixel(cell.first.radiance.pixels, reference.pixels, 3);
-  cell.radiance_per_seed.clear();
-  SeedSummary m = summarizeSeeds(mse), rel = summarizeSeeds(relmse);
+  const std::vector<double>& mse = cell.mse_per_run;
+  SeedSummary m = summarizeSeeds(mse), rel = summarizeSeeds(cell.relmse_per_run);
   ReportRow& row = cell.row;
   row.mse = m.mean;
   row.mse_stderr = m.standard_error;

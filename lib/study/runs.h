@@ -19,9 +19,10 @@ namespace proxyvis {
 struct CellResult {
   ReportRow row;       // errors filled by scoreCell(), efficiency by the caller (needs exact's row)
   RenderResult first;  // the render of the first seed (images for the report)
-  uint64_t first_seed = 0;               // its RenderSettings::seed (image metadata)
-  std::vector<Image> radiance_per_seed;  // kept until scoreCell(); one per run
-  std::vector<float> error_map;          // per-pixel squared error of the first seed
+  uint64_t first_seed = 0;       // its RenderSettings::seed (image metadata)
+  std::vector<float> error_map;  // per-pixel squared error of the first seed
+  // Per run, in run order: its errors against the reference (scoreRun), summed up by scoreCell().
+  std::vector<double> mse_per_run, relmse_per_run;
   // Per run, summed up by finishCell().
   std::vector<double> spp_reached, shading_seconds, visibility_seconds, cpu_seconds;
 };
@@ -31,10 +32,18 @@ struct CellResult {
 RenderSettings runSettings(const CompareOptions& options, EstimatorKind kind, int spp,
                            double time_budget, int run);
 
-// Adds run `run` (of `runs`) to the cell; `table` only names it on stderr, `scene` in errors.
-void addRun(CellResult& cell, RenderResult r, const std::filesystem::path& scene,
-            const CompareOptions& options, EstimatorKind kind, std::string_view table, int run,
-            int runs);
+// A run's errors against the reference, computed as its render arrives (the images of the
+// other seeds are then dropped: a merge's memory does not grow with its units).
+struct RunScore {
+  double mse = 0, relmse = 0;
+};
+RunScore scoreRun(const Image& radiance, const Image& reference);
+
+// Adds run `run` (of `runs`) with its score to the cell; the first run's render is kept with its
+// error map against `reference`. `table` only names it on stderr, `scene` in errors.
+void addRun(CellResult& cell, RenderResult r, const RunScore& score, const Image& reference,
+            const std::filesystem::path& scene, const CompareOptions& options, EstimatorKind kind,
+            std::string_view table, int run, int runs);
 
 // The row's means over the runs (after every addRun()). time_budget > 0 for equal-time.
 void finishCell(CellResult& cell, EstimatorKind kind, std::string_view table, double time_budget,
@@ -58,7 +67,7 @@ void requireFinitePixels(const Image& image, const std::filesystem::path& scene,
 // Throws Error naming `scene` if a row's MSE, relMSE or efficiency is not finite.
 void requireFiniteRows(const std::vector<ReportRow>& rows, const std::filesystem::path& scene);
 
-// MSE, relMSE and their standard errors over the runs; frees the per-run images.
-void scoreCell(CellResult& cell, const Image& reference);
+// MSE, relMSE and their standard errors over the runs' scores.
+void scoreCell(CellResult& cell);
 
 }  // namespace proxyvis

@@ -10,10 +10,8 @@
 #include "metrics/html_report.h"
 #include "metrics/image_error.h"
 #include "study/outputs.h"
-#include "study/study.h"
 #include "util/atomic_write.h"
 #include "util/output_set.h"
-#include "util/parallel_in_order.h"
 
 namespace proxyvis {
 
@@ -173,38 +171,28 @@ HtmlReportLayout writeStudyImages(const CompareOptions& o, const SceneDesc& desc
 
 }  // namespace
 
-Report reportStudy(const CompareOptions& o, const SceneDesc& desc, const StudyPlan& plan,
-                   std::vector<UnitResult>& results, StagedFolder& folder,
-                   std::optional<Reference> cached_reference) {
+Report reportStudy(const CompareOptions& o, const SceneDesc& desc, StudyMerge::Cells study,
+                   const Reference& ref, StagedFolder& folder) {
   const fs::path& dir = folder.path();
-  const SceneFacts& facts = results.front().facts;
+  const SceneFacts& facts = study.facts;
   if (!facts.uses_proxies && !o.common.quiet)
     std::fprintf(stderr, "render-compare: warning: %s: %s\n", desc.path.filename().string().c_str(),
                  kNoProxiesNote);
-  StudyCells study = assembleCells(o, plan, results, desc.path);
   std::vector<CellResult>& cells = study.cells;
   const std::vector<std::string>& stems = study.stems;
-  // The attainable gain, from this run's own measurements (docs/performance.md, the ceiling).
-  const ReportCeiling ceiling = studyCeiling(o, plan, results, cells);
-  double reference_seconds = 0;
-  const std::vector<const Image*> partials = referencePartials(plan, results, reference_seconds);
-  Reference ref = cached_reference
-                      ? std::move(*cached_reference)
-                      : finishReference(desc, facts.instances_flattened, partials,
-                                        plan.reference_per_partial, reference_seconds, dir);
   if (!o.common.quiet)
     std::fprintf(stderr,
                  "render-compare: reference %s (exact, %d spp in %d partial renders, %.1f s, "
                  "variance of mean %.2e)%s\n",
                  (o.out / ref.file.filename()).string().c_str(), ref.spp, ref.partials, ref.seconds,
                  ref.variance_of_mean, ref.cached ? " [cached: rendered by an earlier run]" : "");
-  parallelInOrder(cells.size(), [&](size_t i) { scoreCell(cells[i], ref.radiance); });
 
   Report report = makeReport(o, desc, facts, ref);
   for (const CellResult& c : cells) report.rows.push_back(c.row);
   fillRelativeEfficiency(report.rows, kEqualSppTable);
   fillRelativeEfficiency(report.rows, kEqualTimeTable);
-  applyCeiling(report, ceiling);
+  // The attainable gain, from this run's own measurements (docs/performance.md, the ceiling).
+  applyCeiling(report, study.ceiling);
   if (std::find(o.estimator_list.begin(), o.estimator_list.end(), EstimatorKind::kExact) ==
       o.estimator_list.end())
     report.notes.push_back(

@@ -11,15 +11,15 @@
 #include "scene/scene_desc.h"
 #include "study/compare_options.h"
 #include "study/reference.h"
+#include "study/study_merge.h"
 #include "study/unit.h"
 #include "util/staged_folder.h"
 
 namespace proxyvis {
 
-// Writes the report into `folder` and commits it (then --json's copy); `cached_reference` is an
-// earlier run's reference (else the plan's reference units give it). Returns the report.
-Report reportStudy(const CompareOptions& options, const SceneDesc& desc, const StudyPlan& plan,
-                   std::vector<UnitResult>& results, StagedFolder& folder,
-                   std::optional<Reference> cached_reference);
+// Writes the report of the merged cells (study_merge.h) against `reference` into `folder` and
+// commits it (then --json's copy). Returns the report.
+Report reportStudy(const CompareOptions& options, const SceneDesc& desc, StudyMerge::Cells cells,
+                   const Reference& reference, StagedFolder& folder);
 
 }  // namespace proxyvis
