@@ -101,7 +101,7 @@ nlohmann::json reportToJson(const Report& report) {
   nlohmann::json rows = nlohmann::json::array();
   for (const ReportRow& r : report.rows) rows.push_back(rowToJson(r));
   nlohmann::json meta = report.meta;
-  if (report.ceiling) meta["ceiling"] = ceilingToJson(*report.ceiling);
+  if (report.ceiling) meta["ceiling"] = *report.ceiling;
   return {{"title", report.title},
           {"scene_name", report.scene_name},
           {"relmse_epsilon", kRelMseEpsilon},
