@@ -145,6 +145,7 @@ changed_labels() {
       lib/util/* | CMakeLists.txt | */CMakeLists.txt | *.cmake | setup.sh | data/* | scenes/*)
         echo "all"; return ;;
       lib/distributed/*) labels+=(distributed mpi); continue ;;
+      lib/plan/* | lib/study/*) labels+=(plan study apps bad_inputs slurm); continue ;;
       lib/* | tests/*) area=${f#*/}; area=${area%%/*} ;;
       proxies/*) area=proxies ;;
       apps/*) labels+=(apps bad_inputs); continue ;;

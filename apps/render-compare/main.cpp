@@ -4,35 +4,29 @@
 // HTML report. docs/design.md ("Error metrics"), §2b (what the baseline must be).
 #include <fmt/format.h>
 #include <tbb/global_control.h>
+#include <tbb/info.h>
 
-#include <algorithm>
 #include <cstdio>
-#include <fstream>
 #include <future>
-#include <limits>
+#include <optional>
+#include <utility>
 
-#include "ceiling_phase.h"
-#include "compare_options.h"
-#include "data_parallel_study.h"
+#include "compare_flags.h"
 #include "huge_page_malloc.h"
-#include "image/image_io.h"
 #include "image/oiio_module.h"
-#include "metrics/html_report.h"
 #include "metrics/image_error.h"
-#include "metrics/report.h"
-#include "outputs.h"
-#include "parallel_in_order.h"
+#include "plan/unit_stamp.h"
 #include "proxies/check/class_trust.h"
-#include "reference.h"
 #include "render/render_scene.h"
-#include "runs.h"
 #include "scene/scene_desc.h"
-#include "study.h"
+#include "study/data_parallel_study.h"
+#include "study/reference.h"
+#include "study/study.h"
+#include "study/study_merge.h"
+#include "study/study_report.h"
 #include "util/app_main.h"
-#include "util/atomic_write.h"
 #include "util/error.h"
 #include "util/output_path.h"
-#include "util/output_set.h"
 #include "util/progress.h"
 #include "util/staged_folder.h"
 
@@ -41,216 +35,23 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr const char* kNoProxiesNote =
-    "no mesh of this scene has a proxy: every estimator traces the originals, so the comparison "
-    "only measures estimator overhead (generate proxies with proxy-gen, then compare the scene "
-    "it writes)";
-
-std::string listText(const std::vector<int>& v) {
-  std::string s;
-  for (int x : v) s += (s.empty() ? "" : ",") + std::to_string(x);
-  return s;
-}
-
-void addReferenceNotes(Report& report, const Reference& ref, bool quiet) {
-  double min_mse = std::numeric_limits<double>::infinity();
-  for (const ReportRow& r : report.rows) min_mse = std::min(min_mse, r.mse);
-  double ratio = min_mse > 0 ? ref.variance_of_mean / min_mse : 0;
-  report.meta["reference_to_min_mse"] = ratio;
-  std::string text = fmt::format(
-      "Reference: exact, {} spp ({} partial renders, {:.1f} s{}); its own estimated variance of "
-      "the mean, averaged over the image, is {:.2e} = {:.2g}% of the smallest MSE compared "
-      "({:.2e}).",
-      ref.spp, ref.partials, ref.seconds,
-      ref.cached ? ", rendered by an earlier run and cached" : "", ref.variance_of_mean,
-      100 * ratio, min_mse);
-  report.notes.push_back(text);
-  if (ratio > 0.1) {
-    std::string warning = fmt::format(
-        "WARNING: the reference is not converged relative to the MSEs compared (its variance is "
-        "{:.0f}% of the smallest MSE); raise --reference-spp.",
-        100 * ratio);
-    report.notes.push_back(warning);
-    if (!quiet) std::fprintf(stderr, "render-compare: %s\n", warning.c_str());
+// The proxies' class decisions (proxies/check/class_trust.h) in the scene's facts: every proxy in
+// the report's meta, a note for each whose claimed class was not taken as is.
+SceneFacts trustedSceneFacts(const TrustedRenderScene& loaded) {
+  SceneFacts f = sceneFacts(*loaded.scene);
+  for (const ProxyTrust& t : loaded.trust) {
+    f.proxy_classes.push_back(
+        {t.mesh, t.proxy.filename().string(), t.claimed ? proxyClassName(*t.claimed) : "none",
+         proxyClassName(t.trust.trusted), classStatusName(t.trust.status), t.trust.reason});
+    if (t.trust.status == ClassStatus::kReVerified || t.trust.status == ClassStatus::kDowngraded)
+      f.trust_notes.push_back("Proxy class " + describeProxyTrust(t));
   }
+  return f;
 }
 
-// Equal time means equal measured time: the renderer fits its last pass to the budget, but a
-// render can still end past it (its first pass, a slow last sample). Said when any row of the
-// table ends more than 5 % past the budget, so its efficiency is read with that in mind.
-void addOvershootNote(Report& report, double budget) {
-  if (!(budget > 0)) return;
-  double worst = 0;
-  std::string who;
-  for (const ReportRow& r : report.rows)
-    if (r.table == kEqualTimeTable && r.seconds - budget > worst)
-      worst = r.seconds - budget, who = r.estimator;
-  report.meta["equal_time_max_overshoot_seconds"] = worst;
-  if (worst > 0.05 * budget)
-    report.notes.push_back(fmt::format(
-        "Equal time: {} took {:.3f} s for a budget of {:g} s ({:+.0f}%); the efficiency column "
-        "uses the measured times.",
-        who, budget + worst, budget, 100 * worst / budget));
-}
-
-Report makeReport(const CompareOptions& o, const SceneDesc& desc, const SceneFacts& scene,
-                  const Reference& ref) {
-  Report report;
-  report.title = "render-compare: visibility estimators compared";
-  report.scene_name = desc.displayName();
-  report.meta["scene"] = desc.path.string();
-  report.meta["scene_hash"] = sceneHash(desc);
-  report.meta["resolution"] = fmt::format("{}x{}", desc.camera.width, desc.camera.height);
-  report.meta["spp"] = listText(o.spp_list);
-  report.meta["equal_time_seconds"] = o.equal_time;
-  report.meta["seeds"] = o.seeds;
-  report.meta["repeats"] = o.repeats;
-  report.meta["timing"] = interleavedTimingMeta(o);
-  report.meta["seed"] = o.common.seed;
-  report.meta["threads"] =
-      tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
-  report.meta["proxy_class"] = proxyClassName(scene.proxy_class);
-  report.meta["uses_proxies"] = scene.uses_proxies;
-  report.meta["original_triangles"] = scene.original_triangles;
-  report.meta["proxy_triangles"] = scene.proxy_triangles;
-  report.meta["reference_spp"] = ref.spp;
-  report.meta["reference_partials"] = ref.partials;
-  report.meta["reference_seconds"] = ref.seconds;
-  report.meta["reference_variance_of_mean"] = ref.variance_of_mean;
-  report.meta["reference_file"] = ref.file.filename().string();
-  report.meta["reference_cached"] = ref.cached;
-  report.meta["relmse_epsilon"] = kRelMseEpsilon;
-  // Each proxy's class status (class_trust.h): a note per proxy whose claim was not taken as is,
-  // and every proxy in the JSON meta.
-  for (const std::string& note : scene.trust_notes) report.notes.push_back(note);
-  report.meta["proxy_classes"] = scene.proxy_classes;
-  for (const std::string& w : scene.warnings) report.notes.push_back("Scene: " + w);
-  if (o.equal_time > 0) report.notes.push_back(interleavedTimingNote(o));
-  if (!scene.uses_proxies) report.notes.push_back(std::string("Warning: ") + kNoProxiesNote + ".");
-  // The exact baseline should be the fastest exact configuration that fits in memory: say which.
-  report.meta["build"] = scene.build;
-  report.meta["build_reason"] = scene.build_reason;
-  report.notes.push_back("Exact baseline: " + scene.build_description + ": " + scene.build_reason +
-                         ".");
-  report.notes.push_back(
-      o.render.fixed_costs
-          ? "roulette uses the fixed costs of --roulette-costs: bit-reproducible."
-          : "roulette measures its ray costs with the CPU tick counter: its choices (never its "
-            "expectation) depend on timing, so its images are unbiased but not bit-reproducible "
-            "(--roulette-costs fixes them).");
-  return report;
-}
-
-// Images and heat-maps; one colour scale per kind of map and table, so the maps of the
-// estimators in one table compare.
-HtmlReportLayout writeStudyImages(const CompareOptions& o, const SceneDesc& desc,
-                                  const Reference& ref, const Report& report,
-                                  std::vector<CellResult>& cells,
-                                  const std::vector<std::string>& stems, const fs::path& dir) {
-  float exposure = autoExposure(ref.radiance);
-  const std::string reference_png = "reference.png";
-  const std::string reference_exr = ref.file.filename().string();
-  ImageWriteOptions reference_png_options;
-  reference_png_options.exposure = exposure;
-  reference_png_options.attributes =
-      referenceAttributes(desc, ref, "radiance of the exact reference, tone-mapped");
-  writeImage(ref.radiance, dir / reference_png, reference_png_options);
-  writeColorBar(dir);
-  HtmlReportLayout layout;
-  layout.plots.push_back(mseTimePlot(report.rows));
-  std::vector<TableImages> tables;
-  auto addTable = [&](std::string_view table, double spp, const std::string& title) {
-    std::vector<CellImages> images;
-    std::vector<const std::vector<float>*> error_maps, cost_ptrs;
-    std::vector<std::vector<float>> cost_maps;
-    for (size_t i = 0; i < cells.size(); ++i) {
-      const ReportRow& row = cells[i].row;
-      if (row.table != table || (table == kEqualSppTable && row.spp != spp)) continue;
-      images.push_back({stems[i], &cells[i]});
-      error_maps.push_back(&cells[i].error_map);
-      cost_maps.push_back(raysPerPixel(cells[i].first.cost));
-    }
-    for (const auto& m : cost_maps) cost_ptrs.push_back(&m);
-    HeatMapRange error_range = sharedLogRange(error_maps), cost_range = sharedLogRange(cost_ptrs);
-    tables.push_back({images, error_range, cost_range});  // written below, all in parallel
-    return cellGalleries(title, reference_png, reference_exr, images, error_range, cost_range);
-  };
-  auto add = [&](const std::vector<HtmlGallery>& g, bool shown) {
-    if (shown) layout.galleries.insert(layout.galleries.end(), g.begin(), g.end());
-  };
-  if (o.equal_time > 0)
-    add(addTable(kEqualTimeTable, 0, fmt::format("Equal time ({:g} s)", o.equal_time)), true);
-  // Every equal-spp cell gets its files; the HTML shows the largest spp.
-  for (int spp : o.spp_list)
-    add(addTable(kEqualSppTable, spp, fmt::format("Equal samples ({} spp)", spp)),
-        spp == o.spp_list.back());
-  writeReportImages(tables, desc, dir, exposure);
-  std::vector<CellImages> all_cells;
-  for (size_t i = 0; i < cells.size(); ++i) all_cells.push_back({stems[i], &cells[i]});
-  layout.files = runFileGroups(reference_png, reference_exr, all_cells);
-  return layout;
-}
-
-// The report from the study's unit results (shared by the single-machine run and --merge, so
-// that the two cannot drift): cells assembled in unit order, scored against the reference, the
-// tables, images and HTML written to `folder`, which is committed.
-int reportStudy(const CompareOptions& o, const SceneDesc& desc, const StudyPlan& plan,
-                std::vector<UnitResult>& results, StagedFolder& folder,
-                std::optional<Reference> cached_reference) {
-  const fs::path& dir = folder.path();
-  const SceneFacts& facts = results.front().facts;
-  if (!facts.uses_proxies && !o.common.quiet)
-    std::fprintf(stderr, "render-compare: warning: %s: %s\n", desc.path.filename().string().c_str(),
-                 kNoProxiesNote);
-  StudyCells study = assembleCells(o, plan, results, desc.path);
-  std::vector<CellResult>& cells = study.cells;
-  const std::vector<std::string>& stems = study.stems;
-  // The attainable gain, from this run's own measurements (docs/performance.md, the ceiling).
-  const ReportCeiling ceiling = studyCeiling(o, plan, results, cells);
-  double reference_seconds = 0;
-  const std::vector<const Image*> partials = referencePartials(plan, results, reference_seconds);
-  Reference ref = cached_reference
-                      ? std::move(*cached_reference)
-                      : finishReference(desc, facts.instances_flattened, partials,
-                                        plan.reference_per_partial, reference_seconds, dir);
-  if (!o.common.quiet)
-    std::fprintf(stderr,
-                 "render-compare: reference %s (exact, %d spp in %d partial renders, %.1f s, "
-                 "variance of mean %.2e)%s\n",
-                 (o.out / ref.file.filename()).string().c_str(), ref.spp, ref.partials, ref.seconds,
-                 ref.variance_of_mean, ref.cached ? " [cached: rendered by an earlier run]" : "");
-  parallelInOrder(cells.size(), [&](size_t i) { scoreCell(cells[i], ref.radiance); });
-
-  Report report = makeReport(o, desc, facts, ref);
-  for (const CellResult& c : cells) report.rows.push_back(c.row);
-  fillRelativeEfficiency(report.rows, kEqualSppTable);
-  fillRelativeEfficiency(report.rows, kEqualTimeTable);
-  applyCeiling(report, ceiling);
-  if (std::find(o.estimator_list.begin(), o.estimator_list.end(), EstimatorKind::kExact) ==
-      o.estimator_list.end())
-    report.notes.push_back(
-        "exact was not among --estimators: efficiencies are n/a (null in the JSON).");
-  addReferenceNotes(report, ref, o.common.quiet);
-  addOvershootNote(report, o.equal_time);
-  requireFiniteRows(report.rows, desc.path);
-  for (size_t i = 0; i < cells.size(); ++i) cells[i].row = report.rows[i];
-
-  const HtmlReportLayout layout = writeStudyImages(o, desc, ref, report, cells, stems, dir);
-
-  nlohmann::json json = reportToJson(report);
-  const std::string json_text = json.dump(2) + "\n";
-  writeTextAtomically(dir / "report.json", json_text);
-  writeTextAtomically(dir / "report.csv", reportToCsv(report.rows));
-  writeTextAtomically(dir / "report.md", reportToMarkdown(report));
-  writeTextAtomically(dir / "report.html", reportToHtml(report, layout));
-  folder.commit();  // the manifest last, then the folder in place
+// stdout: the headline table and where the report is.
+int printReport(const CompareOptions& o, const Report& report) {
   const fs::path html = o.out / "report.html";
-  if (!o.common.json_path.empty()) {
-    OutputSet json_output(MissingFolders::kCreate);
-    json_output.addText(o.common.json_path, json_text);
-    json_output.commit();
-  }
-
   // stdout: the equal-time table (the headline) and where the report is. With --json - the
   // JSON owns stdout, so the human text goes to stderr.
   FILE* human = jsonOnStdout(o.common) ? stderr : stdout;
@@ -265,6 +66,27 @@ int reportStudy(const CompareOptions& o, const SceneDesc& desc, const StudyPlan&
   return kExitOk;
 }
 
+// The plan in DIR, its options and its scene, refused when the plan is of another build.
+struct PlannedStudy {
+  StudyPlan plan;
+  CompareOptions options;
+  SceneDesc desc;
+};
+PlannedStudy readPlannedStudy(const fs::path& dir, const std::string& to_do,
+                              std::optional<size_t> unit = std::nullopt) {
+  PlannedStudy s;
+  s.plan = readPlan(dir);
+  const fs::path plan_file = dir / "plan.json";
+  if (unit && *unit >= s.plan.units.size())
+    throw Error(plan_file.string(), fmt::format("the plan has no unit {}", *unit),
+                fmt::format("its units are 0..{}", s.plan.units.size() - 1),
+                "give a unit of the plan");
+  requirePlanningBuild(s.plan.build, plan_file, to_do);
+  parseStudyArgs(s.plan.args, s.options, plan_file);
+  s.desc = plannedScene(s.plan, s.options);
+  return s;
+}
+
 // The single-machine run: the study's plan with every unit run in process, then the merge.
 int runCompare(CompareOptions& o, const CLI::App& app, const fs::path& plan_dir) {
   checkOutputs({o.scene.string()},
@@ -272,7 +94,16 @@ int runCompare(CompareOptions& o, const CLI::App& app, const fs::path& plan_dir)
   o.resolve();
   SceneDesc desc = loadSceneDesc(o.scene);
   o.render.applyTo(desc);
-  if (!plan_dir.empty()) return writeStudyPlan(app, o, desc, plan_dir);
+  if (!plan_dir.empty()) {
+    const StudyPlan plan = writeStudyPlan(studyArgs(app, o), o, desc, plan_dir);
+    const fs::path dir = fs::absolute(plan_dir).lexically_normal();
+    std::printf(
+        "render-compare: plan %s: %zu units (%d reference partials); run them with "
+        "scripts/slurm/submit.sh %s\n",
+        (dir / "plan.json").string().c_str(), plan.units.size(), plan.reference_partials,
+        dir.string().c_str());
+    return kExitOk;
+  }
   // The report folder is written under a temporary name and swapped in at the end: a rerun
   // leaves nothing of the previous report, a failed or killed one leaves it intact. Staged
   // before any rendering, so an unwritable --out fails in a second (exit 3).
@@ -284,38 +115,81 @@ int runCompare(CompareOptions& o, const CLI::App& app, const fs::path& plan_dir)
   TrustedRenderScene loaded =
       loadTrustedRenderScene(desc, o.render.sceneOptions(o.common.quiet), "render-compare");
   const RenderScene& scene = *loaded.scene;
-  const SceneFacts facts = sceneFacts(scene, loaded.trust);
-  StudyPlan plan = newStudyPlan(app, o, desc);
-  std::vector<UnitResult> results;
-  for (size_t k = 0; k < plan.units.size(); ++k)  // each render draws its own progress bar
-    results.push_back(runUnit(scene, facts, o, plan, k));
-  // The reference is sized by the samples every cell actually reached (equal-time renders may
-  // reach far more than --spp); a cached one with as many is reused.
-  const int reference_spp = o.referenceSpp(largestSppReached(plan, results));
+  const SceneFacts facts = trustedSceneFacts(loaded);
+  StudyPlan plan = newStudyPlan(studyArgs(app, o), o, desc);
+  const size_t cell_units = plan.units.size();
+  StudyMerge merge(o, plan, desc);
+  // The reference first when its size is known before the cells (--reference-spp, or no
+  // equal-time table: the automatic size from --spp, as --plan sizes it): then each cell unit is
+  // scored as it renders and only its first seed's images stay. Otherwise the reference is sized
+  // by the samples every cell actually reached (equal-time renders may reach far more than
+  // --spp), and the cells' renders wait for it.
+  const bool reference_first = o.reference_spp > 0 || !(o.equal_time > 0);
+  auto renderCell = [&](size_t k) { return runUnit(scene, facts, o, plan, k); };
+  std::vector<UnitResult> waiting;
+  if (!reference_first)
+    for (size_t k = 0; k < cell_units; ++k) waiting.push_back(renderCell(k));
+  const int largest = reference_first ? (o.spp_list.empty() ? 0 : o.spp_list.back())
+                                      : largestSppReached(plan, waiting);
+  const int reference_spp = o.referenceSpp(largest);
+  // A cached reference with as many samples is reused.
   std::optional<Reference> cached =
       loadCachedReference(desc, scene.instancesFlattened(), o.out, reference_spp, folder.path());
-  const size_t first_reference = plan.units.size();
   planReference(plan, reference_spp, cached ? cached->spp : 0);
   // The reference's partial renders are quiet: one bar for all of them.
   Progress reference_progress(fmt::format("reference ({} spp)", plan.reference_spp),
-                              uint64_t(plan.units.size() - first_reference), o.common.quiet);
-  for (size_t k = first_reference; k < plan.units.size(); ++k) {
-    results.push_back(runUnit(scene, facts, o, plan, k));
+                              uint64_t(plan.units.size() - cell_units), o.common.quiet);
+  for (size_t k = cell_units; k < plan.units.size(); ++k) {
+    merge.addReferencePartial(runUnit(scene, facts, o, plan, k).renders.at(0));
     reference_progress.update();
   }
   reference_progress.done();
-  return reportStudy(o, desc, plan, results, folder, std::move(cached));
+  if (cached)
+    merge.useCachedReference(std::move(*cached));
+  else
+    merge.finishReference(scene.instancesFlattened(), folder.path());
+  auto addCell = [&](size_t k, UnitResult r) {
+    const std::vector<RunScore> scores = merge.score(r);
+    merge.addCellUnit(k, std::move(r), scores);
+  };
+  for (size_t k = 0; k < cell_units; ++k)  // each render draws its own progress bar
+    addCell(k, reference_first ? renderCell(k) : std::exchange(waiting[k], UnitResult{}));
+  return printReport(o, reportStudy(o, desc, merge.finish(), merge.reference(), folder));
 }
 
-// `render-compare --merge DIR`: the report of a plan folder whose units have all run.
+// `render-compare --merge DIR`: the report of a plan folder whose units have all run, read unit
+// by unit (study/study_merge.h).
 int mergeStudy(const fs::path& dir) {
   // Loading OpenImageIO (~0.4 s of CPU in the dynamic loader, one thread) overlaps the reading of
-  // the units instead of adding to it. A missing module still fails before anything is written.
+  // the units instead of adding to it. A missing module still fails before the report is
+  // committed.
   std::future<void> module = std::async(std::launch::async, [] { oiioModule(); });
-  MergeInputs in = readMergeInputs(dir);
-  module.get();
+  PlannedStudy in =
+      readPlannedStudy(dir, "merge with the program named in the plan, or plan again");
   StagedFolder folder(in.options.out, "render-compare", "report.json");
-  return reportStudy(in.options, in.desc, in.plan, in.results, folder, std::nullopt);
+  StudyMerge merge(in.options, in.plan, in.desc);
+  StudyMerge::Cells cells = mergeUnitFiles(merge, dir, in.plan, in.desc, folder.path());
+  module.get();
+  return printReport(in.options,
+                     reportStudy(in.options, in.desc, std::move(cells), merge.reference(), folder));
+}
+
+// `render-compare --run-unit DIR K`: reads the plan, loads the scene (checking its hash against
+// the plan's), renders unit K with SLURM_CPUS_PER_TASK threads when set, writes its result.
+int runUnitCommand(const fs::path& dir, size_t unit, bool quiet) {
+  PlannedStudy in = readPlannedStudy(dir, "run the program named in the plan, or plan again", unit);
+  CompareOptions& o = in.options;
+  o.common.quiet = o.common.quiet || quiet;
+  // The plan's --threads, within the SLURM_CPUS_PER_TASK the caller already applied (the smaller
+  // of two limits wins).
+  const tbb::global_control limit(
+      tbb::global_control::max_allowed_parallelism,
+      o.common.threads > 0 ? size_t(o.common.threads) : size_t(tbb::info::default_concurrency()));
+  TrustedRenderScene loaded =
+      loadTrustedRenderScene(in.desc, o.render.sceneOptions(o.common.quiet), "render-compare");
+  const UnitResult result = runUnit(*loaded.scene, trustedSceneFacts(loaded), o, in.plan, unit);
+  writeUnitResult(dir, in.plan, unit, result);
+  return kExitOk;
 }
 
 // `render-compare --run-unit DIR K` and `--merge DIR`: their own small command lines.

@@ -29,6 +29,8 @@ struct CeilingRegionStats {
   double f2_hm = 0;   // sum of f^2 over HM' segments: per 1/q1 - 1
   double cost_proxy[2] = {0, 0};     // total ns of proxy rays on segments with V' = 0, 1
   double cost_original[2] = {0, 0};  // total ns of original rays on segments with V' = 0, 1
+
+  bool operator==(const CeilingRegionStats&) const = default;
 };
 
 // Adds b's sums into a (light is kept).

@@ -20,6 +20,8 @@ struct ClassCosts {
   // the primary ray's share (docs/design.md, costs point 4). Added to both exact and roulette
   // costs; the larger it is, the more variance matters against ray savings.
   double per_sample = 0;
+
+  bool operator==(const ClassCosts&) const = default;
 };
 
 struct RouletteQ {

@@ -30,6 +30,7 @@
 #include <string>
 #include <vector>
 
+#include "estimate/learned_summary.h"
 #include "estimate/roulette.h"
 #include "util/proxy_class.h"
 #include "util/rng.h"
@@ -59,6 +60,7 @@ struct RayCounts {
     probe += o.probe;
     return *this;
   }
+  bool operator==(const RayCounts&) const = default;
 };
 
 // Traces one shadow segment. Implemented by the renderer, which applies the self-shadowing rule
@@ -103,21 +105,6 @@ struct EstimatorSetup {
   // not bit-reproducible. Set (any unit, e.g. ns from a bench): deterministic output at any thread
   // count.
   std::optional<ClassCosts> fixed_costs;
-};
-
-// What a learning estimator found, for reports (all zero for the others). Costs in the unit of
-// EstimatorSetup::fixed_costs, or ns when measured.
-struct LearnedSummary {
-  uint32_t regions = 0;           // regions with statistics
-  uint32_t regions_roulette = 0;  // of those, regions that used proxy + roulette in the last pass
-  double p_proxy_blocked = 0;     // P(V' = 0) over all learned samples
-  double error_given_blocked = 0, error_given_visible = 0;  // P(V != V' | V' = i)
-  double var_exact = 0;  // mean over samples of V_p(1 - V_p), as learned
-  // Efficiency of the last pass's plans relative to exact everywhere, predicted from the learned
-  // models (sample-weighted Var and Cost summed over regions); 0 when unknown. Exploration cost
-  // is not included.
-  double predicted_efficiency = 0;
-  ClassCosts costs;  // mean over regions' samples
 };
 
 class VisibilityEstimator {

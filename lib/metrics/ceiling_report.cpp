@@ -49,30 +49,31 @@ std::string markdownCell(const std::string& text) {
 
 }  // namespace
 
-nlohmann::json ceilingToJson(const ReportCeiling& c) {
-  nlohmann::json lights = nlohmann::json::array();
-  for (const ReportCeilingLight& l : c.lights)
-    lights.push_back({{"light", l.light},
-                      {"segments", l.segments},
-                      {"p_proxy_blocked", l.p_blocked},
-                      {"p_mh", l.p_mh},
-                      {"p_hm", l.p_hm},
-                      {"var_exact", l.visibility_var},
-                      {"cost_proxy", {l.cost_proxy[0], l.cost_proxy[1]}},
-                      {"cost_original", {l.cost_original[0], l.cost_original[1]}},
-                      {"cost_per_sample", l.cost_shading},
-                      {"regions", l.regions},
-                      {"regions_roulette", l.regions_roulette},
-                      {"ceiling", l.ceiling}});
-  return {{"value", c.value},
-          {"explanation", c.explanation},
-          {"model", c.model},
-          {"passes", c.passes},
-          {"seconds", c.seconds},
-          {"run_share", c.run_share},
-          {"exact_mse_1spp", c.exact_mse_1spp},
-          {"cost_unit", "ns"},
-          {"lights", lights}};
+void to_json(nlohmann::json& j, const ReportCeilingLight& l) {
+  j = {{"light", l.light},
+       {"segments", l.segments},
+       {"p_proxy_blocked", l.p_blocked},
+       {"p_mh", l.p_mh},
+       {"p_hm", l.p_hm},
+       {"var_exact", l.visibility_var},
+       {"cost_proxy", {l.cost_proxy[0], l.cost_proxy[1]}},
+       {"cost_original", {l.cost_original[0], l.cost_original[1]}},
+       {"cost_per_sample", l.cost_shading},
+       {"regions", l.regions},
+       {"regions_roulette", l.regions_roulette},
+       {"ceiling", l.ceiling}};
+}
+
+void to_json(nlohmann::json& j, const ReportCeiling& c) {
+  j = {{"value", c.value},
+       {"explanation", c.explanation},
+       {"model", c.model},
+       {"passes", c.passes},
+       {"seconds", c.seconds},
+       {"run_share", c.run_share},
+       {"exact_mse_1spp", c.exact_mse_1spp},
+       {"cost_unit", "ns"},
+       {"lights", c.lights}};
 }
 
 std::string ceilingMarkdown(const ReportCeiling& c) {

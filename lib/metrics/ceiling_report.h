@@ -36,7 +36,9 @@ struct ReportCeiling {
   std::vector<ReportCeilingLight> lights;
 };
 
-nlohmann::json ceilingToJson(const ReportCeiling& c);
+// report.json's meta.ceiling (an output only: nothing reads it back, so there is no from_json).
+void to_json(nlohmann::json& j, const ReportCeilingLight& l);
+void to_json(nlohmann::json& j, const ReportCeiling& c);
 // A "## Ceiling" section: the explanation, the per-light table, how it was measured.
 std::string ceilingMarkdown(const ReportCeiling& c);
 // The same as an HTML section (<h2>, paragraphs, a table); every text escaped.

@@ -43,19 +43,6 @@ std::string tableTitle(std::string_view table) {
   return std::string(table);
 }
 
-nlohmann::json learnedToJson(const ReportLearned& l) {
-  return {{"regions", l.regions},
-          {"regions_roulette", l.regions_roulette},
-          {"p_proxy_blocked", l.p_proxy_blocked},
-          {"error_given_blocked", l.error_given_blocked},
-          {"error_given_visible", l.error_given_visible},
-          {"var_exact", l.var_exact},
-          {"cost_proxy", {l.cost_proxy[0], l.cost_proxy[1]}},
-          {"cost_original", {l.cost_original[0], l.cost_original[1]}},
-          {"cost_per_sample", l.cost_per_sample},
-          {"predicted_efficiency", l.predicted_efficiency}};
-}
-
 }  // namespace
 
 std::string ofCeilingText(const ReportRow& r) {
@@ -103,7 +90,7 @@ nlohmann::json rowToJson(const ReportRow& r) {
     j["budget_overshoot_seconds"] = r.budget_overshoot_seconds;
   }
   addEfficiencySpreadKeys(j, r);
-  if (r.learned) j["learned"] = learnedToJson(*r.learned);
+  if (r.learned) j["learned"] = *r.learned;
   j["ceiling"] = r.ceiling > 0 ? nlohmann::json(r.ceiling) : nlohmann::json();
   j["of_ceiling"] = r.ceiling > 0 && r.efficiency > 0 ? nlohmann::json(r.efficiency / r.ceiling)
                                                       : nlohmann::json();
@@ -114,7 +101,7 @@ nlohmann::json reportToJson(const Report& report) {
   nlohmann::json rows = nlohmann::json::array();
   for (const ReportRow& r : report.rows) rows.push_back(rowToJson(r));
   nlohmann::json meta = report.meta;
-  if (report.ceiling) meta["ceiling"] = ceilingToJson(*report.ceiling);
+  if (report.ceiling) meta["ceiling"] = *report.ceiling;
   return {{"title", report.title},
           {"scene_name", report.scene_name},
           {"relmse_epsilon", kRelMseEpsilon},

@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "estimate/learned_summary.h"
 #include "metrics/ceiling_report.h"
 
 namespace proxyvis {
@@ -20,17 +21,6 @@ inline constexpr std::string_view kEqualTimeTable = "equal-time";
 struct ReportRays {
   double proxy = 0, original = 0, probe = 0;
   double total() const { return proxy + original + probe; }
-};
-
-// What the roulette estimator learned in its first seed's render (JSON key "learned").
-struct ReportLearned {
-  int regions = 0, regions_roulette = 0;  // regions with statistics; of those, using roulette
-  double p_proxy_blocked = 0;             // P(V' = 0)
-  double error_given_blocked = 0, error_given_visible = 0;   // P(V != V' | V' = i)
-  double var_exact = 0;                                      // mean V_p(1 - V_p)
-  double cost_proxy[2] = {0, 0}, cost_original[2] = {0, 0};  // mean ray cost given V' = 0, 1
-  double cost_per_sample = 0;
-  double predicted_efficiency = 0;  // relative to exact everywhere; 0 when unknown
 };
 
 struct ReportRow {
@@ -57,7 +47,7 @@ struct ReportRow {
   std::vector<double> seconds_per_seed, efficiency_per_seed;
   double cpu_seconds = 0;  // process CPU time per render (mean over runs)
   int repeats = 1;         // equal-time schedule repeats (--repeats): seeds x repeats runs
-  std::optional<ReportLearned> learned;  // roulette rows only
+  std::optional<LearnedSummary> learned;  // roulette rows only: JSON "learned"
   // The scene's oracle ceiling (metrics/ceiling_report.h), the same on every row; 0 = unknown.
   // JSON: `ceiling` and `of_ceiling` = efficiency / ceiling (null when either is unknown).
   double ceiling = 0;

@@ -4,6 +4,7 @@
 // self-shadowing rule of render/scene_tracer.h) and against the originals, every ray timed with
 // the CPU's tick counter. Counts, errors and MSE-weighted variances are collected per learning
 // region of the renderer (renderer.h: screen tile x light x self).
+#include <nlohmann/json_fwd.hpp>
 #include <vector>
 
 #include "estimate/ceiling.h"
@@ -21,7 +22,16 @@ struct CeilingMeasurement {
   // (below the thread count on a shared machine, where wall time x threads overstates CPU time).
   double cpu_per_wall = 1;
   uint64_t segments = 0;  // shadow segments traced (each against proxy and original)
+
+  bool operator==(const CeilingMeasurement&) const = default;
 };
+
+// The measurement in a unit result's header (lib/study), every number exactly: "num_lights",
+// "passes", "measurement_seconds", "ticks_per_ns", "cpu_per_wall", "segments" and "regions", one
+// array of 13 numbers per region in CeilingRegionStats' order (a 512x512 image has 2 k regions
+// per light).
+void to_json(nlohmann::json& j, const CeilingMeasurement& m);
+void from_json(const nlohmann::json& j, CeilingMeasurement& m);
 
 // Traces passes 0, 1, ... of settings.seed (settings.tile_size sets the regions) until
 // max_passes, or earlier once max_seconds are spent and at least 2 passes are done (a pixel's

@@ -16,6 +16,7 @@
 // + (1 if the shading point's object uses a proxy, else 0); each query also names its
 // (pixel, light) point = pixel * num_lights + light (< num_points).
 #include <cstdint>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 
@@ -60,7 +61,16 @@ struct RenderResult {
   uint64_t shadow_segments = 0;                   // light samples that needed a visibility estimate
   ProxyClass proxy_class = ProxyClass::kGeneral;  // what the estimator was told
   LearnedSummary learned;                         // estimator.learnedSummary() after the last pass
+
+  bool operator==(const RenderResult&) const = default;
 };
+
+// A result's numbers in a unit result's header (lib/plan), exactly: "spp", "passes", "seconds",
+// "cpu_seconds", "shading_seconds", "primary_seconds", "visibility_seconds", "rays" [proxy,
+// original, probe], "primary_rays", "shadow_segments", "proxy_class" (its name), "learned". The
+// images are not in it (the unit file stores them as raw floats); from_json leaves them empty.
+void to_json(nlohmann::json& j, const RenderResult& r);
+void from_json(const nlohmann::json& j, RenderResult& r);
 
 // The EstimatorSetup render() uses: settings.estimator with num_regions and proxy_class filled
 // in for this scene.

@@ -6,12 +6,12 @@
 #include <sstream>
 #include <unordered_map>
 
-#include "scene/internal/quoted.h"
 #include "scene/internal/value_ranges.h"
 #include "scene/scene_desc.h"
 #include "util/atomic_write.h"
 #include "util/error.h"
 #include "util/input_file.h"
+#include "util/quoted_text.h"
 
 namespace proxyvis {
 
@@ -68,7 +68,7 @@ std::vector<SceneInstanceDesc> parseInstanceList(const std::string& text,
     const std::string name(tokens[0]);
     auto it = index.find(name);
     if (it == index.end())
-      failLine(path, line_no, "unknown mesh " + detail::quoteInput(name),
+      failLine(path, line_no, "unknown mesh " + quoteInput(name),
                "every instance must name a mesh of the scene's \"meshes\" list");
     const size_t n = tokens.size() - 1;
     if (n != 3 && n != 12 && n != 16)
@@ -79,7 +79,7 @@ std::vector<SceneInstanceDesc> parseInstanceList(const std::string& text,
     std::vector<float> v(n);
     for (size_t i = 0; i < n; ++i)
       if (!parseFloat(tokens[i + 1], v[i]))
-        failLine(path, line_no, "bad number " + detail::quoteInput(tokens[i + 1]),
+        failLine(path, line_no, "bad number " + quoteInput(tokens[i + 1]),
                  "numbers must be finite decimals");
     SceneInstanceDesc inst;
     inst.mesh = it->second;

@@ -8,22 +8,21 @@
 #include <set>
 
 #include "mesh/io/mesh_io.h"
-#include "scene/internal/json_fields.h"
-#include "scene/internal/quoted.h"
 #include "scene/internal/value_ranges.h"
 #include "scene/scene_desc.h"
 #include "scene/transform.h"
 #include "util/atomic_write.h"
 #include "util/error.h"
 #include "util/input_file.h"
+#include "util/json_field.h"
+#include "util/quoted_text.h"
 
 namespace proxyvis {
 
-using detail::Field;
-using detail::json;
+using Field = JsonField;
+using json = nlohmann::json;
 using detail::numberText;
 using detail::positionProblem;
-using detail::quoteInput;
 using detail::RangeProblem;
 using detail::transformProblem;
 namespace fs = std::filesystem;

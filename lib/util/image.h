@@ -11,6 +11,7 @@ struct Image {
   std::vector<float> pixels;  // row-major, top row first, interleaved channels
   float& at(int x, int y, int c) { return pixels[(size_t(y) * width + x) * channels + c]; }
   float at(int x, int y, int c) const { return pixels[(size_t(y) * width + x) * channels + c]; }
+  bool operator==(const Image&) const = default;
 };
 
 }  // namespace proxyvis

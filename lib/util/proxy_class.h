@@ -1,4 +1,5 @@
 #pragma once
+#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
 
@@ -17,5 +18,9 @@ inline std::optional<ProxyClass> parseProxyClass(const std::string& s) {
   if (s == "general") return ProxyClass::kGeneral;
   return std::nullopt;
 }
+
+// The class as its name; from_json refuses any other text (util/json_field.h's error).
+void to_json(nlohmann::json& j, ProxyClass c);
+void from_json(const nlohmann::json& j, ProxyClass& c);
 
 }  // namespace proxyvis

@@ -27,7 +27,7 @@ def run(cmd):
 
 
 def unit_header(path):
-    """The JSON header of a unit result (apps/render-compare/unit_file.h: magic, length, JSON)."""
+    """The JSON header of a unit result (lib/plan/unit_file.h: magic, length, JSON)."""
     with open(path, "rb") as f:
         check(f.read(8) == b"PVUNIT1\n", f"{path}: not a unit result")
         (length,) = struct.unpack("<Q", f.read(8))

@@ -70,10 +70,10 @@ TEST(Report, TypedRowFieldsKeepTheirJsonKeys) {
   r.time_budget = 2.0;
   r.proxy_class = "outside";
   r.mse_per_seed = {4e-4, 6e-4};
-  ReportLearned learned;
+  LearnedSummary learned;
   learned.regions = 12;
   learned.regions_roulette = 5;
-  learned.cost_proxy[1] = 7;
+  learned.costs.proxy[1] = 7;
   r.learned = learned;
   nlohmann::json j = rowToJson(r);
   EXPECT_EQ(j.at("spp_max"), 33);

@@ -1,0 +1,369 @@
+#include "study/data_parallel_study.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstdio>
+
+#include "distributed/data_parallel_render.h"
+#include "distributed/distributed_scene.h"
+#include "distributed/mpi_comm.h"
+#include "image/image_io.h"
+#include "image/oiio_module.h"
+#include "metrics/image_error.h"
+#include "scene/scene_desc.h"
+#include "util/atomic_write.h"
+#include "util/build_info.h"
+#include "util/rng.h"
+#include "util/staged_folder.h"
+
+namespace proxyvis {
+
+namespace {
+
+// Roulette's and the model's cost of a forward when --forward-cost-us is not given: the low end
+// of the 20-200 us range of cluster interconnects with a remote trace (docs/data_parallel.md).
+constexpr double kDefaultForwardCostUs = 20;
+
+struct Row {
+  int spp = 0;
+  std::string estimator;
+  Forwarding forwarding{};
+  double mse = 0, seconds = 0, modelled_seconds = 0;
+  DataParallelStats stats;  // of the first seed; counts summed over seeds below
+  uint64_t segments = 0, forwards = 0, bytes = 0, messages = 0, peak_rss = 0;
+  double efficiency = 0, modelled_efficiency = 0, relative = 0, modelled_relative = 0;
+};
+
+std::string imageName(const Row& r) {
+  return fmt::format("{}_{}_{}spp", r.estimator, forwardingName(r.forwarding), r.spp);
+}
+
+void writePair(const Image& image, const std::filesystem::path& stem, float exposure) {
+  ImageWriteOptions exr;
+  exr.full_float = true;
+  writeImage(image, stem.string() + ".exr", exr);
+  ImageWriteOptions png;
+  png.exposure = exposure;
+  writeImage(image, stem.string() + ".png", png);
+}
+
+// The table's columns and each row's cells, shared by report.md and report.html.
+std::vector<std::string> tableHeader(double cost_us) {
+  return {"spp",
+          "estimator",
+          "forwarding",
+          "forwards / shadow segment",
+          "forward MB",
+          "messages",
+          "rank peak RSS MiB",
+          "seconds",
+          "MSE",
+          "efficiency (measured)",
+          fmt::format("efficiency at {:g} us / forward (model)", cost_us)};
+}
+
+std::vector<std::string> tableCells(const Row& r) {
+  return {std::to_string(r.spp),
+          r.estimator,
+          forwardingName(r.forwarding),
+          fmt::format("{:.4f}", r.segments ? double(r.forwards) / double(r.segments) : 0.0),
+          fmt::format("{:.2f}", 1e-6 * double(r.bytes)),
+          std::to_string(r.messages),
+          fmt::format("{:.0f}", double(r.peak_rss) / double(1 << 20)),
+          fmt::format("{:.3f}", r.seconds),
+          fmt::format("{:.3e}", r.mse),
+          fmt::format("{:.2f}x", r.relative),
+          fmt::format("{:.2f}x", r.modelled_relative)};
+}
+
+std::string markdownTable(const std::vector<Row>& rows, double cost_us) {
+  auto line = [](const std::vector<std::string>& cells) {
+    std::string t = "|";
+    for (const std::string& c : cells) t += " " + c + " |";
+    return t + "\n";
+  };
+  std::string t =
+      line(tableHeader(cost_us)) + "|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  for (const Row& r : rows) t += line(tableCells(r));
+  return t;
+}
+
+std::string htmlTable(const std::vector<Row>& rows, double cost_us) {
+  std::string t = "<table><tr>";
+  for (const std::string& h : tableHeader(cost_us)) t += "<th>" + h + "</th>";
+  t += "</tr>";
+  for (const Row& r : rows) {
+    t += "<tr>";
+    for (const std::string& c : tableCells(r)) t += "<td>" + c + "</td>";
+    t += "</tr>";
+  }
+  return t + "</table>";
+}
+
+// What the flags and the scene file ask for, checked on every rank.
+struct DataParallelPlan {
+  std::vector<Forwarding> policies;
+  std::vector<std::string> estimators;
+  SceneDesc desc;
+  double cost_us = kDefaultForwardCostUs;
+};
+
+DataParallelPlan planStudy(CompareOptions& o, const DataParallelFlags& flags, bool estimators_given,
+                           const MpiComm& comm) {
+  DataParallelPlan plan;
+  comm.collectively([&] {
+    if (o.out.empty()) throw Error("", "--out is required", {}, "name the report's folder");
+    if (!estimators_given) o.estimators = "exact,roulette";
+    o.resolve();
+    for (EstimatorKind k : o.estimator_list) {
+      const std::string name = estimatorName(k);
+      if (name != "exact" && name != "roulette")
+        throw Error("", "--estimators " + name + " is not available with --data-parallel",
+                    "forwarding decides visibility exactly or by roulette",
+                    "use --estimators exact,roulette");
+      plan.estimators.push_back(name);
+    }
+    for (const std::string& name : splitCommaList(flags.forwarding)) {
+      const Forwarding f = parseForwarding(name);
+      if (std::find(plan.policies.begin(), plan.policies.end(), f) == plan.policies.end())
+        plan.policies.push_back(f);
+    }
+    if (plan.policies.empty()) throw Error("", "--forwarding is empty", {}, "name a policy");
+    if (o.spp_list.empty()) throw Error("", "--spp is empty", {}, "e.g. --spp 16");
+    if (comm.rank() == 0) oiioModule();
+    plan.desc = loadSceneDesc(o.scene);
+    o.render.applyTo(plan.desc);
+  });
+  if (flags.forward_cost_us >= 0) plan.cost_us = flags.forward_cost_us;
+  return plan;
+}
+
+// Renders the reference and every cell (spp x policy x estimator, each over the seeds) on every
+// rank; the images and errors are rank 0's.
+class StudyRenders {
+ public:
+  StudyRenders(const CompareOptions& o, const DataParallelFlags& flags,
+               const DataParallelPlan& plan, const DistributedScene& scene, const MpiComm& comm)
+      : o_(o), flags_(flags), plan_(plan), scene_(scene), comm_(comm) {}
+
+  // The reference: exact, any policy (all give the same image), its own seed stream.
+  DataParallelResult reference(int reference_spp) const {
+    if (comm_.rank() == 0 && !o_.common.quiet)
+      std::fprintf(stderr, "render-compare: reference: exact, %d spp on %d ranks\n", reference_spp,
+                   comm_.size());
+    DataParallelSettings settings = settingsFor("exact", plan_.policies.front(), reference_spp,
+                                                hashKeys(o_.common.seed, 1u << 20));
+    settings.quiet = o_.common.quiet;
+    return renderDataParallel(scene_, settings, comm_);
+  }
+
+  std::vector<Row> rows(const Image& reference, std::vector<Image>& first_images) const {
+    std::vector<Row> rows;
+    for (int spp : o_.spp_list)
+      for (Forwarding f : plan_.policies)
+        for (const std::string& estimator : plan_.estimators) {
+          rows.push_back(cell(spp, f, estimator, reference, first_images));
+          const Row& row = rows.back();
+          if (comm_.rank() == 0 && !o_.common.quiet)
+            std::fprintf(stderr, "render-compare: %s, --forwarding %s, %d spp: MSE %.3e, %.3f s\n",
+                         estimator.c_str(), forwardingName(f), spp, row.mse, row.seconds);
+        }
+    return rows;
+  }
+
+ private:
+  DataParallelSettings settingsFor(const std::string& estimator, Forwarding f, int spp,
+                                   uint64_t seed) const {
+    DataParallelSettings s;
+    s.forwarding = f;
+    s.roulette = estimator == "roulette";
+    s.spp = spp;
+    s.seed = seed;
+    s.passes_per_round = flags_.passes_per_round;
+    s.q_min = o_.render.q_min;
+    s.forward_cost_us = plan_.cost_us;
+    s.local_cost_us = flags_.local_cost_us;
+    s.quiet = true;
+    return s;
+  }
+
+  Row cell(int spp, Forwarding f, const std::string& estimator, const Image& reference,
+           std::vector<Image>& first_images) const {
+    const bool root = comm_.rank() == 0;
+    Row row;
+    row.spp = spp;
+    row.estimator = estimator;
+    row.forwarding = f;
+    for (int seed = 0; seed < o_.seeds; ++seed) {
+      const DataParallelResult r = renderDataParallel(
+          scene_, settingsFor(estimator, f, spp, hashKeys(o_.common.seed, uint64_t(seed))), comm_);
+      const DataParallelStats& s = r.stats;
+      if (seed == 0) {
+        row.stats = s;
+        if (root) first_images.push_back(r.radiance);
+      }
+      if (root) row.mse += meanSquaredError(r.radiance.pixels, reference.pixels);
+      row.seconds += s.seconds;
+      row.modelled_seconds += s.modelledSeconds(plan_.cost_us);
+      row.segments += s.shadow_segments;
+      row.forwards += s.forwards;
+      row.bytes += s.forward_bytes;
+      row.messages += s.forward_messages;
+      row.peak_rss = std::max(row.peak_rss, s.rank_peak_rss_bytes);
+    }
+    row.mse /= o_.seeds;
+    row.seconds /= o_.seeds;
+    row.modelled_seconds /= o_.seeds;
+    return row;
+  }
+
+  const CompareOptions& o_;
+  const DataParallelFlags& flags_;
+  const DataParallelPlan& plan_;
+  const DistributedScene& scene_;
+  const MpiComm& comm_;
+};
+
+// Efficiency 1/(MSE x time), relative to exact with replicated instance boxes at the same spp
+// (the fair baseline), else the first exact row.
+void scoreRows(std::vector<Row>& rows) {
+  for (Row& r : rows) {
+    r.efficiency = r.mse > 0 && r.seconds > 0 ? 1 / (r.mse * r.seconds) : 0;
+    r.modelled_efficiency =
+        r.mse > 0 && r.modelled_seconds > 0 ? 1 / (r.mse * r.modelled_seconds) : 0;
+  }
+  for (Row& r : rows) {
+    const Row* base = nullptr;
+    for (const Row& b : rows)
+      if (b.spp == r.spp && b.estimator == "exact" &&
+          (!base || b.forwarding == Forwarding::kInstanceBoxes))
+        base = &b;
+    if (!base) base = &rows.front();
+    r.relative = base->efficiency > 0 ? r.efficiency / base->efficiency : 0;
+    r.modelled_relative =
+        base->modelled_efficiency > 0 ? r.modelled_efficiency / base->modelled_efficiency : 0;
+  }
+}
+
+nlohmann::json rowsJson(const std::vector<Row>& rows, int seeds, double cost_us) {
+  nlohmann::json json_rows = nlohmann::json::array();
+  for (const Row& r : rows) {
+    nlohmann::json j = dataParallelRow(r.estimator, r.forwarding, r.stats, cost_us);
+    j["table"] = "equal-spp";
+    j["spp"] = r.spp;
+    j["seeds"] = seeds;
+    // Over all seeds (the stats of dataParallelRow are the first seed's).
+    j["shadow_segments"] = r.segments;
+    j["forwards"] = r.forwards;
+    j["forwards_per_shadow_segment"] = r.segments ? double(r.forwards) / double(r.segments) : 0.0;
+    j["forward_bytes"] = r.bytes / uint64_t(seeds);
+    j["forward_messages"] = r.messages / uint64_t(seeds);
+    j["rank_peak_rss_bytes"] = r.peak_rss;
+    j["seconds"] = r.seconds;
+    j["modelled_seconds"] = r.modelled_seconds;
+    j["mse"] = r.mse;
+    j["efficiency"] = r.efficiency;
+    j["relative_efficiency"] = r.relative;
+    j["modelled_efficiency"] = r.modelled_efficiency;
+    j["modelled_relative_efficiency"] = r.modelled_relative;
+    j["image"] = "images/" + imageName(r) + ".exr";
+    json_rows.push_back(j);
+  }
+  return json_rows;
+}
+
+std::string studyHtml(const std::string& title, int ranks, const std::string& model_note,
+                      const std::vector<Row>& rows, double cost_us) {
+  std::string html =
+      "<!doctype html><html><head><meta charset=\"utf-8\"><title>render-compare "
+      "(data-parallel)</title><style>body{font-family:sans-serif}table{border-"
+      "collapse:collapse}td,th{border:1px solid #ccc;padding:3px 6px}img{image-"
+      "rendering:pixelated;width:320px}</style></head><body>";
+  html += fmt::format("<h1>{} (data-parallel, {} ranks)</h1><p>{}</p>{}", title, ranks, model_note,
+                      htmlTable(rows, cost_us));
+  html +=
+      "<h2>Images</h2><p><figure style=\"display:inline-block\"><img "
+      "src=\"images/reference.png\"><figcaption>reference</figcaption></figure>";
+  for (const Row& r : rows)
+    html += fmt::format(
+        "<figure style=\"display:inline-block\"><img src=\"images/{}.png\">"
+        "<figcaption>{}</figcaption></figure>",
+        imageName(r), imageName(r));
+  return html + "</p></body></html>\n";
+}
+
+}  // namespace
+
+int runDataParallelStudy(CompareOptions& o, const DataParallelFlags& flags, bool estimators_given) {
+  MpiComm comm(nullptr, nullptr);
+  try {
+    const DataParallelPlan plan = planStudy(o, flags, estimators_given, comm);
+    const SceneDesc& desc = plan.desc;
+    const double cost_us = plan.cost_us;
+    const bool proxies = std::find(plan.policies.begin(), plan.policies.end(),
+                                   Forwarding::kProxies) != plan.policies.end();
+    const auto scene =
+        DistributedScene::load(desc, distributedSceneOptions(o.render, proxies), comm);
+    const StudyRenders renders(o, flags, plan, *scene, comm);
+    const int reference_spp = o.referenceSpp(o.spp_list.back());
+    const DataParallelResult reference = renders.reference(reference_spp);
+    std::vector<Image> first_images;
+    std::vector<Row> rows = renders.rows(reference.radiance, first_images);
+    const std::vector<RankFacts> facts = gatherRankFacts(*scene, reference.stats, comm);
+    if (comm.rank() != 0) return kExitOk;
+
+    scoreRows(rows);
+    const std::string model_note = fmt::format(
+        "Modelled efficiency: a model from the measured counts, not a measurement: time = the "
+        "slowest rank's compute time (MPI waits excluded) + the busiest rank's forwards x {:g} "
+        "us per forward. Measured efficiency uses the wall time on this machine, where a forward "
+        "costs what shared-memory MPI costs (a few us).",
+        cost_us);
+    const std::string resolution = fmt::format("{}x{}", desc.camera.width, desc.camera.height);
+    const nlohmann::json report = {{"program", "render-compare"},
+                                   {"mode", "data-parallel"},
+                                   {"scene", desc.path.string()},
+                                   {"scene_name", desc.displayName()},
+                                   {"ranks", comm.size()},
+                                   {"resolution", resolution},
+                                   {"seeds", o.seeds},
+                                   {"seed", o.common.seed},
+                                   {"reference_spp", reference_spp},
+                                   {"reference_seconds", reference.stats.seconds},
+                                   {"forward_cost_us", cost_us},
+                                   {"scene_build", scene->buildChoice().name()},
+                                   {"notes", {model_note}},
+                                   {"per_rank", rankFactsJson(facts)},
+                                   {"rows", rowsJson(rows, o.seeds, cost_us)},
+                                   {"build", buildText()},
+                                   {"version", versionText()}};
+    const std::string table = markdownTable(rows, cost_us);
+    const std::string md = fmt::format(
+        "# render-compare (data-parallel): {}\n\n{} ranks, {}, reference exact {} spp; {} "
+        "seed(s) per cell; efficiency = 1/(MSE x time) relative to exact with instance-box "
+        "forwarding.\n\n{}\n{}\n\nRanks:\n\n{}",
+        desc.displayName(), comm.size(), resolution, reference_spp, o.seeds, table, model_note,
+        rankFactsText(facts));
+
+    StagedFolder folder(o.out, "render-compare");
+    const std::filesystem::path dir = folder.path();
+    std::filesystem::create_directories(dir / "images");
+    const float exposure = autoExposure(reference.radiance);
+    writePair(reference.radiance, dir / "images" / "reference", exposure);
+    for (size_t i = 0; i < rows.size(); ++i)
+      writePair(first_images[i], dir / "images" / imageName(rows[i]), exposure);
+    writeTextAtomically(dir / "report.json", report.dump(2) + "\n");
+    writeTextAtomically(dir / "report.md", md);
+    writeTextAtomically(dir / "report.html",
+                        studyHtml(desc.displayName(), comm.size(), model_note, rows, cost_us));
+    folder.commit();
+    printHumanReport(o.common, table + "\n" + model_note + "\n" +
+                                   "report: " + (folder.target() / "report.html").string() + "\n");
+    return kExitOk;
+  } catch (const ReportedOnAnotherRank&) {
+    return kExitOk;  // rank 0 reports the job's error and exit code (see ReportedOnAnotherRank)
+  }
+}
+
+}  // namespace proxyvis
