@@ -92,10 +92,9 @@ ProxyGenOptions toOptions(const Args& a, const CommonOptions& common) {
 
 // Loading is proxy-gen's own stage: it goes into the report's seconds (and their total, which
 // then covers everything but writing).
-void addLoadSeconds(json& report, double load_seconds) {
-  json& seconds = report["seconds"];
-  seconds["load"] = load_seconds;
-  seconds["total"] = seconds.value("total", 0.0) + load_seconds;
+void addLoadSeconds(ProxyReport& report, double load_seconds) {
+  report.seconds["load"] = load_seconds;
+  report.seconds["total"] += load_seconds;
 }
 
 // The proxy file (a glTF with its proof; proved again when quantization moved its vertices) and
@@ -127,7 +126,7 @@ void addProxyOutputs(const Args& a, const TriMesh& input, ProxyGenResult& result
       throw Error("", "--report needs classified segments", "--check-rays 0 classifies none",
                   "drop --check-rays 0");
     outputs.addText(a.report_html, checkReportHtml(input, result.proxy, *check));
-    result.report["report_html"] = a.report_html;
+    result.report.report_html = a.report_html;
   }
 }
 
@@ -153,9 +152,9 @@ int runMesh(const Args& a, const CommonOptions& common) {
   OutputSet outputs(MissingFolders::kCreate);
   addProxyOutputs(a, input, result, options.seed, outputs);
   noteWrittenClass(result.report, a.input);
-  result.report["output"] = a.output;
-  result.report["output_sha256"] = outputs.sha256Of(a.output);
-  emit(result.report, proxySummaryText(result.report), common, outputs);
+  result.report.output = a.output;
+  result.report.output_sha256 = outputs.sha256Of(a.output);
+  emit(json(result.report), proxySummaryText(result.report), common, outputs);
   return kExitOk;
 }
 
@@ -217,7 +216,11 @@ std::vector<MeshOutcome> generateSceneProxies(const SceneDesc& scene,
       m.error = fmt::format("{}: {}", mesh.file.string(), e.what());
       m.code = kExitBadInput;
     }
-    if (!m.error.empty()) m.report = {{"name", mesh.name}, {"error", m.error}};
+    if (!m.error.empty()) {
+      m.report = {};
+      m.report.name = mesh.name;
+      m.report.error = m.error;
+    }
     progress.update();
     progress.setLabel(mesh.name);  // the mesh finished last (one line each in a log)
   });
@@ -320,8 +323,8 @@ int runScene(const Args& a, const CommonOptions& common, const CLI::App& app) {
   // the settings and the build, and each of its meshes' outcome with its proxy file's hash.
   if (shard)
     outputs.addText(manifest_out,
-                    shardManifest(*shard, scene, shardSettings(base, cacheDirSetting(a)), outcomes,
-                                  selected, proxy_files)
+                    json(shardManifest(*shard, scene, shardSettings(base, cacheDirSetting(a)),
+                                       outcomes, selected, proxy_files))
                             .dump(1) +
                         "\n");
   if (!a.scene_gltf.empty())

@@ -17,12 +17,11 @@ fs::path proxyFilePath(const std::string& out_dir, const std::string& stem,
   return fs::path(out_dir) / fmt::format("{}.{}.ply", stem, kind);
 }
 
-void noteWrittenClass(const json& report, const std::string& file) {
-  const auto reason = report.find("class_reason");
-  if (reason == report.end()) return;
+void noteWrittenClass(const ProxyReport& report, const std::string& file) {
+  if (!report.class_reason) return;
   std::fprintf(stderr, "proxy-gen: note: %s: written as class %s, not %s: %s\n", file.c_str(),
-               report.value("class", "general").c_str(), report.value("kind", "").c_str(),
-               reason->get<std::string>().c_str());
+               proxyClassName(report.written_class.value_or(ProxyClass::kGeneral)),
+               proxyClassName(report.kind), report.class_reason->c_str());
 }
 
 void emit(const json& report, const std::string& summary, const CommonOptions& common,
@@ -53,15 +52,16 @@ SceneResult finishScene(SceneDesc scene, const std::vector<MeshOutcome>& outcome
     if (!m.cache_note.empty())
       std::fprintf(stderr, "proxy-gen: note: %s: %s\n", scene.meshes[i].file.c_str(),
                    m.cache_note.c_str());
-    const std::string state = m.report.value("cache", "off");
+    const std::string state = m.report.cache.value_or("off");
     if (state != "off") ++cache_counts[state];
     const std::string from = state == "off" ? "" : fmt::format(" ({})", state);
     if (!m.skipped.empty()) {
       summary += fmt::format("== {}: no proxy ({}){}\n", scene.meshes[i].name, m.skipped, from);
       continue;
     }
-    noteWrittenClass(m.report, scene.meshes[i].file.string());
-    summary += fmt::format("== {}{}\n{}", scene.meshes[i].name, from, proxySummaryText(m.report));
+    noteWrittenClass(*m.report.proxy, scene.meshes[i].file.string());
+    summary +=
+        fmt::format("== {}{}\n{}", scene.meshes[i].name, from, proxySummaryText(*m.report.proxy));
     auto& proxies = scene.meshes[i].proxies;
     std::erase_if(proxies, [&](const ProxyRef& p) { return p.kind == info.kind; });
     proxies.push_back(*m.ref);

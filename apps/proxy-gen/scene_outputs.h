@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "proxies/pipeline/proxy_report.h"
 #include "scene/scene_desc.h"
 #include "util/app_main.h"
 #include "util/error.h"
@@ -18,7 +19,7 @@ namespace proxyvis {
 // One mesh of the scene after its work: a proxy (ref), no proxy (skipped: why) or a failure
 // (error, code).
 struct MeshOutcome {
-  nlohmann::json report;
+  SceneMeshReport report;
   std::optional<ProxyRef> ref;
   std::string skipped;
   std::string cache_note;
@@ -32,7 +33,7 @@ std::filesystem::path proxyFilePath(const std::string& out_dir, const std::strin
 
 // A proxy written with another class than the kind asked for (e.g. general for --fill-holes:
 // the guarantee would hold only for the hole-filled mesh) gets one note line on stderr.
-void noteWrittenClass(const nlohmann::json& report, const std::string& file);
+void noteWrittenClass(const ProxyReport& report, const std::string& file);
 
 // The JSON goes to --json, put in place after the files staged in `outputs` that it describes;
 // the human summary to stdout, or to stderr when stdout carries JSON.

@@ -14,6 +14,7 @@ inline constexpr uint64_t kMaxShards = 1'000'000;
 struct ShardSpec {
   uint64_t index = 0;  // i, in [0, count)
   uint64_t count = 1;  // n, in [1, kMaxShards]
+  bool operator==(const ShardSpec&) const = default;
 };
 
 // "i/n" written with decimal digits only (no sign, space or exponent), 0 <= i < n <= kMaxShards;

@@ -6,6 +6,7 @@
 
 #include "output_paths.h"
 #include "proxies/pipeline/proxy_cache.h"
+#include "proxies/pipeline/report_fields.h"
 #include "scene_mesh.h"
 #include "util/input_file.h"
 #include "util/output_path.h"
@@ -19,30 +20,43 @@ namespace proxyvis {
 
 namespace {
 
-constexpr int kManifestFormat = 1;
-
 std::vector<std::string> meshStems(const SceneDesc& scene) {
   std::vector<std::string> names;
   for (const SceneMeshDesc& mesh : scene.meshes) names.push_back(mesh.name);
   return proxyFileStems(names);
 }
 
-// A manifest's key `key` of type `T`, or an Error naming the manifest.
-template <typename T>
-T field(const json& j, const char* key, const fs::path& manifest) {
-  const auto it = j.find(key);
-  try {
-    if (it != j.end()) return it->get<T>();
-  } catch (const json::exception&) {
-  }
-  throw Error(manifest.string(), fmt::format("not a proxy-gen shard manifest: bad or no '{}'", key),
-              "it is damaged or was not written by proxy-gen --shard", "run that shard again");
+json entryJson(const ShardMeshEntry& e) {
+  json j = {{"index", e.index},
+            {"name", e.name},
+            {"report", e.report},
+            {"skipped", e.skipped},
+            {"cache_note", e.cache_note},
+            {"error", e.error},
+            {"code", e.code}};
+  if (e.proxy_file) j["proxy_file"] = *e.proxy_file;
+  if (e.proxy_sha256) j["proxy_sha256"] = *e.proxy_sha256;
+  return j;
+}
+
+ShardMeshEntry readEntry(const Field& f) {
+  ShardMeshEntry e;
+  e.index = readCount(f["index"]);
+  e.name = f["name"].asString();
+  e.report = readSceneMeshReport(f["report"]);
+  e.skipped = f["skipped"].asString();
+  e.cache_note = f["cache_note"].asString();
+  e.error = f["error"].asString();
+  e.code = f["code"].asInt();
+  e.proxy_file = optionalString(f, "proxy_file");
+  if (e.proxy_file) e.proxy_sha256 = f["proxy_sha256"].asString();
+  return e;
 }
 
 // One shard's manifest, read and checked against the merge's own scene, settings and build.
 struct Shard {
   fs::path dir, manifest_path;
-  json manifest;
+  ShardManifest manifest;
 };
 
 Shard readShard(const std::string& dir, const std::string& scene_hash, const json& settings) {
@@ -50,26 +64,29 @@ Shard readShard(const std::string& dir, const std::string& scene_hash, const jso
   s.dir = dir;
   s.manifest_path = fs::path(dir) / kShardManifestName;
   const std::string text = readTextFile(s.manifest_path);
-  s.manifest = json::parse(text, nullptr, false);
+  const json manifest = json::parse(text, nullptr, false);
   const std::string file = s.manifest_path.string();
-  if (s.manifest.is_discarded() || !s.manifest.is_object())
+  if (manifest.is_discarded() || !manifest.is_object())
     throw Error(file, "not a proxy-gen shard manifest: not JSON", "it is truncated or damaged",
                 "run that shard again");
-  if (field<int>(s.manifest, "proxy_gen_shard", s.manifest_path) != kManifestFormat)
+  const Field f(manifest, "", s.manifest_path);
+  // The format first: another format's other keys are not this one's to read.
+  if (f["proxy_gen_shard"].asInt() != kShardManifestFormat)
     throw Error(file, "a shard manifest of another format", "written by another proxy-gen version",
                 "run the shards again with this build");
-  if (field<std::string>(s.manifest, "build", s.manifest_path) != programBuildId())
+  s.manifest = readShardManifest(f);
+  if (s.manifest.build != programBuildId())
     throw Error(file, "a shard of another build",
                 "it was made by another proxy-gen executable, whose proxies may differ",
                 "run the shards and the merge with one build");
-  if (field<std::string>(s.manifest, "scene_hash", s.manifest_path) != scene_hash)
+  if (s.manifest.scene_hash != scene_hash)
     throw Error(file, "a shard of another scene",
                 "its scene's content hash differs from this scene's (the scene or a file it "
                 "references changed, or it is another scene)",
                 "merge shards of this very scene, or run them again");
-  if (field<json>(s.manifest, "settings", s.manifest_path) != settings)
+  if (s.manifest.settings != settings)
     throw Error(file, "a shard made with other settings",
-                fmt::format("it recorded {}, the merge has {}", s.manifest["settings"].dump(),
+                fmt::format("it recorded {}, the merge has {}", s.manifest.settings.dump(),
                             settings.dump()),
                 "give the merge the shards' --kind, sizes, budget, --seed and cache flags");
   return s;
@@ -77,35 +94,58 @@ Shard readShard(const std::string& dir, const std::string& scene_hash, const jso
 
 }  // namespace
 
+void to_json(json& j, const ShardManifest& m) {
+  json meshes = json::array();
+  for (const ShardMeshEntry& e : m.meshes) meshes.push_back(entryJson(e));
+  j = {{"proxy_gen_shard", m.format},
+       {"shard", m.shard.index},
+       {"shards", m.shard.count},
+       {"scene_hash", m.scene_hash},
+       {"settings", m.settings},
+       {"build", m.build},
+       {"meshes", meshes}};
+}
+
+ShardManifest readShardManifest(const Field& f) {
+  ShardManifest m;
+  m.format = f["proxy_gen_shard"].asInt();
+  m.shard = {readCount(f["shard"]), readCount(f["shards"])};
+  m.scene_hash = f["scene_hash"].asString();
+  m.settings = f["settings"].value();
+  if (!m.settings.is_object()) f["settings"].fail("expected an object");
+  m.build = f["build"].asString();
+  const Field meshes = f["meshes"];
+  for (size_t i = 0, n = meshes.arraySize(); i < n; ++i) m.meshes.push_back(readEntry(meshes[i]));
+  return m;
+}
+
+void from_json(const json& j, ShardManifest& m) {
+  m = readWithoutFile(j, readShardManifest);
+}
+
 json shardSettings(const ProxyGenOptions& base, const std::optional<std::string>& cache_dir) {
   json s = proxyCacheSettings(base);
   s["cache"] = cache_dir ? json(*cache_dir) : json(nullptr);
   return s;
 }
 
-json shardManifest(const ShardSpec& shard, const SceneDesc& scene, const json& settings,
-                   const std::vector<MeshOutcome>& outcomes, const std::vector<bool>& selected,
-                   const std::vector<fs::path>& proxy_files) {
-  json meshes = json::array();
+ShardManifest shardManifest(const ShardSpec& shard, const SceneDesc& scene, const json& settings,
+                            const std::vector<MeshOutcome>& outcomes,
+                            const std::vector<bool>& selected,
+                            const std::vector<fs::path>& proxy_files) {
+  ShardManifest m{kShardManifestFormat, shard, sceneHash(scene), settings, programBuildId(), {}};
   for (size_t i = 0; i < outcomes.size(); ++i) {
     if (!selected[i]) continue;
-    const MeshOutcome& m = outcomes[i];
-    json entry = {{"index", i},           {"name", scene.meshes[i].name}, {"report", m.report},
-                  {"skipped", m.skipped}, {"cache_note", m.cache_note},   {"error", m.error},
-                  {"code", m.code}};
-    if (m.ref) {
-      entry["proxy_file"] = proxy_files[i].filename().string();
-      entry["proxy_sha256"] = sha256OfOwnFile(proxy_files[i]);
+    const MeshOutcome& o = outcomes[i];
+    ShardMeshEntry e{i,      scene.meshes[i].name, o.report,    o.skipped, o.cache_note, o.error,
+                     o.code, std::nullopt,         std::nullopt};
+    if (o.ref) {
+      e.proxy_file = proxy_files[i].filename().string();
+      e.proxy_sha256 = sha256OfOwnFile(proxy_files[i]);
     }
-    meshes.push_back(std::move(entry));
+    m.meshes.push_back(std::move(e));
   }
-  return {{"proxy_gen_shard", kManifestFormat},
-          {"shard", shard.index},
-          {"shards", shard.count},
-          {"scene_hash", sceneHash(scene)},
-          {"settings", settings},
-          {"build", programBuildId()},
-          {"meshes", meshes}};
+  return m;
 }
 
 namespace {
@@ -143,8 +183,7 @@ ShardSet readShardSet(const MergeRequest& r, const std::string& scene_hash, cons
   for (const std::string& dir : r.shard_dirs) {
     Shard s = readShard(dir, scene_hash, settings);
     const std::string file = s.manifest_path.string();
-    const auto i = field<uint64_t>(s.manifest, "shard", s.manifest_path);
-    const auto n = field<uint64_t>(s.manifest, "shards", s.manifest_path);
+    const uint64_t i = s.manifest.shard.index, n = s.manifest.shard.count;
     if (n < 1 || n > kMaxShards || i >= n)
       throw Error(file, "not a proxy-gen shard manifest: bad shard numbers", "it is damaged",
                   "run that shard again");
@@ -197,34 +236,34 @@ int mergeShards(const MergeRequest& r, const CommonOptions& common) {
   std::vector<std::optional<std::string>> proxy_bytes(n_meshes);
   for (const Shard& s : shards) {
     const std::string file = s.manifest_path.string();
-    const uint64_t shard_index = s.manifest["shard"].get<uint64_t>();
-    for (const json& entry : field<json>(s.manifest, "meshes", s.manifest_path)) {
-      const auto i = field<size_t>(entry, "index", s.manifest_path);
-      const auto name = field<std::string>(entry, "name", s.manifest_path);
+    const uint64_t shard_index = s.manifest.shard.index;
+    for (const ShardMeshEntry& entry : s.manifest.meshes) {
+      const uint64_t i = entry.index;
+      const std::string& name = entry.name;
       if (i >= n_meshes || scene.meshes[i].name != name ||
           shardOfMesh(name, count) != shard_index || seen[i])
         throw Error(file, fmt::format("mesh '{}' does not belong to this shard", name),
                     "the manifest does not match the scene's split", "run that shard again");
       seen[i] = true;
       MeshOutcome& m = outcomes[i];
-      m.report = field<json>(entry, "report", s.manifest_path);
-      m.skipped = field<std::string>(entry, "skipped", s.manifest_path);
-      m.cache_note = field<std::string>(entry, "cache_note", s.manifest_path);
-      m.error = field<std::string>(entry, "error", s.manifest_path);
-      m.code = field<int>(entry, "code", s.manifest_path);
-      if (!entry.contains("proxy_file")) continue;
-      const fs::path from = s.dir / field<std::string>(entry, "proxy_file", s.manifest_path);
-      if (from.filename() != proxy_files[i].filename())
+      m.report = entry.report;
+      m.skipped = entry.skipped;
+      m.cache_note = entry.cache_note;
+      m.error = entry.error;
+      m.code = entry.code;
+      if (!entry.proxy_file) continue;
+      const fs::path from = s.dir / *entry.proxy_file;
+      if (from.filename() != proxy_files[i].filename() || !m.report.proxy)
         throw Error(file, fmt::format("mesh '{}' names another proxy file", name),
                     "the manifest is damaged", "run that shard again");
       std::string bytes = readTextFile(from);
-      if (sha256Hex(bytes) != field<std::string>(entry, "proxy_sha256", s.manifest_path))
+      if (sha256Hex(bytes) != entry.proxy_sha256)
         throw Error(from.string(), "not the proxy its shard wrote",
                     "its SHA-256 differs from the one in the shard's manifest (truncated or "
                     "changed since)",
                     fmt::format("run shard {} again", shard_index));
-      m.report["output"] = proxy_files[i].string();
-      m.ref = proxyRefFor(m.report, *parseProxyClass(r.kind), proxy_files[i], bytes);
+      m.report.proxy->output = proxy_files[i].string();
+      m.ref = proxyRefFor(*m.report.proxy, *parseProxyClass(r.kind), proxy_files[i], bytes);
       proxy_bytes[i] = std::move(bytes);
     }
   }

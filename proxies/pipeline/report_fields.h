@@ -1,0 +1,33 @@
+#pragma once
+// Typed reads of proxy-gen's own JSON files (reports, cache entries, shard manifests) through the
+// scene format's path-tracking Field reader (lib/scene/internal/json_fields.h), which names the
+// file and the key's path in every error. It reads the scene's float sizes; these files also
+// hold doubles and 64-bit counts, read here with the same messages.
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "scene/internal/json_fields.h"
+
+namespace proxyvis {
+
+using detail::Field;
+
+double readDouble(const Field& f);   // a number
+uint64_t readCount(const Field& f);  // an integer >= 0
+std::optional<double> readDoubleOrNull(const Field& f);
+
+// The key's value when the object has it, else nullopt.
+std::optional<double> optionalDouble(const Field& parent, const char* key);
+std::optional<uint64_t> optionalCount(const Field& parent, const char* key);
+std::optional<std::string> optionalString(const Field& parent, const char* key);
+std::optional<bool> optionalBool(const Field& parent, const char* key);
+
+// Reads `j` with `read` as a value of no file (the ADL from_json of a type): errors name the key.
+template <typename Read>
+auto readWithoutFile(const nlohmann::json& j, Read&& read) {
+  static const std::filesystem::path no_file;
+  return read(Field(j, "", no_file));
+}
+
+}  // namespace proxyvis
