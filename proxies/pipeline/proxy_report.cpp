@@ -157,6 +157,11 @@ void putResults(json& j, const ProxyReport& r) {
 
 }  // namespace
 
+void addLoadSeconds(ProxyReport& report, double load_seconds) {
+  report.seconds["load"] = load_seconds;
+  report.seconds["total"] += load_seconds;
+}
+
 void to_json(json& j, const ProxyReport& r) {
   json seconds = json::object();
   for (const auto& [stage, s] : r.seconds) seconds[stage] = s;

@@ -120,6 +120,10 @@ struct SceneMeshReport {
   bool operator==(const SceneMeshReport&) const = default;
 };
 
+// Loading is proxy-gen's own stage: it goes into the report's seconds (and their total, which
+// then covers everything but writing).
+void addLoadSeconds(ProxyReport& report, double load_seconds);
+
 void to_json(nlohmann::json& j, const ProxyReport& r);
 void from_json(const nlohmann::json& j, ProxyReport& r);
 void to_json(nlohmann::json& j, const SceneMeshReport& r);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <nlohmann/json.hpp>
 
+#include "json_round_trip.h"
 #include "random_report.h"
 #include "util/error.h"
 
@@ -13,23 +14,8 @@ namespace {
 
 using nlohmann::json;
 using report_test::RandomReports;
-
-// `value` through JSON text and back.
-template <typename T>
-T throughText(const T& value) {
-  return json::parse(json(value).dump(1)).template get<T>();
-}
-
-// The message of the Error that reading `j` as T throws ("" when it reads).
-template <typename T>
-std::string readError(const json& j) {
-  try {
-    (void)j.get<T>();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using report_test::readError;
+using report_test::throughText;
 
 TEST(ProxyReportJson, RandomReportsRoundTrip) {
   RandomReports random(20261206);

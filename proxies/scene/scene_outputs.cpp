@@ -1,11 +1,13 @@
-#include "scene_outputs.h"
+#include "proxies/scene/scene_outputs.h"
 
 #include <fmt/core.h>
 
 #include <cstdio>
 #include <map>
 
-#include "summary_text.h"
+#include "proxies/pipeline/proxy_outputs.h"
+#include "proxies/pipeline/proxy_report_text.h"
+#include "proxies/pipeline/report_fields.h"
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
@@ -17,30 +19,46 @@ fs::path proxyFilePath(const std::string& out_dir, const std::string& stem,
   return fs::path(out_dir) / fmt::format("{}.{}.ply", stem, kind);
 }
 
-void noteWrittenClass(const ProxyReport& report, const std::string& file) {
-  if (!report.class_reason) return;
-  std::fprintf(stderr, "proxy-gen: note: %s: written as class %s, not %s: %s\n", file.c_str(),
-               proxyClassName(report.written_class.value_or(ProxyClass::kGeneral)),
-               proxyClassName(report.kind), report.class_reason->c_str());
+void to_json(json& j, const SceneRunReport& r) {
+  j = {{"scene", r.scene},
+       {"scene_out", r.scene_out},
+       {"cache", r.cache ? json{{"dir", r.cache->dir},
+                                {"cached", r.cache->cached},
+                                {"generated", r.cache->generated}}
+                         : json(nullptr)},
+       {"meshes", r.meshes}};
 }
 
-void emit(const json& report, const std::string& summary, const CommonOptions& common,
-          OutputSet& outputs) {
-  if (!common.json_path.empty()) outputs.addText(common.json_path, report.dump(2) + "\n");
-  outputs.commit();
-  printHumanReport(common, summary);
+namespace {
+
+SceneRunReport readSceneRunReport(const Field& f) {
+  SceneRunReport r;
+  r.scene = f["scene"].asString();
+  r.scene_out = f["scene_out"].asString();
+  if (const Field cache = f["cache"]; !cache.value().is_null())
+    r.cache = ProxyCacheTally{cache["dir"].asString(), readCount(cache["cached"]),
+                              readCount(cache["generated"])};
+  const Field meshes = f["meshes"];
+  for (size_t i = 0, n = meshes.arraySize(); i < n; ++i)
+    r.meshes.push_back(readSceneMeshReport(meshes[i]));
+  return r;
+}
+
+}  // namespace
+
+void from_json(const json& j, SceneRunReport& r) {
+  r = readWithoutFile(j, readSceneRunReport);
 }
 
 SceneResult finishScene(SceneDesc scene, const std::vector<MeshOutcome>& outcomes,
                         const std::vector<bool>& only, const SceneRunInfo& info) {
   SceneResult result;
   std::string& summary = result.summary;
-  std::vector<json> reports;
   std::map<std::string, size_t> cache_counts{{"cached", 0}, {"generated", 0}};
   for (size_t i = 0; i < outcomes.size(); ++i) {
     if (!only[i]) continue;
     const MeshOutcome& m = outcomes[i];
-    reports.push_back(m.report);
+    result.report.meshes.push_back(m.report);
     if (!m.error.empty()) {
       // The failure goes to stderr like any error (one line per failed mesh); the scene is
       // still written, without a proxy for this mesh, and the exit code reports it.
@@ -68,18 +86,14 @@ SceneResult finishScene(SceneDesc scene, const std::vector<MeshOutcome>& outcome
   }
   saveSceneDesc(scene, info.scene_out);
   summary += fmt::format("scene with proxies: {}\n", info.scene_out.string());
-  json cache_report = nullptr;
+  result.report.scene = info.input;
+  result.report.scene_out = info.scene_out.string();
   if (info.cache_dir) {
-    cache_report = {{"dir", *info.cache_dir},
-                    {"cached", cache_counts["cached"]},
-                    {"generated", cache_counts["generated"]}};
+    result.report.cache =
+        ProxyCacheTally{*info.cache_dir, cache_counts["cached"], cache_counts["generated"]};
     summary += fmt::format("proxy cache: {} ({} cached, {} generated)\n", *info.cache_dir,
                            cache_counts["cached"], cache_counts["generated"]);
   }
-  result.report = {{"scene", info.input},
-                   {"scene_out", info.scene_out.string()},
-                   {"cache", cache_report},
-                   {"meshes", reports}};
   return result;
 }
 

@@ -1,4 +1,4 @@
-#include "scene_gltf.h"
+#include "proxies/scene/scene_gltf.h"
 
 #include "proxies/pipeline/gltf_proof.h"
 #include "scene/gltf_scene_export.h"

@@ -1,4 +1,4 @@
-#include "summary_text.h"
+#include "proxies/pipeline/proxy_report_text.h"
 
 #include <fmt/core.h>
 

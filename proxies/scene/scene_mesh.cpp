@@ -1,4 +1,4 @@
-#include "scene_mesh.h"
+#include "proxies/scene/scene_mesh.h"
 
 #include <fmt/core.h>
 
@@ -52,8 +52,7 @@ Generated generate(const std::string& bytes, const SceneMeshDesc& mesh, ProxyGen
     o.offset = kOpenMeshWrapOffset;
   }
   ProxyGenResult r = generateProxy(input, o);
-  r.report.seconds["load"] = load_seconds;
-  r.report.seconds["total"] += load_seconds;
+  addLoadSeconds(r.report, load_seconds);
   if (r.proxy.numTriangles() >= input.numTriangles()) {
     g.skipped = fmt::format("its {} proxy has {} faces, the original {}: not cheaper",
                             proxyClassName(o.kind), r.proxy.numTriangles(), input.numTriangles());

@@ -1,6 +1,6 @@
 #pragma once
-// The record a proxy-gen shard leaves beside its proxies (DIR/shard.json), and the merge of
-// shards into the output of one whole run (docs/proxy_gen_shards.md).
+// The record a proxy-gen shard leaves beside its proxies (DIR/shard.json), which the merge of
+// shards reads (shard_merge.h, docs/proxy_gen_shards.md).
 //
 // A shard's manifest names the shard (i of n), the scene's content hash, every setting that
 // changes the output, the build, and for each of its meshes the outcome: the report, why it got
@@ -13,10 +13,9 @@
 #include <vector>
 
 #include "proxies/pipeline/proxy_pipeline.h"
+#include "proxies/scene/scene_outputs.h"
+#include "proxies/scene/shard.h"
 #include "scene/scene_desc.h"
-#include "scene_outputs.h"
-#include "shard.h"
-#include "util/app_main.h"
 
 namespace proxyvis {
 
@@ -67,20 +66,5 @@ ShardManifest shardManifest(const ShardSpec& shard, const SceneDesc& scene,
                             const std::vector<MeshOutcome>& outcomes,
                             const std::vector<bool>& selected,
                             const std::vector<std::filesystem::path>& proxy_files);
-
-struct MergeRequest {
-  std::string scene;    // SCENE as named on the command line
-  std::string out_dir;  // --out-dir: where the whole run would write
-  std::string kind;
-  ProxyGenOptions base;  // the settings given to the merge, which must be the shards'
-  std::optional<std::string> cache_dir;
-  std::vector<std::string> shard_dirs;
-};
-
-// Checks that `request.shard_dirs` hold shards 0..n-1 of one split of this scene, each exactly
-// once, made with these settings by this build, with intact files; then writes DIR/<mesh>.<kind>
-// .ply (with sidecars), DIR/scene.json and the report exactly as the whole run would, and returns
-// its exit code. Throws Error naming the offending file (nothing written) otherwise.
-int mergeShards(const MergeRequest& request, const CommonOptions& common);
 
 }  // namespace proxyvis
