@@ -1,5 +1,7 @@
 #include "proxies/pipeline/report_fields.h"
 
+#include "proxies/pipeline/json_visit.h"
+
 namespace proxyvis {
 
 double readDouble(const Field& f) {
@@ -15,25 +17,23 @@ uint64_t readCount(const Field& f) {
   return f.value().get<uint64_t>();
 }
 
-std::optional<double> readDoubleOrNull(const Field& f) {
-  if (f.value().is_null()) return std::nullopt;
-  return readDouble(f);
+ProxyClass readAs(const Field& f, Tag<ProxyClass>) {
+  const std::optional<ProxyClass> c = parseProxyClass(f.asString());
+  if (!c) f.fail("expected outside, inside or general");
+  return *c;
 }
 
-std::optional<double> optionalDouble(const Field& parent, const char* key) {
-  return parent.has(key) ? std::optional<double>(readDouble(parent[key])) : std::nullopt;
+nlohmann::json readAs(const Field& f, Tag<nlohmann::json>) {
+  if (!f.value().is_object())
+    f.fail(std::string("expected an object, found ") + f.value().type_name());
+  return f.value();
 }
 
-std::optional<uint64_t> optionalCount(const Field& parent, const char* key) {
-  return parent.has(key) ? std::optional<uint64_t>(readCount(parent[key])) : std::nullopt;
-}
-
-std::optional<std::string> optionalString(const Field& parent, const char* key) {
-  return parent.has(key) ? std::optional<std::string>(parent[key].asString()) : std::nullopt;
-}
-
-std::optional<bool> optionalBool(const Field& parent, const char* key) {
-  return parent.has(key) ? std::optional<bool>(parent[key].asBool()) : std::nullopt;
+std::map<std::string, double> readAs(const Field& f, Tag<std::map<std::string, double>>) {
+  const nlohmann::json& object = readAs(f, Tag<nlohmann::json>{});
+  std::map<std::string, double> out;
+  for (const auto& [key, unused] : object.items()) out[key] = readDouble(f[key.c_str()]);
+  return out;
 }
 
 }  // namespace proxyvis

@@ -2,7 +2,8 @@
 // Typed reads of proxy-gen's own JSON files (reports, cache entries, shard manifests) through the
 // scene format's path-tracking Field reader (lib/scene/internal/json_fields.h), which names the
 // file and the key's path in every error. It reads the scene's float sizes; these files also
-// hold doubles and 64-bit counts, read here with the same messages.
+// hold doubles and 64-bit counts, read here with the same messages (json_visit.h builds the
+// readers of whole structs on these).
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -15,13 +16,6 @@ using detail::Field;
 
 double readDouble(const Field& f);   // a number
 uint64_t readCount(const Field& f);  // an integer >= 0
-std::optional<double> readDoubleOrNull(const Field& f);
-
-// The key's value when the object has it, else nullopt.
-std::optional<double> optionalDouble(const Field& parent, const char* key);
-std::optional<uint64_t> optionalCount(const Field& parent, const char* key);
-std::optional<std::string> optionalString(const Field& parent, const char* key);
-std::optional<bool> optionalBool(const Field& parent, const char* key);
 
 // Reads `j` with `read` as a value of no file (the ADL from_json of a type): errors name the key.
 template <typename Read>

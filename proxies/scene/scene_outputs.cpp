@@ -5,9 +5,9 @@
 #include <cstdio>
 #include <map>
 
+#include "proxies/pipeline/json_visit.h"
 #include "proxies/pipeline/proxy_outputs.h"
 #include "proxies/pipeline/proxy_report_text.h"
-#include "proxies/pipeline/report_fields.h"
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
@@ -19,35 +19,29 @@ fs::path proxyFilePath(const std::string& out_dir, const std::string& stem,
   return fs::path(out_dir) / fmt::format("{}.{}.ply", stem, kind);
 }
 
+// The keys of the report (proxies/pipeline/json_visit.h): one list for writing and reading.
+
+template <typename V>
+void fields(ProxyCacheTally& c, V& v) {
+  v("dir", c.dir);
+  v("cached", c.cached);
+  v("generated", c.generated);
+}
+
+template <typename V>
+void fields(SceneRunReport& r, V& v) {
+  v("scene", r.scene);
+  v("scene_out", r.scene_out);
+  v.nullable("cache", r.cache);
+  v("meshes", r.meshes);
+}
+
 void to_json(json& j, const SceneRunReport& r) {
-  j = {{"scene", r.scene},
-       {"scene_out", r.scene_out},
-       {"cache", r.cache ? json{{"dir", r.cache->dir},
-                                {"cached", r.cache->cached},
-                                {"generated", r.cache->generated}}
-                         : json(nullptr)},
-       {"meshes", r.meshes}};
+  j = toJsonValue(r);
 }
-
-namespace {
-
-SceneRunReport readSceneRunReport(const Field& f) {
-  SceneRunReport r;
-  r.scene = f["scene"].asString();
-  r.scene_out = f["scene_out"].asString();
-  if (const Field cache = f["cache"]; !cache.value().is_null())
-    r.cache = ProxyCacheTally{cache["dir"].asString(), readCount(cache["cached"]),
-                              readCount(cache["generated"])};
-  const Field meshes = f["meshes"];
-  for (size_t i = 0, n = meshes.arraySize(); i < n; ++i)
-    r.meshes.push_back(readSceneMeshReport(meshes[i]));
-  return r;
-}
-
-}  // namespace
 
 void from_json(const json& j, SceneRunReport& r) {
-  r = readWithoutFile(j, readSceneRunReport);
+  r = readWithoutFile(j, readFields<SceneRunReport>);
 }
 
 SceneResult finishScene(SceneDesc scene, const std::vector<MeshOutcome>& outcomes,

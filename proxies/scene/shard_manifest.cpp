@@ -1,7 +1,7 @@
 #include "proxies/scene/shard_manifest.h"
 
+#include "proxies/pipeline/json_visit.h"
 #include "proxies/pipeline/proxy_cache.h"
-#include "proxies/pipeline/report_fields.h"
 #include "util/program_build_id.h"
 #include "util/sha256.h"
 
@@ -10,60 +10,38 @@ using json = nlohmann::json;
 
 namespace proxyvis {
 
-namespace {
+// The keys of the manifest (proxies/pipeline/json_visit.h): one list for writing and reading.
 
-json entryJson(const ShardMeshEntry& e) {
-  json j = {{"index", e.index},
-            {"name", e.name},
-            {"report", e.report},
-            {"skipped", e.skipped},
-            {"cache_note", e.cache_note},
-            {"error", e.error},
-            {"code", e.code}};
-  if (e.proxy_file) j["proxy_file"] = *e.proxy_file;
-  if (e.proxy_sha256) j["proxy_sha256"] = *e.proxy_sha256;
-  return j;
+template <typename V>
+void fields(ShardMeshEntry& e, V& v) {
+  v("index", e.index);
+  v("name", e.name);
+  v("report", e.report);
+  v("skipped", e.skipped);
+  v("cache_note", e.cache_note);
+  v("error", e.error);
+  v("code", e.code);
+  v("proxy_file", e.proxy_file);
+  v("proxy_sha256", e.proxy_sha256);
 }
 
-ShardMeshEntry readEntry(const Field& f) {
-  ShardMeshEntry e;
-  e.index = readCount(f["index"]);
-  e.name = f["name"].asString();
-  e.report = readSceneMeshReport(f["report"]);
-  e.skipped = f["skipped"].asString();
-  e.cache_note = f["cache_note"].asString();
-  e.error = f["error"].asString();
-  e.code = f["code"].asInt();
-  e.proxy_file = optionalString(f, "proxy_file");
-  if (e.proxy_file) e.proxy_sha256 = f["proxy_sha256"].asString();
-  return e;
+template <typename V>
+void fields(ShardManifest& m, V& v) {
+  v("proxy_gen_shard", m.format);
+  v("shard", m.shard.index);
+  v("shards", m.shard.count);
+  v("scene_hash", m.scene_hash);
+  v("settings", m.settings);
+  v("build", m.build);
+  v("meshes", m.meshes);
 }
-
-}  // namespace
 
 void to_json(json& j, const ShardManifest& m) {
-  json meshes = json::array();
-  for (const ShardMeshEntry& e : m.meshes) meshes.push_back(entryJson(e));
-  j = {{"proxy_gen_shard", m.format},
-       {"shard", m.shard.index},
-       {"shards", m.shard.count},
-       {"scene_hash", m.scene_hash},
-       {"settings", m.settings},
-       {"build", m.build},
-       {"meshes", meshes}};
+  j = toJsonValue(m);
 }
 
 ShardManifest readShardManifest(const Field& f) {
-  ShardManifest m;
-  m.format = f["proxy_gen_shard"].asInt();
-  m.shard = {readCount(f["shard"]), readCount(f["shards"])};
-  m.scene_hash = f["scene_hash"].asString();
-  m.settings = f["settings"].value();
-  if (!m.settings.is_object()) f["settings"].fail("expected an object");
-  m.build = f["build"].asString();
-  const Field meshes = f["meshes"];
-  for (size_t i = 0, n = meshes.arraySize(); i < n; ++i) m.meshes.push_back(readEntry(meshes[i]));
-  return m;
+  return readFields<ShardManifest>(f);
 }
 
 void from_json(const json& j, ShardManifest& m) {
