@@ -7,8 +7,6 @@
 //               (every proxy of every mesh; instanced meshes: their prototype)
 #include <fmt/core.h>
 
-#include <tbb/parallel_for.h>
-
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -19,14 +17,12 @@
 #include "proxies/check/check_report.h"
 #include "proxies/check/check_view3d.h"
 #include "proxies/check/pair_check.h"
-#include "proxies/check/scene_segments.h"
-#include "proxies/check/scene_stream.h"
+#include "proxies/check/scene_pairs.h"
 #include "scene/scene_desc.h"
 #include "util/app_main.h"
 #include "util/error.h"
 #include "util/output_path.h"
 #include "util/output_set.h"
-#include "util/progress.h"
 #include "util/sha256.h"
 
 namespace fs = std::filesystem;
@@ -112,112 +108,12 @@ int runPair(const Options& o) {
   return r.failed() ? kExitCheckFailed : kExitOk;
 }
 
-// Draws per prototype until --rays segments are classified; a prototype that the scene's segments
-// rarely cross stops after this many attempts per requested segment, with a warning.
-constexpr uint64_t kSceneAttemptsPerRay = 1000;
-
-// One (mesh, proxy) pair of the scene: its meshes (in world space for a placed mesh under the
-// scene distribution, else in object space) and its check.
-struct ScenePair {
-  uint32_t mesh = 0;
-  size_t proxy = 0;
-  TriMesh original, proxy_mesh;
-  PairCheckReport report;
-};
-
-// Every pair's segments from one shared stream of the scene's draws: a primary ray into the whole
-// scene per index serves every proxy, instead of one per proxy.
-std::vector<Classification> classifyScenePairs(const Options& o, const SceneDesc& scene,
-                                               const TraceScene& full,
-                                               const std::vector<ScenePair>& pairs) {
-  TraceDevice device;
-  std::vector<std::unique_ptr<TraceScene>> scenes;
-  std::vector<MeshPlacements> placements(pairs.size());
-  std::vector<StreamTarget> targets(pairs.size());
-  for (size_t i = 0; i < pairs.size(); ++i) {
-    const ScenePair& c = pairs[i];
-    for (const TriMesh* m : {&c.original, &c.proxy_mesh}) {
-      TraceSceneBuilder builder(device);
-      builder.addMesh(*m);
-      scenes.push_back(builder.build());
-    }
-    // A segment outside the box of both misses both: only the others are counted.
-    Bounds3f both = c.original.bounds();
-    both.extend(c.proxy_mesh.bounds());
-    placements[i] = scene.meshes[c.mesh].place
-                        ? placedMeshPlacements(c.mesh, both, o.common.seed)
-                        : instancedMeshPlacements(scene, c.mesh, both, o.common.seed);
-    targets[i] = {scenes[2 * i].get(), scenes[2 * i + 1].get(), &placements[i]};
-  }
-  ClassifyOptions co;
-  co.segments = o.rays;
-  co.max_attempts = o.rays * kSceneAttemptsPerRay;
-  co.quiet = o.common.quiet;
-  if (!o.dump_errors.empty()) co.max_error_segments = 1'000'000;
-  return classifySceneStream(worldSceneSegments(full, scene, o.common.seed), targets, co);
-}
-
-void checkScenePair(const Options& o, const SceneDesc& scene, const Classification* classified,
-                    ScenePair& c) {
-  const SceneMeshDesc& mesh = scene.meshes[c.mesh];
-  const ProxyRef& ref = mesh.proxies[c.proxy];
-  PairCheckOptions po = pairOptions(o);
-  po.quiet = true;
-  if (classified) {
-    po.classified = classified;
-    po.max_attempts = o.rays * kSceneAttemptsPerRay;
-    po.distribution_name = "scene";
-    po.distribution_note =
-        mesh.place
-            ? "camera primary hits on the other objects (an object's own shadow rays use its "
-              "original) to uniform light samples, those crossing the box of original or proxy; a "
-              "light sample inside the proxy would void the outside guarantee (docs/design.md, "
-              "pitfall 2)"
-            : "camera primary hits on the other objects to uniform light samples, those crossing "
-              "the box of an instance of this mesh (original or proxy), each mapped into the "
-              "object space of one such instance";
-  }
-  // Without --expect, the class the scene claims is what must hold (docs/design.md, pitfall 4).
-  if (!po.expect && ref.verified_class) po.expect = ref.verified_class;
-  c.report = checkPair(c.original, c.proxy_mesh, po);
-  c.report.label = fmt::format("{} / {} ({})", mesh.name, ref.kind, ref.method);
-}
-
 int runScene(const Options& o) {
   const SceneDesc scene = loadSceneDesc(o.inputs[0]);
   SceneDesc proven = scene;  // --write-scene: the classes the checks prove, with their hashes
-  // The scene distribution traces primary rays against every object of the scene.
-  TraceDevice device;
-  std::unique_ptr<TraceScene> full;
-  if (o.distribution == "scene") full = buildFullScene(device, scene);
-  std::vector<ScenePair> checked;
-  for (uint32_t m = 0; m < scene.meshes.size(); ++m)
-    for (size_t p = 0; p < scene.meshes[m].proxies.size(); ++p) {
-      checked.emplace_back();
-      checked.back().mesh = m;
-      checked.back().proxy = p;
-    }
+  std::vector<ScenePair> checked =
+      checkScenePairs(scene, pairOptions(o), o.distribution == "scene");
   const size_t pairs = checked.size();
-  // Instanced or placed, a proxy is checked against its original in object space (the
-  // containment relation does not change under an affine, invertible placement); a placed mesh
-  // under the scene distribution in world space, where its segments are.
-  tbb::parallel_for(size_t(0), pairs, [&](size_t i) {
-    ScenePair& c = checked[i];
-    const SceneMeshDesc& mesh = scene.meshes[c.mesh];
-    const bool world = full && mesh.place;
-    c.original = world ? transformedMesh(loadMesh(mesh.file), mesh.transform) : loadMesh(mesh.file);
-    const fs::path& file = mesh.proxies[c.proxy].file;
-    c.proxy_mesh = world ? transformedMesh(loadMesh(file), mesh.transform) : loadMesh(file);
-  });
-  std::vector<Classification> classified;
-  if (full) classified = classifyScenePairs(o, scene, *full, checked);
-  // The exact checks and distances, pairs in parallel, one progress bar over them.
-  Progress progress("proxy-check", pairs, o.common.quiet || pairs < 2);
-  tbb::parallel_for(size_t(0), pairs, [&](size_t i) {
-    checkScenePair(o, scene, full ? &classified[i] : nullptr, checked[i]);
-    progress.update();
-  });
-  progress.done();
   nlohmann::json checks = nlohmann::json::array();
   std::vector<ErrorSegment> all_errors;
   bool failed = false;

@@ -1,40 +1,27 @@
 // proxy-gen: builds an outside, inside or general proxy of a mesh, or of every mesh of a scene,
-// verifies its guarantee and writes it (docs/design.md). Thin CLI over
-// proxies/pipeline/proxy_pipeline.h.
+// verifies its guarantee and writes it (docs/design.md). The command line and its wiring: a mesh
+// goes through proxies/pipeline/ (proxy_pipeline.h, proxy_outputs.h), a scene, its shards and
+// their merge through proxies/scene/ (scene_run.h, shard_merge.h, shard_plan.h).
 #include <fmt/core.h>
-#include <tbb/parallel_for.h>
-#include <CLI/CLI.hpp>
 
-#include <algorithm>
-#include <cstdio>
+#include <CLI/CLI.hpp>
 #include <filesystem>
-#include <memory>
 
 #include "mesh/io/mesh_io.h"
-#include "output_paths.h"
-#include "proxies/check/check_view3d.h"
-#include "proxies/pipeline/gltf_proof.h"
-#include "proxies/pipeline/proxy_cache.h"
+#include "proxies/pipeline/proxy_outputs.h"
 #include "proxies/pipeline/proxy_pipeline.h"
-#include "proxies/pipeline/written_class.h"
+#include "proxies/pipeline/proxy_report_text.h"
+#include "proxies/pipeline/stage_progress.h"
+#include "proxies/scene/scene_run.h"
+#include "proxies/scene/shard_merge.h"
+#include "proxies/scene/shard_plan.h"
 #include "scene/scene_desc.h"
-#include "scene_gltf.h"
-#include "scene_mesh.h"
-#include "scene_outputs.h"
-#include "shard.h"
-#include "shard_manifest.h"
-#include "shard_plan.h"
-#include "stage_progress.h"
-#include "summary_text.h"
+#include "shard_flags.h"
 #include "util/app_main.h"
 #include "util/error.h"
 #include "util/lower_case.h"
 #include "util/output_path.h"
 #include "util/output_set.h"
-#include "util/program_build_id.h"
-#include "util/progress.h"
-#include "util/rng.h"
-#include "util/sha256.h"
 #include "util/stopwatch.h"
 
 namespace fs = std::filesystem;
@@ -42,9 +29,6 @@ using namespace proxyvis;
 using json = nlohmann::json;
 
 namespace {
-
-// HM'/MH' segments kept for --report's 3D view (it draws a few thousand of each class).
-constexpr uint64_t kReportErrorSegments = 2000;
 
 struct Args {
   std::string input, output, out_dir, kind = "outside", method;
@@ -90,47 +74,6 @@ ProxyGenOptions toOptions(const Args& a, const CommonOptions& common) {
   return o;
 }
 
-// Loading is proxy-gen's own stage: it goes into the report's seconds (and their total, which
-// then covers everything but writing).
-void addLoadSeconds(json& report, double load_seconds) {
-  json& seconds = report["seconds"];
-  seconds["load"] = load_seconds;
-  seconds["total"] = seconds.value("total", 0.0) + load_seconds;
-}
-
-// The proxy file (a glTF with its proof; proved again when quantization moved its vertices) and
-// the --report page, staged in `outputs`.
-void addProxyOutputs(const Args& a, const TriMesh& input, ProxyGenResult& result, uint64_t seed,
-                     OutputSet& outputs) {
-  const bool gltf = isGltfPath(a.output);
-  std::optional<PairCheckReport> check;
-  if ((gltf || !a.report_html.empty()) && a.check_rays > 0)
-    check = classifyProxySegments(input, result.proxy, a.check_rays, seed,
-                                  a.report_html.empty() ? 0 : kReportErrorSegments);
-  SaveOptions save;
-  save.draco_quantization = a.draco_bits;
-  save.gltf_compression = parseGltfCompression(a.compress, a.output);
-  if (gltf) {
-    save.gltf_name = gltfProxyNodeName(fs::path(a.input).stem().string(), result.report);
-    json proof = gltfProofExtras(result.report, sha256OfFile(a.input), programBuildId());
-    if (!a.pick.mesh.empty()) proof["source_mesh"] = a.pick.mesh;
-    if (!a.pick.node.empty()) proof["source_node"] = a.pick.node;
-    if (check) proof["segments"] = gltfSegmentEvidence(*check);
-    save.gltf_extras = {{"proxyvis", proof}};
-  }
-  const std::string bytes = encodeMesh(result.proxy, a.output, save);
-  if (movesVertices(a.output, save))
-    proveWrittenProxy(input, parseMeshBytes(bytes, a.output), result.report, a.output);
-  addEncodedMeshOutput(outputs, bytes, a.output);
-  if (!a.report_html.empty()) {
-    if (!check)
-      throw Error("", "--report needs classified segments", "--check-rays 0 classifies none",
-                  "drop --check-rays 0");
-    outputs.addText(a.report_html, checkReportHtml(input, result.proxy, *check));
-    result.report["report_html"] = a.report_html;
-  }
-}
-
 int runMesh(const Args& a, const CommonOptions& common) {
   if (!a.shard.empty() || !a.merge_shards.empty() || !a.plan_dir.empty())
     throw Error(a.input, "--shard, --merge-shards and --plan split a scene",
@@ -151,87 +94,14 @@ int runMesh(const Args& a, const CommonOptions& common) {
   progress.done();
   addLoadSeconds(result.report, load_seconds);
   OutputSet outputs(MissingFolders::kCreate);
-  addProxyOutputs(a, input, result, options.seed, outputs);
+  stageProxyOutputs({a.input, a.pick, a.output, a.compress, a.draco_bits, a.report_html,
+                     a.check_rays, options.seed},
+                    input, result, outputs);
   noteWrittenClass(result.report, a.input);
-  result.report["output"] = a.output;
-  result.report["output_sha256"] = outputs.sha256Of(a.output);
-  emit(result.report, proxySummaryText(result.report), common, outputs);
+  result.report.output = a.output;
+  result.report.output_sha256 = outputs.sha256Of(a.output);
+  emit(json(result.report), proxySummaryText(result.report), common, outputs);
   return kExitOk;
-}
-
-// The proxy cache of scene mode: --cache DIR (an error when unusable), none with --no-cache, else
-// the default folder, which is only a convenience: when it is unusable the run goes on without.
-std::unique_ptr<ProxyCache> openCache(const Args& a) {
-  if (a.no_cache) return nullptr;
-  if (!a.cache_dir.empty()) return std::make_unique<ProxyCache>(a.cache_dir);
-  const fs::path dir = defaultProxyCacheDir();
-  if (dir.empty()) {
-    std::fprintf(stderr,
-                 "proxy-gen: note: no proxy cache: neither XDG_CACHE_HOME nor HOME is set (give "
-                 "--cache DIR)\n");
-    return nullptr;
-  }
-  try {
-    return std::make_unique<ProxyCache>(dir);
-  } catch (const Error& e) {
-    std::fprintf(stderr, "proxy-gen: note: no proxy cache: %s\n", e.what());
-    return nullptr;
-  }
-}
-
-// Generates (or takes from the cache) the proxies of the meshes `selected`; never throws for a
-// mesh: its failure is its outcome.
-std::vector<MeshOutcome> generateSceneProxies(const SceneDesc& scene,
-                                              const std::vector<bool>& selected,
-                                              const std::vector<fs::path>& proxy_files,
-                                              const ProxyGenOptions& base, const ProxyCache* cache,
-                                              const Args& a, const CommonOptions& common) {
-  const size_t n = scene.meshes.size();
-  std::vector<MeshOutcome> outcomes(n);
-  Progress progress("proxy-gen", size_t(std::count(selected.begin(), selected.end(), true)),
-                    common.quiet, a.progress);
-  tbb::parallel_for(size_t(0), n, [&](size_t i) {
-    if (!selected[i]) return;
-    const SceneMeshDesc& mesh = scene.meshes[i];
-    MeshOutcome& m = outcomes[i];
-    try {
-      ProxyGenOptions o = base;
-      // Per-mesh stream from the mesh's place in the scene (not in a shard): the same proxy at
-      // any thread count and in any shard.
-      o.seed = hashKeys(common.seed, i);
-      SceneMeshProxy p = proxyForSceneMesh(mesh, o, proxy_files[i], cache);
-      m.report = std::move(p.report);
-      m.ref = std::move(p.ref);
-      m.skipped = std::move(p.skipped);
-      m.cache_note = std::move(p.cache_note);
-    } catch (const Error& e) {
-      m.error = e.what();
-      m.code = e.exitCode();
-    } catch (const std::bad_alloc&) {
-      m.error = fmt::format("{}: out of memory; the mesh is too large for this machine",
-                            mesh.file.string());
-      m.code = kExitBadInput;
-    } catch (const std::exception& e) {
-      // A failure inside CGAL or OpenMesh the checks did not foresee: this mesh fails, the rest
-      // of the scene goes on.
-      m.error = fmt::format("{}: {}", mesh.file.string(), e.what());
-      m.code = kExitBadInput;
-    }
-    if (!m.error.empty()) m.report = {{"name", mesh.name}, {"error", m.error}};
-    progress.update();
-    progress.setLabel(mesh.name);  // the mesh finished last (one line each in a log)
-  });
-  progress.done();
-  return outcomes;
-}
-
-// The proxy cache folder a scene run asks for (null with --no-cache or without a default).
-std::optional<std::string> cacheDirSetting(const Args& a) {
-  if (a.no_cache) return std::nullopt;
-  if (!a.cache_dir.empty()) return a.cache_dir;
-  const fs::path dir = defaultProxyCacheDir();
-  if (dir.empty()) return std::nullopt;
-  return dir.string();
 }
 
 // --plan DIR --shards N: checks the scene and the outputs as the run would, writes the plan.
@@ -246,8 +116,9 @@ int writePlan(const Args& a, const CommonOptions& common, const CLI::App& app) {
   std::vector<std::string> flags = planFlags(app);
   // The default cache folder of this machine for every unit and the merge: nodes with another
   // HOME would otherwise each use (and report) their own.
-  if (const std::optional<std::string> cache = cacheDirSetting(a); cache && a.cache_dir.empty())
-    flags.push_back("--cache=" + fs::absolute(*cache).lexically_normal().string());
+  if (const std::optional<std::string> cache = cacheDirSetting(a.cache_dir, a.no_cache);
+      cache && a.cache_dir.empty())
+    flags.push_back("--cache=" + absolutePathText(*cache));
   writeShardPlan(a.plan_dir, a.plan_shards, flags, a.out_dir, common.json_path);
   printHumanReport(common, fmt::format("plan of {} shards: {} (run: scripts/slurm/submit.sh {})\n",
                                        a.plan_shards, plan_file.string(), a.plan_dir));
@@ -266,74 +137,12 @@ int runScene(const Args& a, const CommonOptions& common, const CLI::App& app) {
   if (!a.plan_dir.empty()) return writePlan(a, common, app);
   const ProxyGenOptions base = toOptions(a, common);
   if (!a.merge_shards.empty())
-    return mergeShards({a.input, a.out_dir, a.kind, base, cacheDirSetting(a), a.merge_shards},
+    return mergeShards({a.input, a.out_dir, a.kind, base, cacheDirSetting(a.cache_dir, a.no_cache),
+                        a.merge_shards},
                        common);
-  SceneDesc scene = loadSceneDesc(a.input);  // registers the scene and its instance list
-  const size_t n = scene.meshes.size();
-  // File names from mesh names that cannot leave --out-dir; and before any work, no output may
-  // replace an input (the scene, a mesh it references, its instance list).
-  std::vector<std::string> names, inputs{a.input, scene.instances_file.string()};
-  for (const SceneMeshDesc& mesh : scene.meshes) {
-    names.push_back(mesh.name);
-    inputs.push_back(mesh.file.string());
-  }
-  const std::vector<std::string> stems = proxyFileStems(names);
-  const std::optional<ShardSpec> shard = a.shard.empty() ? std::nullopt : parseShardSpec(a.shard);
-  std::vector<bool> selected(n, true);
-  std::vector<fs::path> proxy_files;
-  std::vector<OutputFlag> planned;
-  for (size_t i = 0; i < n; ++i) {
-    proxy_files.push_back(proxyFilePath(a.out_dir, stems[i], a.kind));
-    if (shard) selected[i] = shardOfMesh(names[i], shard->count) == shard->index;
-    if (selected[i]) planned.push_back({"--out-dir", proxy_files.back().string()});
-  }
-  const fs::path scene_out = fs::path(a.out_dir) / "scene.json";
-  const fs::path manifest_out = fs::path(a.out_dir) / kShardManifestName;
-  planned.push_back({"--out-dir", scene_out.string()});
-  if (shard) planned.push_back({"--out-dir", manifest_out.string()});
-  planned.push_back({"--json", common.json_path});
-  planned.push_back({"--done", a.done_file});
-  planned.push_back({"--gltf", a.scene_gltf});
-  checkOutputs(inputs, planned);
-  if (!a.scene_gltf.empty() && (shard || !isGltfPath(a.scene_gltf)))
-    throw Error(
-        a.scene_gltf, shard ? "--gltf needs the whole scene" : "--gltf writes .glb or .gltf",
-        shard ? "a shard holds some of its proxies" : "the format is chosen by the extension",
-        shard ? "merge the shards first" : "name the file .glb");
-  const GltfCompression scene_compression = a.scene_gltf.empty()
-                                                ? GltfCompression::kNone
-                                                : parseGltfCompression(a.compress, a.scene_gltf);
-  // Before any folder is made: an unusable --cache fails the run with nothing written.
-  const std::unique_ptr<ProxyCache> cache = openCache(a);
-  std::error_code ec;
-  fs::create_directories(a.out_dir, ec);
-  if (ec) throw WriteError(a.out_dir, "cannot create the output directory", ec.message());
-
-  const std::vector<MeshOutcome> outcomes =
-      generateSceneProxies(scene, selected, proxy_files, base, cache.get(), a, common);
-  const std::optional<std::string> cache_dir =
-      cache ? std::optional<std::string>(cache->dir().string()) : std::nullopt;
-  const SceneRunInfo info{a.input, a.kind, scene_out, cache_dir};
-  SceneResult result = finishScene(scene, outcomes, selected, info);
-  OutputSet outputs(MissingFolders::kCreate);
-  // A shard's manifest is what the merge reads: it records the shard, the scene's content hash,
-  // the settings and the build, and each of its meshes' outcome with its proxy file's hash.
-  if (shard)
-    outputs.addText(manifest_out,
-                    shardManifest(*shard, scene, shardSettings(base, cacheDirSetting(a)), outcomes,
-                                  selected, proxy_files)
-                            .dump(1) +
-                        "\n");
-  if (!a.scene_gltf.empty())
-    addSceneGltfOutput(outputs, scene_out, outcomes, proxy_files, a.scene_gltf, scene_compression);
-  emit(result.report, result.summary, common, outputs);
-  // A plan unit's marker, last: it exists only when every output above is in place.
-  if (!a.done_file.empty() && result.code == kExitOk) {
-    OutputSet done(MissingFolders::kCreate);
-    done.addText(a.done_file, fmt::format("shard {}\n", a.shard));
-    done.commit();
-  }
-  return result.code;
+  return runSceneProxies({a.input, a.out_dir, a.kind, base, a.cache_dir, a.no_cache, a.shard,
+                          a.done_file, a.scene_gltf, a.compress, a.progress},
+                         common);
 }
 
 // The mesh and the proxy: input, kind, method, outputs, sizes and budgets.

@@ -85,12 +85,13 @@ int runRow(const std::string& path, bool soup, const Case& c, double max_seconds
     if (o.kind == ProxyClass::kInside) o.fill_holes = !validateMesh(input).closed;
     o.max_seconds = max_seconds;
     const ProxyGenResult r = generateProxy(input, o);
+    const nlohmann::json report = r.report;
     out["faces"] = r.proxy.numTriangles();
     out["fill_holes"] = o.fill_holes;
     for (const char* key : {"volume_ratio", "hausdorff_proxy_to_original",
                             "hausdorff_original_to_proxy", "class", "verified", "budget_reached"})
-      if (r.report.contains(key)) out[key] = r.report[key];
-    out["seconds"] = r.report["seconds"]["total"];
+      if (report.contains(key)) out[key] = report[key];
+    out["seconds"] = report["seconds"]["total"];
   } catch (const std::exception& e) {
     out["error"] = e.what();
   }

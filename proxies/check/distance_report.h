@@ -10,6 +10,7 @@ namespace proxyvis {
 struct HausdorffDistances {
   double original_to_proxy = 0, proxy_to_original = 0;  // scene units (sampled one-sided maxima)
   double diagonal = 0;  // the original's bounding-box diagonal, scene units
+  bool operator==(const HausdorffDistances&) const = default;
 };
 
 // {"original_to_proxy", "proxy_to_original" (scene units), "unit", "diagonal",

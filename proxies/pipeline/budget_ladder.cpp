@@ -13,8 +13,6 @@
 namespace proxyvis {
 namespace {
 
-using json = nlohmann::json;
-
 ContainmentVerdict expectedVerdict(ProxyClass kind) {
   return kind == ProxyClass::kOutside ? ContainmentVerdict::kContains
                                       : ContainmentVerdict::kContained;
@@ -38,29 +36,29 @@ double tightness(const BudgetContext& ctx, const VerifiedCandidate& c) {
 }
 
 void record(const BudgetContext& ctx, const VerifiedCandidate& c) {
-  json entry = {{"source", c.source}, {"faces", c.faces()}, {"verified", c.ok}};
+  LadderEntry entry{std::nullopt, c.source, c.faces(), c.ok, std::nullopt};
   const double ref_volume = ctx.reference.signedVolume();
   if (c.ok && c.report.closed && ref_volume > 0)
-    entry["volume_ratio"] = c.mesh.signedVolume() / ref_volume;
-  ctx.report["budget_ladder"].push_back(std::move(entry));
+    entry.volume_ratio = c.mesh.signedVolume() / ref_volume;
+  ctx.report.budget_ladder.push_back(std::move(entry));
 }
 
-// Coarser versions of the size the method's proxy was built with (report "parameters"): 2, 4
+// Coarser versions of the size the method's proxy was built with (the report's parameters): 2, 4
 // and 8 times, within its range.
 std::vector<ProxyGenOptions> coarserOptions(const BudgetContext& ctx) {
   std::vector<ProxyGenOptions> out;
-  const json& used = ctx.report["parameters"];
+  const ProxyParameters& used = ctx.report.parameters;
   for (double factor : {2.0, 4.0, 8.0}) {
     ProxyGenOptions c = ctx.options;
-    if (ctx.method == "wrap" && used.contains("alpha")) {
-      const double alpha = used["alpha"].get<double>() * factor;
+    if (ctx.method == "wrap" && used.alpha) {
+      const double alpha = *used.alpha * factor;
       if (!kAlphaRange.contains(alpha)) break;
       c.alpha = alpha;
-    } else if (ctx.method == "erode" && used.contains("voxel")) {
-      const double voxel = used["voxel"].get<double>() * factor;
+    } else if (ctx.method == "erode" && used.voxel) {
+      const double voxel = *used.voxel * factor;
       if (voxel > 1.0 / 20) break;  // coarser grids erode away most of the volume
       c.voxel = voxel;
-      c.erosion = used["erosion"].get<double>();
+      c.erosion = used.erosion;
     } else {
       break;
     }
@@ -130,14 +128,10 @@ VerifiedCandidate reduceAndVerify(const BudgetContext& ctx, const TriMesh& built
     c.stats = stats;
     c.stats.budget_reached = withinBudget(ctx, c);
     if (reduce)
-      ctx.report["budget_attempts"].push_back(
-          {{"source", source},
-           {"max_move_edges", move},
-           {"faces", c.faces()},
-           {"closed", c.report.closed},
-           {"manifold", c.report.manifold},
-           {"self_intersecting_pairs", c.report.self_intersecting_pairs.value_or(0)},
-           {"containment", c.containment ? containmentName(c.containment->verdict) : "n/a"}});
+      ctx.report.budget_attempts.push_back(
+          {source, move, c.faces(), c.report.closed, c.report.manifold,
+           c.report.self_intersecting_pairs.value_or(0),
+           c.containment ? containmentName(c.containment->verdict) : "n/a"});
     ctx.budget.check("the face budget's retries");
     return c;
   };
@@ -185,7 +179,7 @@ LadderResult climbBudgetLadder(const BudgetContext& ctx, const VerifiedCandidate
       throw;
     } catch (const Error& e) {
       if (ctx.budget.expired()) throw;
-      ctx.report["budget_ladder"].push_back({{"skipped", e.what()}});
+      ctx.report.budget_ladder.push_back({e.what(), "", 0, false, std::nullopt});
       return std::nullopt;
     }
   };

@@ -4,7 +4,6 @@
 // voxels, the convex hull, a box, a tetrahedron; for general proxies meshoptimizer), each
 // verified with the same exact checks, and keep the tightest that meets the budget.
 #include <functional>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 
@@ -12,6 +11,7 @@
 #include "mesh/validation.h"
 #include "proxies/check/containment.h"
 #include "proxies/pipeline/proxy_pipeline.h"
+#include "proxies/pipeline/proxy_report.h"
 #include "proxies/pipeline/stage_timer.h"
 #include "proxies/shared/bounded_simplify.h"
 #include "proxies/shared/time_budget.h"
@@ -39,7 +39,7 @@ struct BudgetContext {
   size_t max_faces = 0;  // 0 = no budget
   const TimeBudget& budget;
   StageTimer& timer;
-  nlohmann::json& report;
+  ProxyReport& report;
   // Builds the proxy of `options.method` with other options (a coarser alpha or voxel).
   std::function<TriMesh(const ProxyGenOptions&)> rebuild;
 };
@@ -57,7 +57,7 @@ VerifiedCandidate verifyCandidate(const BudgetContext& ctx, TriMesh mesh, std::s
 // the budget is retried with collapses kept closer to their edges, and, when `allow_unreduced`,
 // the unreduced proxy is returned (inside, it is checked first: when it is 'disjoint' from the
 // reference, no collapse can help and it is returned at once). Each attempt
-// goes to report["budget_attempts"].
+// goes to report.budget_attempts.
 VerifiedCandidate reduceAndVerify(const BudgetContext& ctx, const TriMesh& built,
                                   std::string source, bool allow_unreduced);
 
@@ -70,7 +70,7 @@ struct LadderResult {
 
 // When `primary` is not a verified proxy within the budget, the fallbacks; when it is, a box
 // that is tighter (outside, budgets of 12 to 48 faces). Records every candidate
-// in report["budget_ladder"].
+// in report.budget_ladder.
 LadderResult climbBudgetLadder(const BudgetContext& ctx, const VerifiedCandidate& primary);
 
 // A failure no reduction or fallback can fix: the closed proxy is neither inside nor around the

@@ -3,38 +3,33 @@
 #include "proxies/check/check_report.h"
 #include "proxies/check/containment.h"
 #include "proxies/check/pair_check.h"
-#include "proxies/pipeline/written_class.h"
 #include "util/error.h"
 
 namespace proxyvis {
 using json = nlohmann::json;
 
-json gltfProofExtras(const json& report, const std::string& source_sha256,
+json gltfProofExtras(const ProxyReport& report, const std::string& source_sha256,
                      const std::string& program_build) {
-  json proof;
-  proof["class"] = report.value("class", json());
-  proof["kind"] = report.value("kind", json());
-  if (report.contains("class_reason")) proof["class_reason"] = report["class_reason"];
-  proof["verified"] = report.value("verified", false);
-  proof["method"] = report.value("method", json());
-  proof["budget"] =
-      report.contains("parameters") ? report["parameters"].value("budget", json()) : json();
-  proof["max_faces"] =
-      report.contains("parameters") ? report["parameters"].value("max_faces", json()) : json();
-  proof["faces"] = report.value("faces", json());
-  proof["volume_ratio"] = report.value("volume_ratio", json());
-  if (report.contains("hausdorff")) proof["hausdorff"] = report["hausdorff"];
-  if (report.contains("checks")) {
-    const json& checks = report["checks"];
-    proof["containment"] = checks.value("containment", json());
-    proof["containment_detail"] = checks.value("containment_detail", json());
-    proof["closed"] = checks.value("closed", json());
-    proof["manifold"] = checks.value("manifold", json());
-    proof["self_intersecting_pairs"] = checks.value("self_intersecting_pairs", json());
-  }
-  proof["segments"] = nullptr;  // gltfSegmentEvidence, when the caller classified segments
-  proof["source_sha256"] = source_sha256;
-  proof["program_build"] = program_build;
+  const json r = report;
+  const json& checks = r["checks"];
+  json proof = {{"class", r["class"]},
+                {"kind", r["kind"]},
+                {"verified", report.verified},
+                {"method", report.method},
+                {"budget", report.parameters.budget},
+                {"max_faces", report.parameters.max_faces},
+                {"faces", report.faces},
+                {"volume_ratio", r["volume_ratio"]},
+                {"hausdorff", r["hausdorff"]},
+                {"containment", checks.value("containment", json())},
+                {"containment_detail", checks.value("containment_detail", json())},
+                {"closed", report.checks.closed},
+                {"manifold", report.checks.manifold},
+                {"self_intersecting_pairs", report.checks.self_intersecting_pairs},
+                {"segments", nullptr},  // gltfSegmentEvidence, when the caller classified segments
+                {"source_sha256", source_sha256},
+                {"program_build", program_build}};
+  if (report.class_reason) proof["class_reason"] = *report.class_reason;
   return proof;
 }
 
@@ -61,14 +56,14 @@ json gltfSegmentEvidence(const PairCheckReport& report) {
           {"sampled_class", check["sampled_class"]}};
 }
 
-void proveWrittenProxy(const TriMesh& original, const TriMesh& written, json& report,
+void proveWrittenProxy(const TriMesh& original, const TriMesh& written, ProxyReport& report,
                        const std::string& file) {
-  const std::optional<ProxyClass> cls = writtenClass(report);
+  const std::optional<ProxyClass> cls = report.written_class;
   if (!cls || *cls == ProxyClass::kGeneral) return;
   const ContainmentResult r = checkContainment(original, written);
   const ContainmentVerdict expected =
       *cls == ProxyClass::kOutside ? ContainmentVerdict::kContains : ContainmentVerdict::kContained;
-  report["written_check"] = {{"containment", containmentName(r.verdict)}, {"detail", r.detail}};
+  report.written_check = WrittenCheck{containmentName(r.verdict), r.detail};
   if (r.verdict != expected)
     throw CheckFailed(
         file, "the quantized proxy is no longer " + std::string(proxyClassName(*cls)),
@@ -77,12 +72,10 @@ void proveWrittenProxy(const TriMesh& original, const TriMesh& written, json& re
         "was written");
 }
 
-std::string gltfProxyNodeName(const std::string& original, const json& report) {
-  const std::string cls = report.value("class", json()).is_string()
-                              ? report["class"].get<std::string>()
-                              : std::string("general");
-  if (cls == "inside") return original + "-occonly";
-  if (cls == "outside") return original + "-occludee";
+std::string gltfProxyNodeName(const std::string& original, const ProxyReport& report) {
+  const ProxyClass cls = report.written_class.value_or(ProxyClass::kGeneral);
+  if (cls == ProxyClass::kInside) return original + "-occonly";
+  if (cls == ProxyClass::kOutside) return original + "-occludee";
   return original + "-lod";
 }
 

@@ -8,13 +8,14 @@
 
 #include "mesh/tri_mesh.h"
 #include "proxies/check/pair_check.h"
+#include "proxies/pipeline/proxy_report.h"
 
 namespace proxyvis {
 
 // extras.proxyvis of a proxy's node, from proxy-gen's report: class, kind, method, budget, faces,
 // volume ratio, Hausdorff distances with their unit, the exact containment verdict, the input's
-// SHA-256 and the program's build. `report` is proxy-gen's (proxies/pipeline/proxy_pipeline.h).
-nlohmann::json gltfProofExtras(const nlohmann::json& report, const std::string& source_sha256,
+// SHA-256 and the program's build.
+nlohmann::json gltfProofExtras(const ProxyReport& report, const std::string& source_sha256,
                                const std::string& program_build);
 
 // `rays` segments of the sphere distribution classified against both meshes (seeded), keeping up
@@ -28,14 +29,14 @@ nlohmann::json gltfSegmentEvidence(const PairCheckReport& report);
 
 // A proxy is proved before it is encoded; an encoder that moves vertices (Draco quantization)
 // writes another mesh. Checks `written` (the file decoded again) exactly against `original` for
-// the class in `report` and records the verdict as report["written_check"]; throws CheckFailed
-// when the written mesh no longer has the class. A general proxy needs no such proof.
-void proveWrittenProxy(const TriMesh& original, const TriMesh& written, nlohmann::json& report,
+// the class in `report` and records the verdict as its written_check; throws CheckFailed when
+// the written mesh no longer has the class. A general proxy needs no such proof.
+void proveWrittenProxy(const TriMesh& original, const TriMesh& written, ProxyReport& report,
                        const std::string& file);
 
 // The node name of a proxy of `original` with the written class in `report`: "NAME-occonly" for
 // inside proxies (Godot imports such nodes as occluders only), "NAME-occludee" for outside
 // proxies (bounding volumes), "NAME-lod" for general ones.
-std::string gltfProxyNodeName(const std::string& original, const nlohmann::json& report);
+std::string gltfProxyNodeName(const std::string& original, const ProxyReport& report);
 
 }  // namespace proxyvis

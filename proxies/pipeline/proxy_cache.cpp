@@ -7,6 +7,7 @@
 #include <iterator>
 #include <system_error>
 
+#include "proxies/pipeline/report_fields.h"
 #include "util/atomic_write.h"
 #include "util/error.h"
 #include "util/output_set.h"
@@ -96,16 +97,20 @@ std::optional<CachedProxy> ProxyCache::find(const std::string& key, std::string*
   if (meta.is_discarded() || !meta.is_object()) return damaged("its report is not JSON");
   if (meta.value("format", 0) != kCacheFormat || meta.value("key", "") != key)
     return damaged("its report belongs to another entry");
-  const auto report = meta.find("report");
-  if (report == meta.end() || !report->is_object()) return damaged("it has no report");
+  if (!meta.contains("report") || !meta["report"].is_object()) return damaged("it has no report");
   CachedProxy entry;
-  entry.report = *report;
-  if (entry.report.contains("skipped")) return entry;
-  const auto hash = meta.find("proxy_sha256");
-  if (hash == meta.end() || !hash->is_string()) return damaged("it records no proxy hash");
+  std::string hash;
+  try {
+    const Field f(meta, "", meta_path);
+    entry.report = readSceneMeshReport(f["report"]);
+    if (entry.report.skipped) return entry;
+    hash = f["proxy_sha256"].asString();
+  } catch (const Error& e) {
+    return damaged(e.what());
+  }
   const std::optional<std::string> bytes = readOwnFileBytes(dir_ / (key + ".ply"));
   if (!bytes) return damaged("its proxy file is missing or unreadable");
-  if (sha256Hex(*bytes) != hash->get<std::string>())
+  if (sha256Hex(*bytes) != hash)
     return damaged("its proxy file does not have the recorded SHA-256 (truncated or changed)");
   entry.proxy_bytes = std::move(*bytes);
   return entry;
@@ -113,7 +118,7 @@ std::optional<CachedProxy> ProxyCache::find(const std::string& key, std::string*
 
 void ProxyCache::store(const std::string& key, const CachedProxy& entry) const {
   nlohmann::json meta = {{"format", kCacheFormat}, {"key", key}, {"report", entry.report}};
-  if (!entry.report.contains("skipped")) {
+  if (!entry.report.skipped) {
     const fs::path ply = dir_ / (key + ".ply");
     writeAtomically(
         ply, [&](const fs::path& tmp) { writeFileBytes(tmp, entry.proxy_bytes, ply.string()); });

@@ -16,13 +16,14 @@
 #include <string>
 
 #include "proxies/pipeline/proxy_pipeline.h"
+#include "proxies/pipeline/proxy_report.h"
 
 namespace proxyvis {
 
-// A cached result: the report (with "skipped": why, for a mesh that gets no proxy) and the proxy
-// file's bytes (empty when skipped).
+// A cached result: the report (its proxy's, or why the mesh gets none: skipped; no name or cache
+// state) and the proxy file's bytes (empty when skipped).
 struct CachedProxy {
-  nlohmann::json report;
+  SceneMeshReport report;
   std::string proxy_bytes;
 };
 

@@ -25,8 +25,6 @@
 namespace proxyvis {
 namespace {
 
-using json = nlohmann::json;
-
 std::string resolveMethod(const ProxyGenOptions& options) {
   const std::vector<std::string>& methods = proxyMethods(options.kind);
   const std::string method = options.method.empty() ? methods.front() : options.method;
@@ -91,25 +89,25 @@ GeneralOptions generalOptions(const ProxyGenOptions& o) {
 struct Built {
   TriMesh mesh;          // before the budget
   bool bounded = false;  // reduce with simplifyBounded (outside/inside) rather than not at all
-  json extra = json::object();
+  std::optional<uint64_t> seeds, voxels;  // inside wrap, erode
 };
 
 Built build(const TriMesh& reference, const ProxyGenOptions& o, const std::string& method,
-            json& params, const TimeBudget* budget) {
+            ProxyParameters& params, const TimeBudget* budget) {
   Built b;
   if (o.kind == ProxyClass::kOutside) {
     b.bounded = true;
     if (method == "hull") {
       HullOptions h;
-      params["hull_epsilon"] = h.epsilon;
+      params.hull_epsilon = h.epsilon;
       b.mesh = makeHullProxy(reference, h);
     } else {
       WrapOptions w;
       w.alpha = o.alpha.value_or(w.alpha);
       w.offset = o.offset.value_or(w.offset);
       w.budget = budget;
-      params["alpha"] = w.alpha;
-      params["offset"] = w.offset;
+      params.alpha = w.alpha;
+      params.offset = w.offset;
       b.mesh = makeWrapProxy(reference, w);
     }
   } else if (o.kind == ProxyClass::kInside) {
@@ -120,10 +118,10 @@ Built build(const TriMesh& reference, const ProxyGenOptions& o, const std::strin
       w.alpha = o.alpha.value_or(w.alpha);
       w.offset = o.offset.value_or(w.offset);
       w.budget = budget;
-      params["alpha"] = w.alpha;
-      params["offset"] = w.offset;
+      params.alpha = w.alpha;
+      params.offset = w.offset;
       b.mesh = makeInsideWrapProxy(reference, w, &stats);
-      b.extra["seeds"] = stats.seeds;
+      b.seeds = stats.seeds;
     } else {
       ErodeOptions e;
       e.erosion = o.erosion.value_or(2 * e.voxel);
@@ -134,15 +132,15 @@ Built build(const TriMesh& reference, const ProxyGenOptions& o, const std::strin
                 : faces > 0 ? erodeVoxelForBudget(reference, faces, e.voxel, e.erosion)
                             : e.voxel;
       e.budget = budget;
-      params["erosion"] = e.erosion;
-      params["voxel"] = e.voxel;
+      params.erosion = e.erosion;
+      params.voxel = e.voxel;
       b.mesh = makeErodeProxy(reference, e, &stats);
-      b.extra["voxels"] = stats.voxels;
+      b.voxels = stats.voxels;
     }
   } else {
     GeneralOptions g = generalOptions(o);
     g.budget = budget;
-    params["ratio"] = g.ratio;
+    params.ratio = g.ratio;
     if (method == "qem")
       b.mesh = simplifyQem(reference, g);
     else if (method == "cgal-sms")
@@ -164,10 +162,8 @@ const std::vector<std::string>& proxyMethods(ProxyClass kind) {
 namespace {
 
 // The input's facts in the report.
-json inputJson(const TriMesh& input, const MeshReport& r) {
-  return {{"path", input.source},   {"faces", r.faces},
-          {"closed", r.closed},     {"watertight", r.watertight},
-          {"manifold", r.manifold}, {"boundary_edges", r.boundary_edges}};
+ProxyInputFacts inputFacts(const TriMesh& input, const MeshReport& r) {
+  return {input.source, r.faces, r.closed, r.watertight, r.manifold, r.boundary_edges};
 }
 
 // The face budget the proxy is reduced to (0: none): the user's --max-faces or --ratio, the
@@ -175,17 +171,17 @@ json inputJson(const TriMesh& input, const MeshReport& r) {
 // input, the input's count (such a proxy saves nothing: a wrapped 2-triangle ground quad has
 // thousands).
 size_t budgetFaces(const TriMesh& input, const ProxyGenOptions& options, const Built& built,
-                   json& params) {
+                   ProxyParameters& params) {
   size_t max_faces = options.max_faces;
   if (built.bounded && max_faces == 0 && options.ratio) {
     // Outside/inside with --ratio: a budget relative to the input (a scene's meshes differ).
     max_faces = requestedFaces(options, input);
-    params["max_faces_from_ratio"] = max_faces;
-    params["min_faces"] = options.min_faces;
+    params.max_faces_from_ratio = max_faces;
+    params.min_faces = options.min_faces;
   }
   if (built.bounded && max_faces == 0 && built.mesh.numTriangles() > input.numTriangles()) {
     max_faces = std::max<size_t>(input.numTriangles(), 12);
-    params["max_faces_auto"] = max_faces;
+    params.max_faces_auto = max_faces;
   }
   if (options.kind == ProxyClass::kGeneral)
     max_faces = generalTargetFaces(input, generalOptions(options));
@@ -204,10 +200,10 @@ VerifiedCandidate chooseWithinBudget(BudgetContext& ctx, VerifiedCandidate chose
     throwBudgetNotMet(ctx, ladder.smallest->faces());
   std::optional<VerifiedCandidate>& better = ladder.within ? ladder.within : ladder.smallest;
   if (better && (better->faces() <= chosen.faces() || !chosen.ok)) {
-    if (better->source != chosen.source) ctx.report["budget_fallback"] = better->source;
+    if (better->source != chosen.source) ctx.report.budget_fallback = better->source;
     chosen = std::move(*better);
   }
-  ctx.report["budget_reached"] = chosen.faces() <= ctx.max_faces;
+  ctx.report.budget_reached = chosen.faces() <= ctx.max_faces;
   return chosen;
 }
 
@@ -217,22 +213,21 @@ ContainmentVerdict expectedVerdict(ProxyClass kind) {
 }
 
 // The checks of the chosen proxy in the report; true when they all hold.
-bool recordChecks(json& report, const VerifiedCandidate& chosen, ProxyClass kind) {
+bool recordChecks(ProxyReport& report, const VerifiedCandidate& chosen, ProxyClass kind) {
   const MeshReport& r = chosen.report;
   const uint64_t si = r.self_intersecting_pairs.value_or(0);
-  report["checks"] = {
-      {"closed", r.closed}, {"manifold", r.manifold}, {"self_intersecting_pairs", si}};
+  report.checks = {r.closed, r.manifold, si, std::nullopt, std::nullopt, std::nullopt};
   bool verified = r.closed && r.manifold && si == 0;
   if (chosen.containment) {
-    report["checks"]["containment"] = containmentName(chosen.containment->verdict);
-    report["checks"]["containment_detail"] = chosen.containment->detail;
+    report.checks.containment = containmentName(chosen.containment->verdict);
+    report.checks.containment_detail = chosen.containment->detail;
     verified = verified && chosen.containment->verdict == expectedVerdict(kind);
   }
   return verified;
 }
 
 // Volume ratio and sampled Hausdorff distances against the reference.
-void recordMetrics(json& report, const TriMesh& proxy, const MeshReport& proxy_report,
+void recordMetrics(ProxyReport& report, const TriMesh& proxy, const MeshReport& proxy_report,
                    const TriMesh& reference, const MeshReport& in_report, bool stand_in,
                    const ProxyGenOptions& options) {
   const double diag = reference.diagonal();
@@ -242,9 +237,8 @@ void recordMetrics(json& report, const TriMesh& proxy, const MeshReport& proxy_r
                                            : in_report.closed
                                                ? std::optional<double>(reference.signedVolume())
                                                : parityVolume(reference);
-  report["volume_ratio"] = (ref_volume && proxy_report.closed && *ref_volume > 0)
-                               ? json(proxy.signedVolume() / *ref_volume)
-                               : json(nullptr);
+  if (ref_volume && proxy_report.closed && *ref_volume > 0)
+    report.volume_ratio = proxy.signedVolume() / *ref_volume;
   HausdorffDistances h;
   h.proxy_to_original =
       sampledOneSidedDistance(proxy, reference, options.hausdorff_samples, options.seed);
@@ -252,9 +246,9 @@ void recordMetrics(json& report, const TriMesh& proxy, const MeshReport& proxy_r
       sampledOneSidedDistance(reference, proxy, options.hausdorff_samples, options.seed + 1);
   h.diagonal = diag;
   // Fractions of the diagonal (the unit of --alpha and --offset); "hausdorff" adds scene units.
-  report["hausdorff_proxy_to_original"] = h.proxy_to_original / diag;
-  report["hausdorff_original_to_proxy"] = h.original_to_proxy / diag;
-  report["hausdorff"] = hausdorffJson(h);
+  report.hausdorff_proxy_to_original = h.proxy_to_original / diag;
+  report.hausdorff_original_to_proxy = h.original_to_proxy / diag;
+  report.hausdorff = h;
 }
 
 [[noreturn]] void throwNotVerified(const TriMesh& input, const ProxyGenOptions& options,
@@ -288,9 +282,8 @@ void recordMetrics(json& report, const TriMesh& proxy, const MeshReport& proxy_r
 ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& options) {
   const Stopwatch whole;
   const std::string method = resolveMethod(options);
-  json report;
-  json& seconds = report["seconds"] = json::object();
-  StageTimer timer(seconds, options.on_stage);
+  ProxyReport report;
+  StageTimer timer(report.seconds, options.on_stage);
   checkOptionRanges(options);
   // Before CGAL or OpenMesh see the mesh: they crash, abort or loop on some geometry that loads.
   requireProxyGeometry(input, geometryNeed(options.kind, method),
@@ -299,12 +292,14 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
       options.max_seconds > 0 ? TimeBudget(options.max_seconds, input.source) : TimeBudget();
 
   const MeshReport in_report = timer.run("validate_input", [&] { return validateMesh(input); });
-  report["input"] = inputJson(input, in_report);
-  report["kind"] = proxyClassName(options.kind);
-  report["method"] = method;
-  json& params = report["parameters"] = {
-      {"max_faces", options.max_faces}, {"fill_holes", options.fill_holes}, {"seed", options.seed}};
-  if (options.max_seconds > 0) params["max_seconds"] = options.max_seconds;
+  report.input = inputFacts(input, in_report);
+  report.kind = options.kind;
+  report.method = method;
+  ProxyParameters& params = report.parameters;
+  params.max_faces = options.max_faces;
+  params.fill_holes = options.fill_holes;
+  params.seed = options.seed;
+  if (options.max_seconds > 0) params.max_seconds = options.max_seconds;
 
   // The mesh the proxy is built and verified against: the input, which for inside needs only to
   // bound a volume by ray parity (watertight, non-manifold edges allowed); or the input with its
@@ -318,13 +313,13 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
                             "an inside proxy");
     size_t holes = 0;
     reference = timer.run("fill_holes", [&] { return fillHoles(input, &holes); });
-    report["holes_filled"] = holes;
+    report.holes_filled = holes;
     stand_in = filledHolesReason(in_report.boundary_edges, holes);
     budget.check("the hole filling");
   }
 
   auto rebuild = [&](const ProxyGenOptions& o) {
-    json unused;
+    ProxyParameters unused;
     return build(reference, o, method, unused, &budget).mesh;
   };
   if (options.kind != ProxyClass::kGeneral && options.hard_budget && options.max_faces > 0 &&
@@ -334,10 +329,11 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
   Built built =
       timer.run("build", [&] { return build(reference, options, method, params, &budget); });
   budget.check("building the proxy");
-  report.update(built.extra);
-  report["faces_before_budget"] = built.mesh.numTriangles();
+  report.seeds = built.seeds;
+  report.voxels = built.voxels;
+  report.faces_before_budget = built.mesh.numTriangles();
   const size_t max_faces = budgetFaces(input, options, built, params);
-  params["budget"] = options.hard_budget ? "hard" : "soft";
+  params.budget = options.hard_budget ? "hard" : "soft";
 
   BudgetContext ctx{input, reference, options, method, max_faces, budget, timer, report, rebuild};
   VerifiedCandidate chosen =
@@ -345,16 +341,15 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
                                   ? verifyCandidate(ctx, std::move(built.mesh), method)
                                   : reduceAndVerify(ctx, built.mesh, method, true));
   const bool verified = recordChecks(report, chosen, options.kind);
-  report["faces"] = chosen.mesh.numTriangles();
-  report["verified"] = verified;
+  report.faces = chosen.mesh.numTriangles();
+  report.verified = verified;
   setWrittenClass(report, options.kind, verified, stand_in);
-  if (stand_in && chosen.containment)
-    report["checks"]["containment_against"] = "the hole-filled input";
+  if (stand_in && chosen.containment) report.checks.containment_against = "the hole-filled input";
   timer.run("metrics", [&] {
     recordMetrics(report, chosen.mesh, chosen.report, reference, in_report, stand_in.has_value(),
                   options);
   });
-  seconds["total"] = whole.seconds();
+  report.seconds["total"] = whole.seconds();
 
   if (options.kind != ProxyClass::kGeneral && !verified)
     throwNotVerified(input, options, method, chosen);

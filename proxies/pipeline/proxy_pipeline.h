@@ -6,11 +6,11 @@
 // bench/proxy_gen.
 #include <cstdint>
 #include <functional>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 
 #include "mesh/tri_mesh.h"
+#include "proxies/pipeline/proxy_report.h"
 #include "util/proxy_class.h"
 
 namespace proxyvis {
@@ -55,7 +55,7 @@ struct ProxyGenOptions {
   // Time budget for the whole generation (wrap, seed search, erosion, decimation, face budget
   // poll it); 0 = none.
   double max_seconds = 0;
-  // Called as each stage starts, with its key in the report's "seconds" (validate_input,
+  // Called as each stage starts, with its key in the report's seconds (validate_input,
   // fill_holes, build, simplify, verify, budget_ladder, metrics); empty = nothing to tell.
   std::function<void(const std::string& stage)> on_stage;
 };
@@ -66,7 +66,7 @@ const std::vector<std::string>& proxyMethods(ProxyClass kind);
 struct ProxyGenResult {
   TriMesh proxy;
   bool verified = false;  // outside/inside: containment proven; general: closed, manifold, no SI
-  nlohmann::json report;  // the keys: docs/proxy_reports.md
+  ProxyReport report;     // its JSON: docs/proxy_reports.md
 };
 
 // Builds and checks the proxy of `input` (report key "input.path" = input.source); a face budget

@@ -1,8 +1,8 @@
 #pragma once
-// Seconds per named stage of a proxy-gen run, added up in a JSON object (report key "seconds"),
+// Seconds per named stage of a proxy-gen run, added up in the report's "seconds",
 // and a call as each stage starts (proxy-gen's progress bar).
 #include <functional>
-#include <nlohmann/json.hpp>
+#include <map>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -13,7 +13,7 @@ namespace proxyvis {
 
 class StageTimer {
  public:
-  explicit StageTimer(nlohmann::json& seconds,
+  explicit StageTimer(std::map<std::string, double>& seconds,
                       std::function<void(const std::string&)> on_start = {})
       : seconds_(seconds), on_start_(std::move(on_start)) {}
   // Runs f() and adds its wall time to `stage`.
@@ -21,7 +21,7 @@ class StageTimer {
   auto run(const char* stage, F&& f) {
     if (on_start_) on_start_(stage);
     const Stopwatch clock;
-    auto finish = [&] { seconds_[stage] = seconds_.value(stage, 0.0) + clock.seconds(); };
+    auto finish = [&] { seconds_[stage] += clock.seconds(); };
     if constexpr (std::is_void_v<decltype(f())>) {
       f();
       finish();
@@ -33,7 +33,7 @@ class StageTimer {
   }
 
  private:
-  nlohmann::json& seconds_;
+  std::map<std::string, double>& seconds_;
   std::function<void(const std::string&)> on_start_;
 };
 

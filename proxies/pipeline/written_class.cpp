@@ -11,23 +11,17 @@ std::string filledHolesReason(uint64_t boundary_edges, uint64_t holes_filled) {
       boundary_edges, holes_filled, holes_filled == 1 ? "hole" : "holes");
 }
 
-void setWrittenClass(nlohmann::json& report, ProxyClass kind, bool verified,
+void setWrittenClass(ProxyReport& report, ProxyClass kind, bool verified,
                      const std::optional<std::string>& stand_in) {
-  report.erase("class_reason");
-  if (!verified) {
-    report["class"] = nullptr;
-  } else if (stand_in && kind != ProxyClass::kGeneral) {
-    report["class"] = proxyClassName(ProxyClass::kGeneral);
-    report["class_reason"] = *stand_in;
+  report.class_reason.reset();
+  report.written_class.reset();
+  if (!verified) return;
+  if (stand_in && kind != ProxyClass::kGeneral) {
+    report.written_class = ProxyClass::kGeneral;
+    report.class_reason = *stand_in;
   } else {
-    report["class"] = proxyClassName(kind);
+    report.written_class = kind;
   }
-}
-
-std::optional<ProxyClass> writtenClass(const nlohmann::json& report) {
-  const auto it = report.find("class");
-  if (it == report.end() || !it->is_string()) return std::nullopt;
-  return parseProxyClass(it->get<std::string>());
 }
 
 }  // namespace proxyvis

@@ -4,10 +4,10 @@
 // it. A proxy verified against a stand-in for the input (the input with its holes filled) keeps no
 // such promise, since rays pass through the holes, and is written as class general with the
 // reason (docs/proxy_classes.md).
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 
+#include "proxies/pipeline/proxy_report.h"
 #include "util/proxy_class.h"
 
 namespace proxyvis {
@@ -16,13 +16,10 @@ namespace proxyvis {
 // edges; ..."), for --fill-holes: the proxy is verified inside the filled mesh only.
 std::string filledHolesReason(uint64_t boundary_edges, uint64_t holes_filled);
 
-// Sets report["class"]: null when not verified; the kind asked for when verified against the
-// input itself; "general" with report["class_reason"] = `stand_in` when verified only against a
-// stand-in for the input.
-void setWrittenClass(nlohmann::json& report, ProxyClass kind, bool verified,
+// Sets the report's class: none when not verified; the kind asked for when verified against the
+// input itself; general with class_reason = `stand_in` when verified only against a stand-in for
+// the input.
+void setWrittenClass(ProxyReport& report, ProxyClass kind, bool verified,
                      const std::optional<std::string>& stand_in);
-
-// The class a report claims (nullopt for null or a missing key).
-std::optional<ProxyClass> writtenClass(const nlohmann::json& report);
 
 }  // namespace proxyvis

@@ -1,4 +1,4 @@
-# proxy-gen's default stdout is the text summary (apps/proxy-gen/summary_text.h), not JSON: input
+# proxy-gen's default stdout is the text summary (proxies/pipeline/proxy_report_text.h), not JSON: input
 # and output with faces, the budget, the volume ratio, the Hausdorff distances with their unit,
 # the verdict and class, and the stages in the order they run with total last.
 #

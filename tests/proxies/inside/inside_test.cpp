@@ -26,10 +26,10 @@ TEST_P(InsideContainment, ExactCheckProvesContainment) {
   if (gen_test::tooLargeForSanitizers(GetParam().mesh)) GTEST_SKIP() << "Release suite only";
   const auto [o, r] = gen_test::runContainmentCase(
       GetParam(), ProxyClass::kInside, &ProxyGenOptions::offset, ContainmentVerdict::kContained);
-  if (o.max_faces > 0 && r.report["budget_reached"].get<bool>()) {
+  if (o.max_faces > 0 && *r.report.budget_reached) {
     EXPECT_LE(r.proxy.numTriangles(), o.max_faces);
   }
-  const double ratio = r.report["volume_ratio"].get<double>();
+  const double ratio = *r.report.volume_ratio;
   EXPECT_GT(ratio, 0.3);
   EXPECT_LE(ratio, 1.0);
 }
@@ -56,7 +56,7 @@ TEST_P(InsideBudget, IsRespected) {
   const BudgetCase c = GetParam();
   const ProxyGenResult r =
       generateProxy(mesh(c.mesh), genOptions(ProxyClass::kInside, c.method, c.max_faces, 1000));
-  EXPECT_TRUE(r.report["budget_reached"].get<bool>()) << r.report.dump(2);
+  EXPECT_TRUE(*r.report.budget_reached) << nlohmann::json(r.report).dump(2);
   EXPECT_LE(r.proxy.numTriangles(), c.max_faces);
   EXPECT_TRUE(r.verified);
 }
@@ -95,11 +95,11 @@ TEST(InsideOpenInput, FillHolesMakesBunZipperWork) {
   ProxyGenOptions o = genOptions(ProxyClass::kInside, "", 0, 2000);
   o.fill_holes = true;
   const ProxyGenResult r = generateProxy(input, o);
-  EXPECT_TRUE(r.verified) << r.report.dump(2);
+  EXPECT_TRUE(r.verified) << nlohmann::json(r.report).dump(2);
   // Inside the filled mesh, but rays through the holes reach it: written as general.
-  EXPECT_EQ(r.report["class"], "general");
+  EXPECT_EQ(r.report.written_class, ProxyClass::kGeneral);
   EXPECT_EQ(checkContainment(filled, r.proxy).verdict, ContainmentVerdict::kContained);
-  EXPECT_EQ(r.report["holes_filled"].get<size_t>(), holes);
+  EXPECT_EQ(*r.report.holes_filled, holes);
 }
 
 TEST(InsideErode, ErosionShrinksTheVolume) {

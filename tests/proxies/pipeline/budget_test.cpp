@@ -105,7 +105,7 @@ TEST(BudgetPolicy, TruckSoupQemMeetsTwoPercentQuietly) {
   EXPECT_EQ(err, "");
   EXPECT_LE(r.proxy.numTriangles(), 95u);  // round(0.02 x 4770)
   EXPECT_GE(r.proxy.numTriangles(), 4u);
-  EXPECT_TRUE(r.report["budget_reached"].get<bool>());
+  EXPECT_TRUE(*r.report.budget_reached);
 }
 
 TEST(BudgetPolicy, HardBudgetBelowFourFacesThrowsSoftReports) {
@@ -119,7 +119,7 @@ TEST(BudgetPolicy, HardBudgetBelowFourFacesThrowsSoftReports) {
   }
   o.hard_budget = false;
   const ProxyGenResult r = generateProxy(mesh("bunny.off"), o);
-  EXPECT_FALSE(r.report["budget_reached"].get<bool>());
+  EXPECT_FALSE(*r.report.budget_reached);
   EXPECT_TRUE(r.verified);
   EXPECT_GE(r.proxy.numTriangles(), 4u);
 }
@@ -141,14 +141,14 @@ TEST(BudgetPolicy, RatioBudgetIsRaisedToTheMinimum) {
   o.ratio = 0.001;
   o.min_faces = 40;
   ProxyGenResult r = generateProxy(input, o);
-  EXPECT_EQ(r.report["parameters"]["max_faces_from_ratio"].get<size_t>(), 40u);
-  EXPECT_EQ(r.report["parameters"]["min_faces"].get<size_t>(), 40u);
+  EXPECT_EQ(*r.report.parameters.max_faces_from_ratio, 40u);
+  EXPECT_EQ(*r.report.parameters.min_faces, 40u);
   EXPECT_LE(r.proxy.numTriangles(), 40u);
   EXPECT_GT(r.proxy.numTriangles(), 12u);  // not the box the 12-face floor would allow
   EXPECT_TRUE(r.verified);
   o.min_faces = 8;  // below the 12 of the default: the floor is what was asked
   r = generateProxy(input, o);
-  EXPECT_EQ(r.report["parameters"]["max_faces_from_ratio"].get<size_t>(), 8u);
+  EXPECT_EQ(*r.report.parameters.max_faces_from_ratio, 8u);
   EXPECT_LE(r.proxy.numTriangles(), 8u);
   EXPECT_TRUE(r.verified);
   o.min_faces = 3;

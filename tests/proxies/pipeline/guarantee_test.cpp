@@ -128,10 +128,10 @@ TEST(ParityInside, TwoBoxesGetAVerifiedInsideWrap) {
   const TriMesh input = twoBoxesSharingAnEdge();
   const ProxyGenResult r =
       generateProxy(input, genOptions(ProxyClass::kInside, "wrap", 100000, 1000));
-  EXPECT_TRUE(r.verified) << r.report.dump(2);
-  EXPECT_EQ(r.report["class"], "inside");
+  EXPECT_TRUE(r.verified) << nlohmann::json(r.report).dump(2);
+  EXPECT_EQ(r.report.written_class, ProxyClass::kInside);
   EXPECT_EQ(checkContainment(input, r.proxy).verdict, ContainmentVerdict::kContained);
-  EXPECT_GT(r.report["volume_ratio"].get<double>(), 0.5);
+  EXPECT_GT(*r.report.volume_ratio, 0.5);
 }
 
 TEST(ParityInside, OddEdgesAreRefusedWithAdviceThatWorks) {
@@ -150,7 +150,7 @@ TEST(ParityInside, OddEdgesAreRefusedWithAdviceThatWorks) {
   // What the advice says does work.
   const ProxyGenResult outside =
       generateProxy(theta(), genOptions(ProxyClass::kOutside, "", 0, 1000));
-  EXPECT_EQ(outside.report["class"], "outside");
+  EXPECT_EQ(outside.report.written_class, ProxyClass::kOutside);
 }
 
 // cow.off: no boundary edge, one edge with four faces (two vertices at one position).
@@ -162,9 +162,9 @@ TEST_P(CowInside, IsVerifiedAgainstTheInput) {
   ASSERT_TRUE(in.watertight);
   ASSERT_FALSE(in.closed);
   const ProxyGenResult r = generateProxy(cow, genOptions(ProxyClass::kInside, GetParam(), 0, 2000));
-  EXPECT_TRUE(r.verified) << r.report.dump(2);
-  EXPECT_EQ(r.report["class"], "inside");
-  EXPECT_FALSE(r.report.contains("class_reason"));
+  EXPECT_TRUE(r.verified) << nlohmann::json(r.report).dump(2);
+  EXPECT_EQ(r.report.written_class, ProxyClass::kInside);
+  EXPECT_FALSE(r.report.class_reason);
   // Independently of the report: the exact check against cow.off itself, and sampled segments.
   const ContainmentResult c = checkContainment(cow, r.proxy);
   EXPECT_EQ(c.verdict, ContainmentVerdict::kContained) << c.detail;
@@ -176,9 +176,9 @@ TEST_P(CowInside, IsVerifiedAgainstTheInput) {
   const PairCheckReport pc = checkPair(cow, r.proxy, po);
   EXPECT_EQ(pc.sampled.counts.mh, 0u);
   EXPECT_GT(pc.sampled.counts.hh, 0u);
-  ASSERT_TRUE(r.report["volume_ratio"].is_number());
-  EXPECT_GT(r.report["volume_ratio"].get<double>(), 0.3);
-  EXPECT_LT(r.report["volume_ratio"].get<double>(), 1.0);
+  ASSERT_TRUE(r.report.volume_ratio);
+  EXPECT_GT(*r.report.volume_ratio, 0.3);
+  EXPECT_LT(*r.report.volume_ratio, 1.0);
 }
 
 INSTANTIATE_TEST_SUITE_P(Methods, CowInside, testing::Values("wrap", "erode"));
@@ -189,9 +189,9 @@ TEST(CowOutside, HasAVolumeRatio) {
   // faces are oriented outward already; the split moves no triangle).
   EXPECT_NEAR(parityVolume(cow).value_or(0), cow.signedVolume(), 1e-9 * cow.signedVolume());
   const ProxyGenResult r = generateProxy(cow, genOptions(ProxyClass::kOutside, "", 0, 1000));
-  EXPECT_EQ(r.report["class"], "outside");
-  ASSERT_TRUE(r.report["volume_ratio"].is_number()) << r.report.dump(2);
-  EXPECT_GT(r.report["volume_ratio"].get<double>(), 1.0);
+  EXPECT_EQ(r.report.written_class, ProxyClass::kOutside);
+  ASSERT_TRUE(r.report.volume_ratio) << nlohmann::json(r.report).dump(2);
+  EXPECT_GT(*r.report.volume_ratio, 1.0);
 }
 
 // camelhead.off has one cut (56 boundary edges). Filling it lets a proxy be built inside, but
@@ -201,10 +201,10 @@ TEST(FillHoles, CamelheadIsWrittenAsGeneralWithTheReason) {
   ProxyGenOptions o = genOptions(ProxyClass::kInside, "wrap", 0, 1000);
   o.fill_holes = true;
   const ProxyGenResult r = generateProxy(camel, o);
-  EXPECT_TRUE(r.verified) << r.report.dump(2);
-  EXPECT_EQ(r.report["kind"], "inside");
-  EXPECT_EQ(r.report["class"], "general");
-  const std::string reason = r.report.value("class_reason", "");
+  EXPECT_TRUE(r.verified) << nlohmann::json(r.report).dump(2);
+  EXPECT_EQ(r.report.kind, ProxyClass::kInside);
+  EXPECT_EQ(r.report.written_class, ProxyClass::kGeneral);
+  const std::string reason = r.report.class_reason.value_or("");
   EXPECT_NE(reason.find("56 boundary edges"), std::string::npos) << reason;
   EXPECT_NE(reason.find("hole"), std::string::npos) << reason;
   // The evidence for the downgrade: against the input itself the proxy is not contained, and

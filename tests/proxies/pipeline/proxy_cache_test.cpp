@@ -32,7 +32,11 @@ class ProxyCacheTest : public ::testing::Test {
 
   static CachedProxy sampleEntry() {
     CachedProxy e;
-    e.report = {{"class", "outside"}, {"faces", 12}, {"method", "hull"}};
+    ProxyReport r;  // every key present; values of no importance here
+    r.method = "hull";
+    r.faces = 12;
+    r.written_class = ProxyClass::kOutside;
+    e.report.proxy = r;
     e.proxy_bytes = std::string("ply\nformat binary_little_endian 1.0\n\0\1\2\3", 40);
     return e;
   }
@@ -109,12 +113,14 @@ TEST_F(ProxyCacheTest, StoredEntryIsFoundWithItsBytes) {
 TEST_F(ProxyCacheTest, SkippedEntryHasNoProxyFile) {
   const ProxyCache cache(dir_);
   CachedProxy e;
-  e.report = {{"skipped", "not cheaper"}, {"faces", 3}};
+  e.report.skipped = "not cheaper";
+  e.report.faces = 3;
   cache.store("k2", e);
   EXPECT_FALSE(fs::exists(dir_ / "k2.ply"));
   const std::optional<CachedProxy> got = cache.find("k2");
   ASSERT_TRUE(got);
-  EXPECT_EQ(got->report.value("skipped", ""), "not cheaper");
+  EXPECT_EQ(got->report.skipped.value_or(""), "not cheaper");
+  EXPECT_EQ(got->report.faces, 3u);
 }
 
 TEST_F(ProxyCacheTest, TruncatedProxyFileIsAMiss) {

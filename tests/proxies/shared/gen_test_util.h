@@ -86,7 +86,7 @@ inline ContainmentRun runContainmentCase(const ContainmentCase& c, ProxyClass ki
       genOptions(kind, c.method, size_t(c.budget_fraction * double(input.numTriangles())), 2000);
   if (c.size > 0) run.options.*size = c.size;
   run.result = generateProxy(input, run.options);
-  EXPECT_TRUE(run.result.verified) << run.result.report.dump(2);
+  EXPECT_TRUE(run.result.verified) << nlohmann::json(run.result.report).dump(2);
   const ContainmentResult check = checkContainment(input, run.result.proxy);
   EXPECT_EQ(check.verdict, expected) << check.detail;
   return run;

@@ -34,7 +34,7 @@ TEST_P(TightAtTwoPercent, WrapMeetsTheVolumeRatioTarget) {
   ProxyGenOptions o = genOptions(c.kind, "wrap", 0, 2000);
   o.ratio = 0.02;
   const ProxyGenResult r = generateProxy(input, o);
-  ASSERT_TRUE(r.verified) << r.report.dump(2);
+  ASSERT_TRUE(r.verified) << nlohmann::json(r.report).dump(2);
   // The budget, computed here as the pipeline documents it (2 % of the faces, at least 12).
   EXPECT_LE(r.proxy.numTriangles(), std::max<size_t>(12, input.numTriangles() / 50));
   const bool outside = c.kind == ProxyClass::kOutside;

@@ -1,4 +1,4 @@
-#include "scene_gltf.h"
+#include "proxies/scene/scene_gltf.h"
 
 #include "proxies/pipeline/gltf_proof.h"
 #include "scene/gltf_scene_export.h"
@@ -28,8 +28,9 @@ void addSceneGltfOutput(OutputSet& outputs, const fs::path& scene_json,
       p.cls = ref.verified_class ? proxyClassName(*ref.verified_class) : "general";
       std::error_code ec;
       const bool made_now = m < proxy_files.size() && fs::equivalent(ref.file, proxy_files[m], ec);
-      if (made_now && m < outcomes.size()) {
-        json proof = gltfProofExtras(outcomes[m].report, sha256OfFile(mesh.file), programBuildId());
+      if (made_now && m < outcomes.size() && outcomes[m].report.proxy) {
+        json proof =
+            gltfProofExtras(*outcomes[m].report.proxy, sha256OfFile(mesh.file), programBuildId());
         if (mesh.gltf_mesh >= 0) proof["source_gltf_mesh"] = mesh.gltf_mesh;
         p.extras = {{"proxyvis", proof}};
       } else {

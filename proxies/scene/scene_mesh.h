@@ -2,12 +2,12 @@
 // proxy-gen's work on one mesh of a scene: its proxy taken from the proxy cache or generated and
 // written, or the reason it gets none (docs/proxies.md, "Whole scenes").
 #include <filesystem>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 
 #include "proxies/pipeline/proxy_cache.h"
 #include "proxies/pipeline/proxy_pipeline.h"
+#include "proxies/pipeline/proxy_report.h"
 #include "scene/scene_desc.h"
 #include "util/output_set.h"
 
@@ -21,9 +21,9 @@ inline constexpr double kOpenMeshWrapAlpha = 0.1;
 inline constexpr double kOpenMeshWrapOffset = 0.01;
 
 struct SceneMeshProxy {
-  // The generator's report with "name", "output" and "cache" ("cached", "generated", "off"), or
-  // {"name", "skipped", ...} for a mesh that gets no proxy.
-  nlohmann::json report;
+  // The generator's report with the mesh's name, its output and the cache state ("cached",
+  // "generated", "off"), or the name and why the mesh gets no proxy.
+  SceneMeshReport report;
   std::optional<ProxyRef> ref;  // the proxy to list in the scene (absent when skipped)
   std::string skipped;          // why the mesh gets no proxy; empty when it got one
   // What went wrong with the cache (a damaged entry generated again, an entry not stored), for a
@@ -44,7 +44,7 @@ void stageProxyBytes(OutputSet& outputs, const std::string& bytes,
 
 // The scene's entry for the proxy in file `out` (content `proxy_bytes`) whose generator report
 // is `report`: its class as written, with the file's hash when the class was proven.
-ProxyRef proxyRefFor(const nlohmann::json& report, ProxyClass kind,
-                     const std::filesystem::path& out, const std::string& proxy_bytes);
+ProxyRef proxyRefFor(const ProxyReport& report, ProxyClass kind, const std::filesystem::path& out,
+                     const std::string& proxy_bytes);
 
 }  // namespace proxyvis

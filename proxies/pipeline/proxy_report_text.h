@@ -2,10 +2,11 @@
 // proxy-gen's human summary of one proxy, printed on stdout by default (the JSON report goes to
 // --json): what went in and came out, the class and why it holds, volume and Hausdorff distance
 // with their units, and the seconds of each stage in the order they run, total last.
-#include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "proxies/pipeline/proxy_report.h"
 
 namespace proxyvis {
 
@@ -21,8 +22,8 @@ const std::vector<StageName>& proxyGenStages();
 inline constexpr int kProxyGenSteps =
     6;  // load, validate, build, budget reduction, verify, measure
 
-// The summary of a proxy-gen report (the JSON of proxy_pipeline.h plus "output" and
-// "seconds.load"), several lines, each ending in a newline.
-std::string proxySummaryText(const nlohmann::json& report);
+// The summary of a proxy-gen report (with proxy-gen's output and load seconds), several lines,
+// each ending in a newline.
+std::string proxySummaryText(const ProxyReport& report);
 
 }  // namespace proxyvis

@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "mesh/io/mesh_io.h"
-#include "scene_outputs.h"
+#include "proxies/scene/scene_outputs.h"
 #include "util/output_set.h"
 
 namespace proxyvis {

@@ -1,10 +1,9 @@
-#include "shard_plan.h"
+#include "proxies/scene/shard_plan.h"
 
 #include <fmt/core.h>
 
 #include <cstdlib>
 #include <nlohmann/json.hpp>
-#include <set>
 
 #include "util/app_main.h"
 #include "util/atomic_write.h"
@@ -16,32 +15,8 @@ using json = nlohmann::json;
 
 namespace proxyvis {
 
-namespace {
-
-std::string absoluteText(const std::string& path) {
+std::string absolutePathText(const std::string& path) {
   return fs::absolute(path).lexically_normal().string();
-}
-
-}  // namespace
-
-std::vector<std::string> planFlags(const CLI::App& app) {
-  static const std::set<std::string> left_out{"--plan", "--shards", "--out-dir",
-                                              "--json", "--help",   "--version"};
-  std::vector<std::string> flags;
-  for (const CLI::Option* opt : app.get_options()) {
-    if (opt->count() == 0) continue;
-    if (opt->get_positional()) {
-      flags.push_back(absoluteText(opt->results().front()));
-      continue;
-    }
-    if (opt->get_lnames().empty()) continue;
-    const std::string name = "--" + opt->get_lnames().front();
-    if (left_out.count(name)) continue;
-    // One "--name=value" per value given: flags read back their "true" this way too.
-    for (const std::string& value : opt->results())
-      flags.push_back(name + "=" + (name == "--cache" ? absoluteText(value) : value));
-  }
-  return flags;
 }
 
 void writeShardPlan(const fs::path& dir, uint64_t shards, const std::vector<std::string>& flags,
@@ -55,9 +30,9 @@ void writeShardPlan(const fs::path& dir, uint64_t shards, const std::vector<std:
                    "{plan_dir}/units/{unit}.shard", "--done", "{plan_dir}/units/{unit}.done"});
   json merge = json::array({program});
   for (const std::string& f : flags) merge.push_back(f);
-  merge.push_back("--out-dir=" + absoluteText(out_dir));
+  merge.push_back("--out-dir=" + absolutePathText(out_dir));
   if (!json_path.empty())
-    merge.push_back("--json=" + (json_path == "-" ? json_path : absoluteText(json_path)));
+    merge.push_back("--json=" + (json_path == "-" ? json_path : absolutePathText(json_path)));
   merge.push_back("--merge-shards");
   for (uint64_t k = 0; k < shards; ++k)
     merge.push_back(fmt::format("{{plan_dir}}/units/{}.shard", k));

@@ -1,12 +1,15 @@
-#include "shard_manifest.h"
+#include "proxies/scene/shard_merge.h"
 
 #include <fmt/core.h>
 
 #include <map>
 
-#include "output_paths.h"
-#include "proxies/pipeline/proxy_cache.h"
-#include "scene_mesh.h"
+#include "proxies/pipeline/proxy_outputs.h"
+#include "proxies/pipeline/report_fields.h"
+#include "proxies/scene/output_paths.h"
+#include "proxies/scene/scene_mesh.h"
+#include "proxies/scene/shard_manifest.h"
+#include "util/error.h"
 #include "util/input_file.h"
 #include "util/output_path.h"
 #include "util/program_build_id.h"
@@ -19,30 +22,16 @@ namespace proxyvis {
 
 namespace {
 
-constexpr int kManifestFormat = 1;
-
 std::vector<std::string> meshStems(const SceneDesc& scene) {
   std::vector<std::string> names;
   for (const SceneMeshDesc& mesh : scene.meshes) names.push_back(mesh.name);
   return proxyFileStems(names);
 }
 
-// A manifest's key `key` of type `T`, or an Error naming the manifest.
-template <typename T>
-T field(const json& j, const char* key, const fs::path& manifest) {
-  const auto it = j.find(key);
-  try {
-    if (it != j.end()) return it->get<T>();
-  } catch (const json::exception&) {
-  }
-  throw Error(manifest.string(), fmt::format("not a proxy-gen shard manifest: bad or no '{}'", key),
-              "it is damaged or was not written by proxy-gen --shard", "run that shard again");
-}
-
 // One shard's manifest, read and checked against the merge's own scene, settings and build.
 struct Shard {
   fs::path dir, manifest_path;
-  json manifest;
+  ShardManifest manifest;
 };
 
 Shard readShard(const std::string& dir, const std::string& scene_hash, const json& settings) {
@@ -50,65 +39,33 @@ Shard readShard(const std::string& dir, const std::string& scene_hash, const jso
   s.dir = dir;
   s.manifest_path = fs::path(dir) / kShardManifestName;
   const std::string text = readTextFile(s.manifest_path);
-  s.manifest = json::parse(text, nullptr, false);
+  const json manifest = json::parse(text, nullptr, false);
   const std::string file = s.manifest_path.string();
-  if (s.manifest.is_discarded() || !s.manifest.is_object())
+  if (manifest.is_discarded() || !manifest.is_object())
     throw Error(file, "not a proxy-gen shard manifest: not JSON", "it is truncated or damaged",
                 "run that shard again");
-  if (field<int>(s.manifest, "proxy_gen_shard", s.manifest_path) != kManifestFormat)
+  const Field f(manifest, "", s.manifest_path);
+  // The format first: another format's other keys are not this one's to read.
+  if (f["proxy_gen_shard"].asInt() != kShardManifestFormat)
     throw Error(file, "a shard manifest of another format", "written by another proxy-gen version",
                 "run the shards again with this build");
-  if (field<std::string>(s.manifest, "build", s.manifest_path) != programBuildId())
+  s.manifest = readShardManifest(f);
+  if (s.manifest.build != programBuildId())
     throw Error(file, "a shard of another build",
                 "it was made by another proxy-gen executable, whose proxies may differ",
                 "run the shards and the merge with one build");
-  if (field<std::string>(s.manifest, "scene_hash", s.manifest_path) != scene_hash)
+  if (s.manifest.scene_hash != scene_hash)
     throw Error(file, "a shard of another scene",
                 "its scene's content hash differs from this scene's (the scene or a file it "
                 "references changed, or it is another scene)",
                 "merge shards of this very scene, or run them again");
-  if (field<json>(s.manifest, "settings", s.manifest_path) != settings)
+  if (s.manifest.settings != settings)
     throw Error(file, "a shard made with other settings",
-                fmt::format("it recorded {}, the merge has {}", s.manifest["settings"].dump(),
+                fmt::format("it recorded {}, the merge has {}", s.manifest.settings.dump(),
                             settings.dump()),
                 "give the merge the shards' --kind, sizes, budget, --seed and cache flags");
   return s;
 }
-
-}  // namespace
-
-json shardSettings(const ProxyGenOptions& base, const std::optional<std::string>& cache_dir) {
-  json s = proxyCacheSettings(base);
-  s["cache"] = cache_dir ? json(*cache_dir) : json(nullptr);
-  return s;
-}
-
-json shardManifest(const ShardSpec& shard, const SceneDesc& scene, const json& settings,
-                   const std::vector<MeshOutcome>& outcomes, const std::vector<bool>& selected,
-                   const std::vector<fs::path>& proxy_files) {
-  json meshes = json::array();
-  for (size_t i = 0; i < outcomes.size(); ++i) {
-    if (!selected[i]) continue;
-    const MeshOutcome& m = outcomes[i];
-    json entry = {{"index", i},           {"name", scene.meshes[i].name}, {"report", m.report},
-                  {"skipped", m.skipped}, {"cache_note", m.cache_note},   {"error", m.error},
-                  {"code", m.code}};
-    if (m.ref) {
-      entry["proxy_file"] = proxy_files[i].filename().string();
-      entry["proxy_sha256"] = sha256OfOwnFile(proxy_files[i]);
-    }
-    meshes.push_back(std::move(entry));
-  }
-  return {{"proxy_gen_shard", kManifestFormat},
-          {"shard", shard.index},
-          {"shards", shard.count},
-          {"scene_hash", sceneHash(scene)},
-          {"settings", settings},
-          {"build", programBuildId()},
-          {"meshes", meshes}};
-}
-
-namespace {
 
 // Before anything is read or written: no output may replace an input (the scene, its files,
 // any file of a shard).
@@ -143,8 +100,7 @@ ShardSet readShardSet(const MergeRequest& r, const std::string& scene_hash, cons
   for (const std::string& dir : r.shard_dirs) {
     Shard s = readShard(dir, scene_hash, settings);
     const std::string file = s.manifest_path.string();
-    const auto i = field<uint64_t>(s.manifest, "shard", s.manifest_path);
-    const auto n = field<uint64_t>(s.manifest, "shards", s.manifest_path);
+    const uint64_t i = s.manifest.shard.index, n = s.manifest.shard.count;
     if (n < 1 || n > kMaxShards || i >= n)
       throw Error(file, "not a proxy-gen shard manifest: bad shard numbers", "it is damaged",
                   "run that shard again");
@@ -197,34 +153,34 @@ int mergeShards(const MergeRequest& r, const CommonOptions& common) {
   std::vector<std::optional<std::string>> proxy_bytes(n_meshes);
   for (const Shard& s : shards) {
     const std::string file = s.manifest_path.string();
-    const uint64_t shard_index = s.manifest["shard"].get<uint64_t>();
-    for (const json& entry : field<json>(s.manifest, "meshes", s.manifest_path)) {
-      const auto i = field<size_t>(entry, "index", s.manifest_path);
-      const auto name = field<std::string>(entry, "name", s.manifest_path);
+    const uint64_t shard_index = s.manifest.shard.index;
+    for (const ShardMeshEntry& entry : s.manifest.meshes) {
+      const uint64_t i = entry.index;
+      const std::string& name = entry.name;
       if (i >= n_meshes || scene.meshes[i].name != name ||
           shardOfMesh(name, count) != shard_index || seen[i])
         throw Error(file, fmt::format("mesh '{}' does not belong to this shard", name),
                     "the manifest does not match the scene's split", "run that shard again");
       seen[i] = true;
       MeshOutcome& m = outcomes[i];
-      m.report = field<json>(entry, "report", s.manifest_path);
-      m.skipped = field<std::string>(entry, "skipped", s.manifest_path);
-      m.cache_note = field<std::string>(entry, "cache_note", s.manifest_path);
-      m.error = field<std::string>(entry, "error", s.manifest_path);
-      m.code = field<int>(entry, "code", s.manifest_path);
-      if (!entry.contains("proxy_file")) continue;
-      const fs::path from = s.dir / field<std::string>(entry, "proxy_file", s.manifest_path);
-      if (from.filename() != proxy_files[i].filename())
+      m.report = entry.report;
+      m.skipped = entry.skipped;
+      m.cache_note = entry.cache_note;
+      m.error = entry.error;
+      m.code = entry.code;
+      if (!entry.proxy_file) continue;
+      const fs::path from = s.dir / *entry.proxy_file;
+      if (from.filename() != proxy_files[i].filename() || !m.report.proxy)
         throw Error(file, fmt::format("mesh '{}' names another proxy file", name),
                     "the manifest is damaged", "run that shard again");
       std::string bytes = readTextFile(from);
-      if (sha256Hex(bytes) != field<std::string>(entry, "proxy_sha256", s.manifest_path))
+      if (sha256Hex(bytes) != entry.proxy_sha256)
         throw Error(from.string(), "not the proxy its shard wrote",
                     "its SHA-256 differs from the one in the shard's manifest (truncated or "
                     "changed since)",
                     fmt::format("run shard {} again", shard_index));
-      m.report["output"] = proxy_files[i].string();
-      m.ref = proxyRefFor(m.report, *parseProxyClass(r.kind), proxy_files[i], bytes);
+      m.report.proxy->output = proxy_files[i].string();
+      m.ref = proxyRefFor(*m.report.proxy, *parseProxyClass(r.kind), proxy_files[i], bytes);
       proxy_bytes[i] = std::move(bytes);
     }
   }

@@ -1,4 +1,4 @@
-#include "output_paths.h"
+#include "proxies/scene/output_paths.h"
 
 #include <fmt/core.h>
 

@@ -1,10 +1,9 @@
-#include "scene_mesh.h"
+#include "proxies/scene/scene_mesh.h"
 
 #include <fmt/core.h>
 
 #include "mesh/io/internal/sha256_sidecar.h"
 #include "mesh/io/mesh_io.h"
-#include "proxies/pipeline/written_class.h"
 #include "proxies/shared/parity_solid.h"
 #include "util/error.h"
 #include "util/input_file.h"
@@ -13,7 +12,6 @@
 #include "util/stopwatch.h"
 
 namespace fs = std::filesystem;
-using json = nlohmann::json;
 
 namespace proxyvis {
 
@@ -21,9 +19,10 @@ namespace {
 
 // A generated proxy, or why the mesh gets none.
 struct Generated {
-  json report;
+  ProxyReport report;
   TriMesh proxy;
   std::string skipped;
+  uint64_t input_faces = 0;  // when skipped
 };
 
 Generated generate(const std::string& bytes, const SceneMeshDesc& mesh, ProxyGenOptions o) {
@@ -35,7 +34,7 @@ Generated generate(const std::string& bytes, const SceneMeshDesc& mesh, ProxyGen
   // so a smaller original (a ground quad) is skipped without trying.
   if (input.numTriangles() < 4) {
     g.skipped = fmt::format("{} faces: no closed proxy can have fewer", input.numTriangles());
-    g.report = {{"faces", input.numTriangles()}};
+    g.input_faces = input.numTriangles();
     return g;
   }
   const bool open = !parityVolume(input).has_value();
@@ -44,7 +43,7 @@ Generated generate(const std::string& bytes, const SceneMeshDesc& mesh, ProxyGen
     g.skipped =
         "open: it bounds no volume, so it has no inside proxy (--fill-holes makes a "
         "general one)";
-    g.report = {{"faces", input.numTriangles()}};
+    g.input_faces = input.numTriangles();
     return g;
   }
   const bool wrap = o.method.empty() || o.method == "wrap";
@@ -53,13 +52,11 @@ Generated generate(const std::string& bytes, const SceneMeshDesc& mesh, ProxyGen
     o.offset = kOpenMeshWrapOffset;
   }
   ProxyGenResult r = generateProxy(input, o);
-  json& seconds = r.report["seconds"];
-  seconds["load"] = load_seconds;
-  seconds["total"] = seconds.value("total", 0.0) + load_seconds;
+  addLoadSeconds(r.report, load_seconds);
   if (r.proxy.numTriangles() >= input.numTriangles()) {
     g.skipped = fmt::format("its {} proxy has {} faces, the original {}: not cheaper",
                             proxyClassName(o.kind), r.proxy.numTriangles(), input.numTriangles());
-    g.report = {{"faces", input.numTriangles()}};
+    g.input_faces = input.numTriangles();
     return g;
   }
   g.report = std::move(r.report);
@@ -74,15 +71,15 @@ void stageProxyBytes(OutputSet& outputs, const std::string& bytes, const fs::pat
   outputs.addText(detail::sidecarPathOf(out), detail::sidecarLine(out, bytes));
 }
 
-ProxyRef proxyRefFor(const json& report, ProxyClass kind, const fs::path& out,
+ProxyRef proxyRefFor(const ProxyReport& report, ProxyClass kind, const fs::path& out,
                      const std::string& proxy_bytes) {
   ProxyRef ref;
   ref.kind = proxyClassName(kind);
-  ref.method = report.value("method", "");
+  ref.method = report.method;
   ref.file = fs::absolute(out);
   // The class the report writes (general when proven only for a stand-in of the input); the
   // hash says which file content it was proven for: the bytes written.
-  if (const std::optional<ProxyClass> c = writtenClass(report)) {
+  if (const std::optional<ProxyClass> c = report.written_class) {
     ref.verified_class = c;
     ref.sha256 = sha256Hex(proxy_bytes);
   }
@@ -94,7 +91,8 @@ SceneMeshProxy proxyForSceneMesh(const SceneMeshDesc& mesh, const ProxyGenOption
   SceneMeshProxy result;
   if (!mesh.make_proxy) {
     result.skipped = "\"make_proxy\": false in the scene";
-    result.report = {{"name", mesh.name}, {"skipped", result.skipped}};
+    result.report.name = mesh.name;
+    result.report.skipped = result.skipped;
     return result;
   }
   // The bytes are hashed for the cache key and parsed from memory on a miss: read once.
@@ -115,13 +113,13 @@ SceneMeshProxy proxyForSceneMesh(const SceneMeshDesc& mesh, const ProxyGenOption
     Generated g = generate(bytes, mesh, options);
     entry.emplace();
     if (!g.skipped.empty()) {
-      entry->report = std::move(g.report);
-      entry->report["skipped"] = g.skipped;
+      entry->report.faces = g.input_faces;
+      entry->report.skipped = g.skipped;
     } else {
       saveMesh(g.proxy, out);
       const std::optional<std::string> written = readOwnFileBytes(out);
       if (!written) throw WriteError(out.string(), "cannot read back the proxy just written");
-      entry->report = std::move(g.report);
+      entry->report.proxy = std::move(g.report);
       entry->proxy_bytes = *written;
     }
     if (cache) {
@@ -133,23 +131,23 @@ SceneMeshProxy proxyForSceneMesh(const SceneMeshDesc& mesh, const ProxyGenOption
         result.cache_note = fmt::format("not stored in the cache: {}", e.what());
       }
     }
-  } else if (!entry->report.contains("skipped")) {
+  } else if (!entry->report.skipped) {
     OutputSet outputs;
     stageProxyBytes(outputs, entry->proxy_bytes, out);
     outputs.commit();
   }
   result.report = std::move(entry->report);
-  result.report["name"] = mesh.name;
-  // An entry made from the same bytes elsewhere: the report names this scene's file.
-  if (result.report.contains("input") && result.report["input"].is_object())
-    result.report["input"]["path"] = mesh.file.string();
-  result.report["cache"] = state;
-  if (result.report.contains("skipped")) {
-    result.skipped = result.report["skipped"].get<std::string>();
+  result.report.name = mesh.name;
+  result.report.cache = state;
+  if (result.report.skipped) {
+    result.skipped = *result.report.skipped;
     return result;
   }
-  result.report["output"] = out.string();
-  result.ref = proxyRefFor(result.report, options.kind, out, entry->proxy_bytes);
+  ProxyReport& proxy = *result.report.proxy;
+  // An entry made from the same bytes elsewhere: the report names this scene's file.
+  proxy.input.path = mesh.file.string();
+  proxy.output = out.string();
+  result.ref = proxyRefFor(proxy, options.kind, out, entry->proxy_bytes);
   return result;
 }
 

@@ -1,6 +1,4 @@
-#include "shard.h"
-
-#include <fmt/core.h>
+#include "proxies/scene/shard.h"
 
 #include "util/fnv1a.h"
 
@@ -28,16 +26,6 @@ std::optional<ShardSpec> parseShardSpec(const std::string& text) {
   const std::optional<uint64_t> n = parseCount(text.substr(slash + 1));
   if (!i || !n || *n < 1 || *n > kMaxShards || *i >= *n) return std::nullopt;
   return ShardSpec{*i, *n};
-}
-
-CLI::Validator shardSpecValidator() {
-  return CLI::Validator(
-      [](std::string& value) -> std::string {
-        if (parseShardSpec(value)) return {};
-        return fmt::format("must be i/n with 0 <= i < n <= {} (e.g. 0/4), got '{}'", kMaxShards,
-                           value);
-      },
-      "i/n");
 }
 
 uint64_t shardOfMesh(const std::string& name, uint64_t count) {

@@ -1,7 +1,8 @@
 #pragma once
-// proxy-gen's progress bar for one mesh: the six steps of summary_text.h (load, validate, build,
-// budget reduction, verify, measure), the name of the stage running and the elapsed time, redrawn
-// while a long stage runs. On stderr, only when it is a terminal or with --progress, never with
+// proxy-gen's progress bar for one mesh: the six steps of proxy_report_text.h (load, validate,
+// build, budget reduction, verify, measure), the name of the stage running and the elapsed time,
+// redrawn while a long stage runs. On stderr, only when it is a terminal or with --progress, never
+// with
 // --quiet (util/progress.h).
 #include <condition_variable>
 #include <mutex>

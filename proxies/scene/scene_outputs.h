@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "proxies/pipeline/proxy_report.h"
 #include "scene/scene_desc.h"
 #include "util/app_main.h"
 #include "util/error.h"
@@ -18,7 +19,7 @@ namespace proxyvis {
 // One mesh of the scene after its work: a proxy (ref), no proxy (skipped: why) or a failure
 // (error, code).
 struct MeshOutcome {
-  nlohmann::json report;
+  SceneMeshReport report;
   std::optional<ProxyRef> ref;
   std::string skipped;
   std::string cache_note;
@@ -30,15 +31,6 @@ struct MeshOutcome {
 std::filesystem::path proxyFilePath(const std::string& out_dir, const std::string& stem,
                                     const std::string& kind);
 
-// A proxy written with another class than the kind asked for (e.g. general for --fill-holes:
-// the guarantee would hold only for the hole-filled mesh) gets one note line on stderr.
-void noteWrittenClass(const nlohmann::json& report, const std::string& file);
-
-// The JSON goes to --json, put in place after the files staged in `outputs` that it describes;
-// the human summary to stdout, or to stderr when stdout carries JSON.
-void emit(const nlohmann::json& report, const std::string& summary, const CommonOptions& common,
-          OutputSet& outputs);
-
 struct SceneRunInfo {
   std::string input;  // the scene as named on the command line
   std::string kind;   // --kind
@@ -46,9 +38,28 @@ struct SceneRunInfo {
   std::optional<std::string> cache_dir;  // the proxy cache used, if any
 };
 
+// The proxy cache a scene run used, and how many of its meshes came from it ("cache").
+struct ProxyCacheTally {
+  std::string dir;
+  uint64_t cached = 0, generated = 0;
+  bool operator==(const ProxyCacheTally&) const = default;
+};
+
+// The JSON report of a scene run (--json): the scene, the scene written, the cache (null
+// without one) and each mesh's report.
+struct SceneRunReport {
+  std::string scene, scene_out;
+  std::optional<ProxyCacheTally> cache;
+  std::vector<SceneMeshReport> meshes;
+  bool operator==(const SceneRunReport&) const = default;
+};
+
+void to_json(nlohmann::json& j, const SceneRunReport& r);
+void from_json(const nlohmann::json& j, SceneRunReport& r);
+
 struct SceneResult {
   int code = kExitOk;
-  nlohmann::json report;
+  SceneRunReport report;
   std::string summary;
 };
 

@@ -1,8 +1,8 @@
-#include "stage_progress.h"
+#include "proxies/pipeline/stage_progress.h"
 
 #include <chrono>
 
-#include "summary_text.h"
+#include "proxies/pipeline/proxy_report_text.h"
 
 namespace proxyvis {
 
