@@ -86,6 +86,18 @@ GeneralOptions generalOptions(const ProxyGenOptions& o) {
   return g;
 }
 
+// An outside or inside wrap's settings from the flags, recorded in the report's parameters.
+template <class Options>
+Options wrapOptions(const ProxyGenOptions& o, ProxyParameters& params, const TimeBudget* budget) {
+  Options w;
+  w.alpha = o.alpha.value_or(w.alpha);
+  w.offset = o.offset.value_or(w.offset);
+  w.budget = budget;
+  params.alpha = w.alpha;
+  params.offset = w.offset;
+  return w;
+}
+
 struct Built {
   TriMesh mesh;          // before the budget
   bool bounded = false;  // reduce with simplifyBounded (outside/inside) rather than not at all
@@ -102,24 +114,13 @@ Built build(const TriMesh& reference, const ProxyGenOptions& o, const std::strin
       params.hull_epsilon = h.epsilon;
       b.mesh = makeHullProxy(reference, h);
     } else {
-      WrapOptions w;
-      w.alpha = o.alpha.value_or(w.alpha);
-      w.offset = o.offset.value_or(w.offset);
-      w.budget = budget;
-      params.alpha = w.alpha;
-      params.offset = w.offset;
-      b.mesh = makeWrapProxy(reference, w);
+      b.mesh = makeWrapProxy(reference, wrapOptions<WrapOptions>(o, params, budget));
     }
   } else if (o.kind == ProxyClass::kInside) {
     b.bounded = true;
     InsideStats stats;
     if (method == "wrap") {
-      InsideWrapOptions w;
-      w.alpha = o.alpha.value_or(w.alpha);
-      w.offset = o.offset.value_or(w.offset);
-      w.budget = budget;
-      params.alpha = w.alpha;
-      params.offset = w.offset;
+      const auto w = wrapOptions<InsideWrapOptions>(o, params, budget);
       b.mesh = makeInsideWrapProxy(reference, w, &stats);
       b.seeds = stats.seeds;
     } else {

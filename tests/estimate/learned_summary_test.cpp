@@ -26,14 +26,7 @@ LearnedSummary randomLearned(test::RandomValues& v) {
   return l;
 }
 
-TEST(LearnedSummaryJson, RandomValuesRoundTrip) {
-  test::expectRoundTrips<LearnedSummary>(randomLearned);
-}
-
-TEST(LearnedSummaryJson, EveryKeyIsRequiredAndTyped) {
-  test::RandomValues v(7);
-  test::expectEveryKeyChecked(randomLearned(v));
-}
+PROXYVIS_JSON_PROPERTY_TESTS(LearnedSummaryJson, LearnedSummary, randomLearned, 7)
 
 TEST(LearnedSummaryJson, KeysAreTheReportsContract) {
   LearnedSummary l;

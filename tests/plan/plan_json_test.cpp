@@ -6,6 +6,7 @@
 #include "plan/unit_stamp.h"
 #include "tests/support/json_round_trip.h"
 #include "tests/support/scratch_dir.h"
+#include "tests/support/two_unit_plan.h"
 #include "util/error.h"
 #include "util/program_build_id.h"
 
@@ -106,12 +107,7 @@ TEST(PlanFolder, WrittenPlanReadsBackAndABrokenOneIsRefused) {
 }
 
 TEST(UnitStamp, ADifferenceIsNamedWithBothValues) {
-  StudyPlan plan;
-  plan.scene_hash = "abc";
-  plan.seed = 9;
-  plan.build = programBuildId();
-  plan.units.resize(2);
-  plan.units[1].kind = UnitKind::kCeiling;
+  const StudyPlan plan = test::twoUnitPlan("abc", 9, UnitKind::kCeiling);
   const UnitStamp expected = plannedStamp(plan, 1);
   EXPECT_EQ(expected.kind, "ceiling");
   EXPECT_EQ(expected.study, studyId(plan));

@@ -57,14 +57,7 @@ CeilingMeasurement randomMeasurement(test::RandomValues& v) {
   return m;
 }
 
-TEST(RenderResultJson, RandomValuesRoundTrip) {
-  test::expectRoundTrips<RenderResult>(randomRender);
-}
-
-TEST(RenderResultJson, EveryKeyIsRequiredAndTyped) {
-  test::RandomValues v(3);
-  test::expectEveryKeyChecked(randomRender(v));
-}
+PROXYVIS_JSON_PROPERTY_TESTS(RenderResultJson, RenderResult, randomRender, 3)
 
 TEST(RenderResultJson, ImagesAreNotWritten) {
   RenderResult r;

@@ -5,8 +5,8 @@
 #include "plan/plan.h"
 #include "study/unit.h"
 #include "tests/support/scratch_dir.h"
+#include "tests/support/two_unit_plan.h"
 #include "util/error.h"
-#include "util/program_build_id.h"
 
 namespace proxyvis {
 namespace {
@@ -16,13 +16,7 @@ Image rgb(int w, int h, float v) {
 }
 
 StudyPlan twoUnitPlan() {
-  StudyPlan plan;
-  plan.scene_hash = "0123";
-  plan.seed = 42;
-  plan.build = programBuildId();
-  plan.units.resize(2);
-  plan.units[1].kind = UnitKind::kEqualTime;
-  return plan;
+  return test::twoUnitPlan("0123", 42, UnitKind::kEqualTime);
 }
 
 UnitResult sampleResult() {

@@ -133,3 +133,14 @@ void expectEveryKeyChecked(const T& value, const std::set<std::string>& optional
 }
 
 }  // namespace proxyvis::test
+
+// The two property tests every serialized type gets: SUITE.RandomValuesRoundTrip and
+// SUITE.EveryKeyIsRequiredAndTyped, with values from MAKE(RandomValues&) (the latter seeded SEED).
+#define PROXYVIS_JSON_PROPERTY_TESTS(SUITE, TYPE, MAKE, SEED)    \
+  TEST(SUITE, RandomValuesRoundTrip) {                           \
+    ::proxyvis::test::expectRoundTrips<TYPE>(MAKE);              \
+  }                                                              \
+  TEST(SUITE, EveryKeyIsRequiredAndTyped) {                      \
+    ::proxyvis::test::RandomValues values(SEED);                 \
+    ::proxyvis::test::expectEveryKeyChecked<TYPE>(MAKE(values)); \
+  }
