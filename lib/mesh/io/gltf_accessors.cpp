@@ -209,9 +209,12 @@ std::vector<double> GltfAccessors::readValues(int index, int components, const s
     const std::string_view val = viewBytes(a.sparse.values.bufferView, at + ".sparse.values");
     const size_t idx_offset = size_t(std::max(a.sparse.indices.byteOffset, 0));
     const size_t val_offset = size_t(std::max(a.sparse.values.byteOffset, 0));
+    // glTF allows only unsigned integer indices; a float index could be NaN or fractional.
+    const int index_type = a.sparse.indices.componentType;
     if (n > a.count || index_size == 0 ||
-        a.sparse.indices.componentType == TINYGLTF_COMPONENT_TYPE_BYTE ||
-        a.sparse.indices.componentType == TINYGLTF_COMPONENT_TYPE_SHORT ||
+        (index_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+         index_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+         index_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) ||
         !fits(idx_offset, n, index_size, index_size, idx.size()) ||
         !fits(val_offset, n, element, element, val.size()))
       throw Error(file_, at + " has a sparse part that does not fit",
