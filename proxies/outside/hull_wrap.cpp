@@ -3,8 +3,13 @@
 #include <CGAL/alpha_wrap_3.h>
 #include <CGAL/convex_hull_3.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <tuple>
+#include <vector>
 
 #include <fmt/core.h>
 
@@ -21,6 +26,42 @@ namespace {
 using cgal::Point3;
 using cgal::SurfaceMesh;
 using cgal::Vector3;
+
+// convex_hull_3 (CGAL 5.5's quickhull) keeps the border of each visible region in a std::map
+// keyed by vertex handles, i.e. by address, and starts the new cone at its first entry. The
+// hull's vertices and faces thus come out in an order that depends on where the allocator put
+// the triangulation's blocks (it differed with GLIBC_TUNABLES=glibc.malloc.tcache_count=0), and
+// everything after (the centroid sum below, the budget reduction's tie-breaks) inherits it.
+// Rebuilds the hull with its vertices sorted by coordinates and its faces, each rotated to start
+// at its smallest index, sorted: the same order whatever the heap layout. (Where hull points are
+// coplanar, which triangulation of a facet quickhull picks can still follow that order.)
+SurfaceMesh canonicalHull(const SurfaceMesh& hull) {
+  std::vector<SurfaceMesh::Vertex_index> verts(hull.vertices().begin(), hull.vertices().end());
+  std::sort(verts.begin(), verts.end(),
+            [&](SurfaceMesh::Vertex_index a, SurfaceMesh::Vertex_index b) {
+              const Point3 &p = hull.point(a), &q = hull.point(b);
+              return std::make_tuple(p.x(), p.y(), p.z()) < std::make_tuple(q.x(), q.y(), q.z());
+            });
+  std::vector<uint32_t> rank(hull.number_of_vertices() + hull.number_of_removed_vertices(), 0);
+  for (size_t i = 0; i < verts.size(); ++i) rank[verts[i].idx()] = uint32_t(i);
+  std::vector<std::array<uint32_t, 3>> faces;
+  faces.reserve(hull.number_of_faces());
+  for (SurfaceMesh::Face_index f : hull.faces()) {
+    std::array<uint32_t, 3> t{};
+    int k = 0;
+    for (SurfaceMesh::Vertex_index v : CGAL::vertices_around_face(hull.halfedge(f), hull))
+      if (k < 3) t[k++] = rank[v.idx()];
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    faces.push_back(t);
+  }
+  std::sort(faces.begin(), faces.end());
+  SurfaceMesh out;
+  std::vector<SurfaceMesh::Vertex_index> vmap;
+  vmap.reserve(verts.size());
+  for (SurfaceMesh::Vertex_index v : verts) vmap.push_back(out.add_vertex(hull.point(v)));
+  for (const auto& t : faces) out.add_face(vmap[t[0]], vmap[t[1]], vmap[t[2]]);
+  return out;
+}
 
 // Scales the hull about its vertex centroid c so that every face plane moves outward by at
 // least `distance`: a plane at distance h from c moves by s·h, so s = distance / min h.
@@ -66,6 +107,7 @@ TriMesh makeHullProxy(const TriMesh& input, const HullOptions& options) {
   if (hull.number_of_faces() < 4 || !CGAL::is_triangle_mesh(hull))
     throw Error(input.source, "cannot build a convex hull proxy",
                 "the input is flat (its hull has no volume)");
+  hull = canonicalHull(hull);
   pushHullOutward(hull, options.epsilon * input.diagonal(), input.source);
   return cgal::fromSurfaceMesh(hull, "hull of " + input.source);
 }
