@@ -83,3 +83,13 @@ pg_test(scene_mesh_name_stays_in_out_dir 0
   "${pg_dir}/dotdot/scene.json --kind outside --method hull --out-dir ${pg_dir}/dotdot/p -q"
   FILE "${pg_dir}/dotdot/p/_.._.._x.outside.ply;${pg_dir}/dotdot/p/scene.json"
   NO_FILE ${CMAKE_CURRENT_BINARY_DIR}/x.outside.ply)
+
+# The same proxy whatever the heap layout: CGAL's quickhull orders its output by address, which
+# glibc's tcache setting changes (the two files differed before the hull was rebuilt in a
+# canonical order).
+add_test(NAME proxy_gen_app.hull_independent_of_heap_layout
+  COMMAND sh -c "set -e
+    args='${pg_data}/bunny.off --kind outside --method hull --max-faces 100 --threads 1 -q'
+    $<TARGET_FILE:proxy-gen> $args -o ${pg_dir}/heap_a.ply
+    GLIBC_TUNABLES=glibc.malloc.tcache_count=0 $<TARGET_FILE:proxy-gen> $args -o ${pg_dir}/heap_b.ply
+    cmp ${pg_dir}/heap_a.ply ${pg_dir}/heap_b.ply")
