@@ -23,10 +23,10 @@ struct Tag {};
 // The leaf types and those with a JSON form of their own (defined in report_fields.cpp and
 // proxy_report.cpp).
 inline uint64_t readAs(const Field& f, Tag<uint64_t>) {
-  return readCount(f);
+  return f.asUint64();
 }
 inline double readAs(const Field& f, Tag<double>) {
-  return readDouble(f);
+  return f.asDouble();
 }
 inline bool readAs(const Field& f, Tag<bool>) {
   return f.asBool();

@@ -119,8 +119,8 @@ json toJsonValue(const HausdorffDistances& h) {
 }
 
 HausdorffDistances readAs(const Field& f, Tag<HausdorffDistances>) {
-  return {readDouble(f["original_to_proxy"]), readDouble(f["proxy_to_original"]),
-          readDouble(f["diagonal"])};
+  return {f["original_to_proxy"].asDouble(), f["proxy_to_original"].asDouble(),
+          f["diagonal"].asDouble()};
 }
 
 void addLoadSeconds(ProxyReport& report, double load_seconds) {

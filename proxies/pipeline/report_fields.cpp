@@ -4,14 +4,6 @@
 
 namespace proxyvis {
 
-double readDouble(const Field& f) {
-  return f.asDouble();
-}
-
-uint64_t readCount(const Field& f) {
-  return f.asUint64();
-}
-
 ProxyClass readAs(const Field& f, Tag<ProxyClass>) {
   const std::optional<ProxyClass> c = parseProxyClass(f.asString());
   if (!c) f.fail("expected outside, inside or general");
@@ -27,7 +19,7 @@ nlohmann::json readAs(const Field& f, Tag<nlohmann::json>) {
 std::map<std::string, double> readAs(const Field& f, Tag<std::map<std::string, double>>) {
   const nlohmann::json& object = readAs(f, Tag<nlohmann::json>{});
   std::map<std::string, double> out;
-  for (const auto& [key, unused] : object.items()) out[key] = readDouble(f[key.c_str()]);
+  for (const auto& [key, unused] : object.items()) out[key] = f[key.c_str()].asDouble();
   return out;
 }
 

@@ -1,7 +1,7 @@
 #pragma once
-// Typed reads of proxy-gen's own JSON files (reports, cache entries, shard manifests) through the
+// proxy-gen's own JSON files (reports, cache entries, shard manifests) are read through the
 // path-tracking JsonField reader (util/json_field.h), which names the file and the key's path in
-// every error (json_visit.h builds the readers of whole structs on these).
+// every error; json_visit.h builds the readers of whole structs on it.
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -12,14 +12,10 @@ namespace proxyvis {
 
 using Field = JsonField;
 
-double readDouble(const Field& f);   // a number
-uint64_t readCount(const Field& f);  // an integer >= 0
-
 // Reads `j` with `read` as a value of no file (the ADL from_json of a type): errors name the key.
 template <typename Read>
 auto readWithoutFile(const nlohmann::json& j, Read&& read) {
-  static const std::filesystem::path no_file;
-  return read(Field(j, "", no_file));
+  return read(JsonField(j));
 }
 
 }  // namespace proxyvis
