@@ -42,9 +42,16 @@ std::vector<Plane> normalizePlanes(const PlaneLpProblem& problem, size_t& num_co
   return planes;
 }
 
-bool isFeasible(const std::vector<Plane>& planes, const Vec3d& x, double tol) {
-  for (const Plane& p : planes)
-    if (dot(p.n, x) < p.d - tol) return false;
+// Most tested vertices are infeasible, and the plane that cut the last one usually cuts the
+// next: it is tested first (`last_cut`), which makes a rejection about one dot product.
+bool isFeasible(const std::vector<Plane>& planes, const Vec3d& x, double tol, size_t& last_cut) {
+  if (dot(planes[last_cut].n, x) < planes[last_cut].d - tol) return false;
+  for (size_t i = 0; i < planes.size(); ++i) {
+    if (dot(planes[i].n, x) < planes[i].d - tol) {
+      last_cut = i;
+      return false;
+    }
+  }
   return true;
 }
 
@@ -62,10 +69,11 @@ std::optional<Vec3d> solvePlaneLp(const PlaneLpProblem& problem) {
   double best_value = std::numeric_limits<double>::infinity();
   double best_dist2 = std::numeric_limits<double>::infinity();
   const double tie = 1e-9 * length(problem.objective) * problem.half_size + 1e-300;
+  size_t last_cut = 0;
   auto consider = [&](const Vec3d& x) {
     const double value = dot(problem.objective, x);
     if (value > best_value + tie) return;
-    if (!isFeasible(planes, x, tol)) return;
+    if (!isFeasible(planes, x, tol, last_cut)) return;
     const Vec3d off = x - problem.center;
     const double dist2 = dot(off, off);
     if (value < best_value - tie) {
@@ -80,24 +88,34 @@ std::optional<Vec3d> solvePlaneLp(const PlaneLpProblem& problem) {
   };
   for (const Vec3d& x : problem.candidates) consider(x);
 
+  // Pairwise cross products and their objective values give each vertex's objective in a few
+  // flops (Cramer's rule dotted with the objective), so the vertex itself is computed only
+  // when it can beat the best so far; twice the tie tolerance covers the two roundings.
   std::vector<Vec3d> cross_nm(m * m);
+  std::vector<double> cross_value(m * m);
   for (size_t i = 0; i < m; ++i)
-    for (size_t j = i + 1; j < m; ++j) cross_nm[i * m + j] = cross(planes[i].n, planes[j].n);
+    for (size_t j = i + 1; j < m; ++j) {
+      cross_nm[i * m + j] = cross(planes[i].n, planes[j].n);
+      cross_value[i * m + j] = dot(problem.objective, cross_nm[i * m + j]);
+    }
   // Pass 1: vertices of the constraint planes alone (C(s,3) instead of C(s+6,3) triples). Any
   // feasible one inside the box will do: optimality only affects quality, feasibility is what
   // keeps containment. Pass 2, with the box planes, only when pass 1 found nothing.
   auto enumerate = [&](bool with_box) {
+    const size_t k_begin = with_box ? s : 0, k_end = with_box ? m : s;
     for (size_t i = 0; i < m; ++i) {
       for (size_t j = i + 1; j < m; ++j) {
-        for (size_t k = j + 1; k < m; ++k) {
-          if ((k >= s) != with_box) continue;
+        for (size_t k = std::max(j + 1, k_begin); k < k_end; ++k) {
           const Vec3d& jk = cross_nm[j * m + k];
           const double det = dot(planes[i].n, jk);
           if (std::abs(det) < 1e-9) continue;  // (nearly) parallel planes: no single vertex
+          const double di = planes[i].d, dj = planes[j].d, dk = planes[k].d;
+          const double value = (di * cross_value[j * m + k] - dj * cross_value[i * m + k] +
+                                dk * cross_value[i * m + j]) /
+                               det;
+          if (value > best_value + 2 * tie) continue;
           // Cramer's rule: x = (d_i (n_j×n_k) + d_j (n_k×n_i) + d_k (n_i×n_j)) / det.
-          consider((jk * planes[i].d - cross_nm[i * m + k] * planes[j].d +
-                    cross_nm[i * m + j] * planes[k].d) /
-                   det);
+          consider((jk * di - cross_nm[i * m + k] * dj + cross_nm[i * m + j] * dk) / det);
         }
       }
     }

@@ -54,7 +54,9 @@ class TouchTraits {
   bool go_further() const { return !hit_; }
   template <typename Primitive>
   void intersection(const Triangle3& q, const Primitive& p) {
-    if (CGAL::do_intersect(q, p.datum())) hit_ = true;
+    const Triangle3& t = p.datum();
+    if (!CGAL::do_overlap(box_, t.bbox()) || clearlyOneSide(q, t)) return;
+    if (CGAL::do_intersect(q, t)) hit_ = true;
   }
   template <typename Node>
   bool do_intersect(const Triangle3&, const Node& node) const {
@@ -71,6 +73,27 @@ class TouchTraits {
   bool hit() const { return hit_; }
 
  private:
+  // The leaves come in pairs without their own box test, and most lie near the query's plane
+  // without crossing it: when all three corners of t are on one side of the query's plane by
+  // more than the rounding error can reach, the exact test would say no. The bound is loose on
+  // purpose (1e-10 against a rounding error below 1e-14 of L^2 |p - a|).
+  bool clearlyOneSide(const Triangle3& q, const Triangle3& t) const {
+    const Point3& a = q[0];
+    const double l = std::max(l1(q[1] - a), l1(q[2] - a));
+    int above = 0, below = 0;
+    for (int i = 0; i < 3; ++i) {
+      const Kernel::Vector_3 d = t[i] - a;
+      const double s = n_[0] * d.x() + n_[1] * d.y() + n_[2] * d.z();
+      const double bound = 1e-10 * l * l * l1(d);
+      above += s > bound;
+      below += s < -bound;
+    }
+    return above == 3 || below == 3;
+  }
+  static double l1(const Kernel::Vector_3& v) {
+    return std::abs(v.x()) + std::abs(v.y()) + std::abs(v.z());
+  }
+
   CGAL::Bbox_3 box_;
   double n_[3], d_, slack_;
   bool hit_ = false;
