@@ -21,6 +21,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(__file__))
 from mpi_support import make_unique_scene, mpi_env, mpirun_cmd, rgb_equal, rgb_means, run  # noqa: E402,E501
+from image_diff import differing_pairs  # noqa: E402
 
 case, render, proxy_gen, data_dir, scenes_dir, work = sys.argv[1:7]
 shutil.rmtree(work, ignore_errors=True)
@@ -64,11 +65,10 @@ if case == "identical":
             if key not in s:
                 sys.exit(f"FAIL: {what}: the summary has no '{key}'")
 
+    to_compare = []  # (image, what): compared with `single` at the end, in one process
+
     def check_image(out, what):
-        same, text = rgb_equal(single, out, work)
-        if not same:
-            sys.exit(f"FAIL: {what}: the image differs from the single-process exact render\n"
-                     f"{text}")
+        to_compare.append((out, what))
 
     checked = 0
     for ranks in (1, 2, 3, 4):
@@ -98,6 +98,10 @@ if case == "identical":
             sys.exit(f"FAIL: {what}: {s['forward_bytes']} bytes for {s['forwards']} forwards")
         check_image(out, what)
         checked += 1
+    whats = {out: what for out, what in to_compare}
+    for _, out, text in differing_pairs(((single, out) for out, _ in to_compare), channels="R,G,B"):
+        sys.exit(f"FAIL: {whats[out]}: the image differs from the single-process exact render\n"
+                 f"{text}")
     print(f"ok: {checked} data-parallel renders equal the single-process exact render")
 
 elif case == "files":
