@@ -107,12 +107,13 @@ std::string studyId(const StudyPlan& plan) {
 }
 
 nlohmann::json planToJson(const StudyPlan& plan, const std::string& program) {
-  return {{"version", 1},
-          {"name", "render-compare"},
-          {"units", plan.units.size()},
-          {"run_unit", {program, "--run-unit", "{plan_dir}", "{unit}"}},
-          {"merge", {program, "--merge", "{plan_dir}"}},
-          {"render_compare", plan}};
+  nlohmann::json j = PlanCommands{.version = 1,
+                                  .name = "render-compare",
+                                  .units = plan.units.size(),
+                                  .run_unit = {program, "--run-unit", "{plan_dir}", "{unit}"},
+                                  .merge = {program, "--merge", "{plan_dir}"}};
+  j["render_compare"] = plan;
+  return j;
 }
 
 StudyPlan readPlan(const fs::path& dir) {
@@ -126,8 +127,9 @@ StudyPlan readPlan(const fs::path& dir) {
   }
   try {
     const JsonField top(all);
+    const PlanCommands commands = top.get<PlanCommands>();
     StudyPlan plan = top["render_compare"].get<StudyPlan>();
-    if (top["units"].asUint64() != plan.units.size())
+    if (commands.units != plan.units.size())
       badPlan(file, "\"units\" does not match the length of its unit list");
     return plan;
   } catch (const JsonFieldError& e) {

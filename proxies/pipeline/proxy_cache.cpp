@@ -7,6 +7,7 @@
 #include <iterator>
 #include <system_error>
 
+#include "proxies/pipeline/json_visit.h"
 #include "proxies/pipeline/report_fields.h"
 #include "util/atomic_write.h"
 #include "util/error.h"
@@ -31,6 +32,27 @@ std::string optionalNumber(const std::optional<double>& v) {
 }
 
 }  // namespace
+
+// The keys of an entry's record (proxies/pipeline/json_visit.h): one list for writing and reading.
+template <typename V>
+void fields(ProxyCacheRecord& r, V& v) {
+  v("format", r.format);
+  v("key", r.key);
+  v("report", r.report);
+  v("proxy_sha256", r.proxy_sha256);
+}
+
+void to_json(nlohmann::json& j, const ProxyCacheRecord& r) {
+  j = toJsonValue(r);
+}
+
+ProxyCacheRecord readProxyCacheRecord(const JsonField& f) {
+  return readFields<ProxyCacheRecord>(f);
+}
+
+void from_json(const nlohmann::json& j, ProxyCacheRecord& r) {
+  r = readWithoutFile(j, readProxyCacheRecord);
+}
 
 std::optional<std::string> readOwnFileBytes(const fs::path& path) {
   std::error_code ec;
@@ -95,19 +117,21 @@ std::optional<CachedProxy> ProxyCache::find(const std::string& key, std::string*
   if (!meta_text) return damaged("its report cannot be read");
   const nlohmann::json meta = nlohmann::json::parse(*meta_text, nullptr, false);
   if (meta.is_discarded() || !meta.is_object()) return damaged("its report is not JSON");
-  if (meta.value("format", 0) != kCacheFormat || meta.value("key", "") != key)
-    return damaged("its report belongs to another entry");
-  if (!meta.contains("report") || !meta["report"].is_object()) return damaged("it has no report");
-  CachedProxy entry;
-  std::string hash;
+  ProxyCacheRecord record;
   try {
-    const Field f(meta, "", meta_path);
-    entry.report = readSceneMeshReport(f["report"]);
-    if (entry.report.skipped) return entry;
-    hash = f["proxy_sha256"].asString();
+    const JsonField f(meta, "", meta_path);
+    // An entry of another layout is told apart before its other keys are read.
+    if (!f.has("format") || !f.has("key") || f["format"].asInt() != kCacheFormat ||
+        f["key"].asString() != key)
+      return damaged("its report belongs to another entry");
+    record = readProxyCacheRecord(f);
   } catch (const Error& e) {
     return damaged(e.what());
   }
+  if (record.report.skipped) return CachedProxy{std::move(record.report), {}};
+  if (!record.proxy_sha256) return damaged("its report has no proxy_sha256");
+  CachedProxy entry{std::move(record.report), {}};
+  const std::string& hash = *record.proxy_sha256;
   const std::optional<std::string> bytes = readOwnFileBytes(dir_ / (key + ".ply"));
   if (!bytes) return damaged("its proxy file is missing or unreadable");
   if (sha256Hex(*bytes) != hash)
@@ -117,15 +141,15 @@ std::optional<CachedProxy> ProxyCache::find(const std::string& key, std::string*
 }
 
 void ProxyCache::store(const std::string& key, const CachedProxy& entry) const {
-  nlohmann::json meta = {{"format", kCacheFormat}, {"key", key}, {"report", entry.report}};
+  ProxyCacheRecord record{kCacheFormat, key, entry.report, std::nullopt};
   if (!entry.report.skipped) {
     const fs::path ply = dir_ / (key + ".ply");
     writeAtomically(
         ply, [&](const fs::path& tmp) { writeFileBytes(tmp, entry.proxy_bytes, ply.string()); });
-    meta["proxy_sha256"] = sha256Hex(entry.proxy_bytes);
+    record.proxy_sha256 = sha256Hex(entry.proxy_bytes);
   }
   // Last: the entry exists only once the proxy file it vouches for is in place.
-  writeTextAtomically(dir_ / (key + ".json"), meta.dump(1) + "\n");
+  writeTextAtomically(dir_ / (key + ".json"), nlohmann::json(record).dump(1) + "\n");
 }
 
 }  // namespace proxyvis

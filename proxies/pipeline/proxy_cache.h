@@ -20,12 +20,28 @@
 
 namespace proxyvis {
 
+class JsonField;
+
 // A cached result: the report (its proxy's, or why the mesh gets none: skipped; no name or cache
 // state) and the proxy file's bytes (empty when skipped).
 struct CachedProxy {
   SceneMeshReport report;
   std::string proxy_bytes;
 };
+
+// "<key>.json": the entry's layout version and key, the report, and the SHA-256 of "<key>.ply"
+// (absent when the mesh gets no proxy).
+struct ProxyCacheRecord {
+  int format = 0;
+  std::string key;
+  SceneMeshReport report;
+  std::optional<std::string> proxy_sha256;
+  bool operator==(const ProxyCacheRecord&) const = default;
+};
+void to_json(nlohmann::json& j, const ProxyCacheRecord& r);
+void from_json(const nlohmann::json& j, ProxyCacheRecord& r);
+// from_json's reader, for a file's value: errors name the file and the key's path.
+ProxyCacheRecord readProxyCacheRecord(const JsonField& f);
 
 // The bytes of a file this run wrote or keeps in its cache (not registered as an input, so the
 // run may replace it), or nullopt when it is missing, not a regular file, larger than 1 GiB or

@@ -23,22 +23,25 @@ void writeShardPlan(const fs::path& dir, uint64_t shards, const std::vector<std:
                     const std::string& out_dir, const std::string& json_path) {
   createPlanFolder(dir, "run");
   const std::string program = planningProgram();
-  json run_unit = json::array({program});
-  for (const std::string& f : flags) run_unit.push_back(f);
-  run_unit.insert(run_unit.end(),
-                  {"--shard", fmt::format("{{unit}}/{}", shards), "--out-dir",
-                   "{plan_dir}/units/{unit}.shard", "--done", "{plan_dir}/units/{unit}.done"});
-  json merge = json::array({program});
-  for (const std::string& f : flags) merge.push_back(f);
-  merge.push_back("--out-dir=" + absolutePathText(out_dir));
+  PlanCommands commands;
+  commands.name = "proxy-gen";
+  commands.units = shards;
+  commands.run_unit = {program};
+  commands.run_unit.insert(commands.run_unit.end(), flags.begin(), flags.end());
+  commands.run_unit.insert(commands.run_unit.end(), {"--shard", fmt::format("{{unit}}/{}", shards),
+                                                     "--out-dir", "{plan_dir}/units/{unit}.shard",
+                                                     "--done", "{plan_dir}/units/{unit}.done"});
+  commands.merge = {program};
+  commands.merge.insert(commands.merge.end(), flags.begin(), flags.end());
+  commands.merge.push_back("--out-dir=" + absolutePathText(out_dir));
   if (!json_path.empty())
-    merge.push_back("--json=" + (json_path == "-" ? json_path : absolutePathText(json_path)));
-  merge.push_back("--merge-shards");
+    commands.merge.push_back("--json=" +
+                             (json_path == "-" ? json_path : absolutePathText(json_path)));
+  commands.merge.push_back("--merge-shards");
   for (uint64_t k = 0; k < shards; ++k)
-    merge.push_back(fmt::format("{{plan_dir}}/units/{}.shard", k));
-  const json plan = {{"version", 1},    {"name", "proxy-gen"},
-                     {"units", shards}, {"run_unit", run_unit},
-                     {"merge", merge},  {"proxy_gen", {{"shards", shards}, {"flags", flags}}}};
+    commands.merge.push_back(fmt::format("{{plan_dir}}/units/{}.shard", k));
+  json plan = commands;
+  plan["proxy_gen"] = {{"shards", shards}, {"flags", flags}};
   writeTextAtomically(dir / "plan.json", plan.dump(2) + "\n");
 }
 

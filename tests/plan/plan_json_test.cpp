@@ -8,6 +8,7 @@
 #include "tests/support/scratch_dir.h"
 #include "tests/support/two_unit_plan.h"
 #include "util/error.h"
+#include "util/plan_folder.h"
 #include "util/program_build_id.h"
 
 namespace proxyvis {
@@ -45,6 +46,14 @@ UnitStamp randomStamp(test::RandomValues& v) {
   return {v.u64(), v.text(), v.text(), v.u64(), v.text(), v.text()};
 }
 
+PlanCommands randomCommands(test::RandomValues& v) {
+  return {v.smallInt(), v.text(), v.u64(), v.texts(), v.texts()};
+}
+
+TEST(PlanJson, RandomCommandsRoundTrip) {
+  test::expectRoundTrips<PlanCommands>(randomCommands);
+}
+
 TEST(PlanJson, RandomUnitsRoundTrip) {
   test::expectRoundTrips<PlannedUnit>(randomUnit);
 }
@@ -62,6 +71,7 @@ TEST(PlanJson, EveryKeyIsRequiredAndTyped) {
   StudyPlan plan = randomPlan(v);
   test::expectEveryKeyChecked(plan);
   test::expectEveryKeyChecked(randomStamp(v));
+  test::expectEveryKeyChecked(randomCommands(v));
   PlannedUnit u;
   u.kind = UnitKind::kEqualSpp;
   test::expectEveryKeyChecked(u);

@@ -7,7 +7,9 @@
 #include <fstream>
 #include <set>
 
+#include "json_round_trip.h"
 #include "proxies/pipeline/proxy_cache.h"
+#include "random_report.h"
 #include "util/error.h"
 #include "util/program_build_id.h"
 #include "util/sha256.h"
@@ -175,6 +177,36 @@ TEST_F(ProxyCacheTest, DamagedReportsAreMisses) {
   // A folder where the proxy file should be.
   fs::create_directory(dir_ / "k.ply");
   EXPECT_FALSE(cache.find("k"));
+}
+
+// An entry's record: random records survive JSON text; each key, missing or of the wrong type,
+// is an error naming it.
+TEST(ProxyCacheRecordJson, RandomRecordsRoundTrip) {
+  report_test::RandomReports random(20261206);
+  for (int i = 0; i < 300; ++i) {
+    const ProxyCacheRecord r{int(random.count() % 100000), random.text(), random.sceneMesh(),
+                             random.maybe<std::string>([&] { return random.text(); })};
+    ASSERT_EQ(report_test::throughText(r), r) << nlohmann::json(r).dump(1);
+  }
+}
+
+TEST(ProxyCacheRecordJson, AMissingOrMistypedKeyIsNamed) {
+  SceneMeshReport skipped;
+  skipped.skipped = "no faces";
+  skipped.faces = 0;
+  const ProxyCacheRecord r{1, "k", skipped, "ab"};
+  const nlohmann::json good = r;
+  for (const char* key : {"format", "key", "report", "proxy_sha256"}) {
+    nlohmann::json missing = good, mistyped = good;
+    missing.erase(key);
+    mistyped[key] = nlohmann::json::array();
+    if (std::string(key) != "proxy_sha256") {  // optional: absent is a record without a proxy
+      EXPECT_NE(report_test::readError<ProxyCacheRecord>(missing).find(key), std::string::npos)
+          << key;
+    }
+    EXPECT_NE(report_test::readError<ProxyCacheRecord>(mistyped).find(key), std::string::npos)
+        << key;
+  }
 }
 
 TEST_F(ProxyCacheTest, AFileAsTheFolderIsAWriteError) {
