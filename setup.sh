@@ -89,8 +89,9 @@ build() {
 }
 
 # The sanitizer build: -O1 -g1 (line tables: readable stacks at tolerable speed, and CGAL's
-# translation units compile and link faster than with full -g), NDEBUG like Release so the
-# same code is tested, benches off. Any UBSan finding aborts (no recovery), so a test with one
+# translation units compile and link faster than with full -g; -O2 was tried: the suite ran at
+# most 8 % faster, the build from scratch took about 37 min instead of 17), NDEBUG like Release
+# so the same code is tested, benches off. Any UBSan finding aborts (no recovery), so a test with one
 # fails; ASan leak checking is on. Suppressions of third-party findings live in .ci/.
 sanitize_env() {
   local supp="$PWD/.ci"
