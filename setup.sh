@@ -91,8 +91,8 @@ build() {
 # The sanitizer build: -O1 -g1 (line tables: readable stacks at tolerable speed, and CGAL's
 # translation units compile and link faster than with full -g; -O2 was tried: the suite ran at
 # most 8 % faster, the build from scratch took about 37 min instead of 17), NDEBUG like Release
-# so the same code is tested, benches off. Any UBSan finding aborts (no recovery), so a test with one
-# fails; ASan leak checking is on. Suppressions of third-party findings live in .ci/.
+# so the same code is tested, benches off. Any UBSan finding aborts (no recovery), so a test
+# with one fails; ASan leak checking is on. Suppressions of third-party findings live in .ci/.
 sanitize_env() {
   local supp="$PWD/.ci"
   export ASAN_OPTIONS="halt_on_error=1:abort_on_error=0:detect_leaks=1:detect_stack_use_after_return=0:check_initialization_order=1:suppressions=$supp/asan.supp"

@@ -26,13 +26,14 @@ void writeShardPlan(const fs::path& dir, uint64_t shards, const std::vector<std:
   PlanCommands commands;
   commands.name = "proxy-gen";
   commands.units = shards;
-  commands.run_unit = {program};
-  commands.run_unit.insert(commands.run_unit.end(), flags.begin(), flags.end());
+  // Units and merge run the planned command line: the program and the run's own flags.
+  std::vector<std::string> planned{program};
+  planned.insert(planned.end(), flags.begin(), flags.end());
+  commands.run_unit = planned;
   commands.run_unit.insert(commands.run_unit.end(), {"--shard", fmt::format("{{unit}}/{}", shards),
                                                      "--out-dir", "{plan_dir}/units/{unit}.shard",
                                                      "--done", "{plan_dir}/units/{unit}.done"});
-  commands.merge = {program};
-  commands.merge.insert(commands.merge.end(), flags.begin(), flags.end());
+  commands.merge = std::move(planned);
   commands.merge.push_back("--out-dir=" + absolutePathText(out_dir));
   if (!json_path.empty())
     commands.merge.push_back("--json=" +

@@ -40,8 +40,10 @@ double solidAngle(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
 // CGAL's own traversal runs the exact triangle-box test at every node, 3-4 times slower here.
 class TouchTraits {
  public:
-  explicit TouchTraits(const Triangle3& query) : box_(query.bbox()) {
+  explicit TouchTraits(const Triangle3& query) : box_(query.bbox()), a_(query[0]) {
     const Point3 &a = query[0], &b = query[1], &c = query[2];
+    const double l = std::max(l1(b - a), l1(c - a));
+    edge_l2_ = l * l;
     const Kernel::Vector_3 n = CGAL::cross_product(b - a, c - a);
     n_[0] = n.x();
     n_[1] = n.y();
@@ -55,7 +57,7 @@ class TouchTraits {
   template <typename Primitive>
   void intersection(const Triangle3& q, const Primitive& p) {
     const Triangle3& t = p.datum();
-    if (!CGAL::do_overlap(box_, t.bbox()) || clearlyOneSide(q, t)) return;
+    if (!CGAL::do_overlap(box_, t.bbox()) || clearlyOneSide(t)) return;
     if (CGAL::do_intersect(q, t)) hit_ = true;
   }
   template <typename Node>
@@ -76,15 +78,14 @@ class TouchTraits {
   // The leaves come in pairs without their own box test, and most lie near the query's plane
   // without crossing it: when all three corners of t are on one side of the query's plane by
   // more than the rounding error can reach, the exact test would say no. The bound is loose on
-  // purpose (1e-10 against a rounding error below 1e-14 of L^2 |p - a|).
-  bool clearlyOneSide(const Triangle3& q, const Triangle3& t) const {
-    const Point3& a = q[0];
-    const double l = std::max(l1(q[1] - a), l1(q[2] - a));
+  // purpose (1e-10 against a rounding error below 1e-14 of L^2 |p - a|, L the query's longest
+  // edge from a in the L1 norm).
+  bool clearlyOneSide(const Triangle3& t) const {
     int above = 0, below = 0;
     for (int i = 0; i < 3; ++i) {
-      const Kernel::Vector_3 d = t[i] - a;
+      const Kernel::Vector_3 d = t[i] - a_;
       const double s = n_[0] * d.x() + n_[1] * d.y() + n_[2] * d.z();
-      const double bound = 1e-10 * l * l * l1(d);
+      const double bound = 1e-10 * edge_l2_ * l1(d);
       above += s > bound;
       below += s < -bound;
     }
@@ -95,7 +96,8 @@ class TouchTraits {
   }
 
   CGAL::Bbox_3 box_;
-  double n_[3], d_, slack_;
+  Point3 a_;
+  double n_[3], d_, slack_, edge_l2_;
   bool hit_ = false;
 };
 
