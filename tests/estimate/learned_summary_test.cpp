@@ -11,18 +11,9 @@ namespace {
 
 LearnedSummary randomLearned(test::RandomValues& v) {
   LearnedSummary l;
-  l.regions = v.u32();
-  l.regions_roulette = v.u32();
-  l.p_proxy_blocked = v.number();
-  l.error_given_blocked = v.number();
-  l.error_given_visible = v.number();
-  l.var_exact = v.number();
-  l.predicted_efficiency = v.number();
-  for (int i = 0; i < 2; ++i) {
-    l.costs.proxy[i] = v.number();
-    l.costs.original[i] = v.number();
-  }
-  l.costs.per_sample = v.number();
+  v.fill(l.regions, l.regions_roulette, l.p_proxy_blocked, l.error_given_blocked,
+         l.error_given_visible, l.var_exact, l.predicted_efficiency, l.costs.proxy,
+         l.costs.original, l.costs.per_sample);
   return l;
 }
 

@@ -30,14 +30,8 @@ PlannedUnit randomUnit(test::RandomValues& v) {
 
 StudyPlan randomPlan(test::RandomValues& v) {
   StudyPlan p;
-  p.args = v.texts();
-  p.scene = v.text();
-  p.scene_hash = v.text();
-  p.build = v.text();
-  p.seed = v.u64();
-  p.reference_spp = v.smallInt();
-  p.reference_partials = v.smallInt();
-  p.reference_per_partial = v.smallInt();
+  v.fill(p.args, p.scene, p.scene_hash, p.build, p.seed, p.reference_spp, p.reference_partials,
+         p.reference_per_partial);
   for (uint64_t i = 0, n = v.pick(8); i < n; ++i) p.units.push_back(randomUnit(v));
   return p;
 }

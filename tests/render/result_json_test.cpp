@@ -12,48 +12,20 @@ namespace {
 // The numbers of a render; images stay empty (the unit file holds them, not the JSON).
 RenderResult randomRender(test::RandomValues& v) {
   RenderResult r;
-  r.spp = v.smallInt();
-  r.passes = v.smallInt();
-  r.seconds = v.number();
-  r.cpu_seconds = v.number();
-  r.shading_seconds = v.number();
-  r.primary_seconds = v.number();
-  r.visibility_seconds = v.number();
-  r.rays = {v.u64(), v.u64(), v.u64()};
-  r.primary_rays = v.u64();
-  r.shadow_segments = v.u64();
+  v.fill(r.spp, r.passes, r.seconds, r.cpu_seconds, r.shading_seconds, r.primary_seconds,
+         r.visibility_seconds, r.rays.proxy, r.rays.original, r.rays.probe, r.primary_rays,
+         r.shadow_segments, r.learned.regions, r.learned.var_exact, r.learned.costs.original[1]);
   r.proxy_class = ProxyClass(v.pick(3));
-  r.learned.regions = v.u32();
-  r.learned.var_exact = v.number();
-  r.learned.costs.original[1] = v.number();
   return r;
 }
 
 CeilingMeasurement randomMeasurement(test::RandomValues& v) {
   CeilingMeasurement m;
-  m.num_lights = v.u32();
-  m.passes = v.smallInt();
-  m.seconds = v.number();
-  m.ticks_per_ns = v.number();
-  m.cpu_per_wall = v.number();
-  m.segments = v.u64();
-  for (uint64_t i = 0, n = v.pick(5); i < n; ++i) {
-    CeilingRegionStats r;
-    r.light = v.u32();
-    r.segments = v.number();
-    r.blocked = v.number();
-    r.mh = v.number();
-    r.hm = v.number();
-    r.visibility_var = v.number();
-    r.var_fv = v.number();
-    r.f2_mh = v.number();
-    r.f2_hm = v.number();
-    for (int c = 0; c < 2; ++c) {
-      r.cost_proxy[c] = v.number();
-      r.cost_original[c] = v.number();
-    }
-    m.regions.push_back(r);
-  }
+  v.fill(m.num_lights, m.passes, m.seconds, m.ticks_per_ns, m.cpu_per_wall, m.segments);
+  m.regions.resize(v.pick(5));
+  for (CeilingRegionStats& r : m.regions)
+    v.fill(r.light, r.segments, r.blocked, r.mh, r.hm, r.visibility_var, r.var_fv, r.f2_mh, r.f2_hm,
+           r.cost_proxy, r.cost_original);
   return m;
 }
 

@@ -73,8 +73,24 @@ class RandomValues {
     return v;
   }
   uint64_t pick(uint64_t n) { return rng_() % n; }
+  // Sets each argument, left to right, to a random value of its type (an int gets smallInt()).
+  template <typename... T>
+  void fill(T&... fields) {
+    (set(fields), ...);
+  }
 
  private:
+  void set(double& d) { d = number(); }
+  template <size_t N>
+  void set(double (&a)[N]) {
+    for (double& d : a) d = number();
+  }
+  void set(uint64_t& u) { u = u64(); }
+  void set(uint32_t& u) { u = u32(); }
+  void set(int& i) { i = smallInt(); }
+  void set(std::string& s) { s = text(); }
+  void set(std::vector<std::string>& s) { s = texts(); }
+
   std::mt19937_64 rng_;
 };
 

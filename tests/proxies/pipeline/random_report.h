@@ -42,6 +42,11 @@ class RandomReports {
     return coin() ? std::optional<T>(make()) : std::nullopt;
   }
   ProxyClass proxyClass() { return ProxyClass(rng_() % 3); }
+  // Sets each argument, left to right, to a random value of its type.
+  template <typename... T>
+  void fill(T&... fields) {
+    (set(fields), ...);
+  }
 
   ProxyReport report() {
     ProxyReport r;
@@ -114,6 +119,11 @@ class RandomReports {
   }
 
  private:
+  void set(uint64_t& u) { u = count(); }
+  void set(double& d) { d = number(); }
+  void set(bool& b) { b = coin(); }
+  void set(std::string& s) { s = text(); }
+
   std::mt19937_64 rng_;
 };
 

@@ -24,12 +24,8 @@ ShardManifest randomManifest(RandomReports& random) {
   m.build = random.text();
   for (uint64_t i = 0, n = random.count() % 4; i < n; ++i) {
     ShardMeshEntry e;
-    e.index = random.count();
-    e.name = random.text();
+    random.fill(e.index, e.name, e.skipped, e.cache_note, e.error);
     e.report = random.sceneMesh();
-    e.skipped = random.text();
-    e.cache_note = random.text();
-    e.error = random.text();
     e.code = int(random.count() % 4);
     if (random.coin()) {
       e.proxy_file = random.text();
