@@ -160,10 +160,9 @@ int runCompare(CompareOptions& o, const CLI::App& app, const fs::path& plan_dir)
 // `render-compare --merge DIR`: the report of a plan folder whose units have all run, read unit
 // by unit (study/study_merge.h).
 int mergeStudy(const fs::path& dir) {
-  // Loading OpenImageIO (~0.4 s of CPU in the dynamic loader, one thread) overlaps the reading of
-  // the units instead of adding to it. A missing module still fails before the report is
+  // OpenImageIO loads while the units are read; a missing module still fails before the report is
   // committed.
-  std::future<void> module = std::async(std::launch::async, [] { oiioModule(); });
+  std::future<void> module = preloadOiioModule();
   PlannedStudy in =
       readPlannedStudy(dir, "merge with the program named in the plan, or plan again");
   StagedFolder folder(in.options.out, "render-compare", "report.json");

@@ -72,7 +72,7 @@ int runRender(RenderOptions& o) {
     throw Error("-o -", "an image cannot be written to stdout", {}, "name an .exr or .png file");
   checkOutputs({o.scene.string()}, {{"-o", o.output.string()}, {"--json", o.common.json_path}});
   const RenderImageFormat format = renderImageFormat(o.output);
-  oiioModule();  // the image writer: a missing module fails now, not after the render
+  std::future<void> image_module = preloadOiioModule();  // the image writer, while the scene loads
   const EstimatorKind kind = parseEstimatorName(o.estimator);
   o.render.resolve();
   SceneDesc desc = loadSceneDesc(o.scene);
@@ -84,6 +84,8 @@ int runRender(RenderOptions& o) {
                  "render: warning: %s: no mesh of this scene has a proxy: %s traces the "
                  "originals only (generate proxies with proxy-gen)\n",
                  desc.path.filename().string().c_str(), estimatorName(kind));
+
+  image_module.get();  // a missing image module fails now, not after the render
 
   RenderSettings settings;
   settings.estimator = o.render.estimatorSetup(kind);

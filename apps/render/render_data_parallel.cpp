@@ -61,6 +61,7 @@ int runDataParallelRender(DataParallelRenderRequest& o) {
     Forwarding forwarding{};
     RenderImageFormat format{};
     SceneDesc desc;
+    std::future<void> image_module;
     comm.collectively([&] {
       if (o.output == "-")
         throw Error("-o -", "an image cannot be written to stdout", {},
@@ -74,7 +75,7 @@ int runDataParallelRender(DataParallelRenderRequest& o) {
         checkOutputs({o.scene.string()},
                      {{"-o", o.output.string()}, {"--json", o.common.json_path}});
       format = renderImageFormat(o.output);
-      if (root) oiioModule();  // the image writer: a missing module fails now, not after the render
+      if (root) image_module = preloadOiioModule();  // the image writer, while the scene loads
       o.render.resolve();
       desc = loadSceneDesc(o.scene);
       o.render.applyTo(desc);
@@ -83,6 +84,10 @@ int runDataParallelRender(DataParallelRenderRequest& o) {
     const auto scene = DistributedScene::load(
         desc, distributedSceneOptions(o.render, forwarding == Forwarding::kProxies), comm);
     maybeDieForTest(comm.rank());
+    // A missing image module ends every rank now, not after the render.
+    comm.collectively([&] {
+      if (root) image_module.get();
+    });
 
     DataParallelSettings settings;
     settings.forwarding = forwarding;

@@ -42,4 +42,8 @@ const OiioModule& oiioModule() {
   return *module;
 }
 
+std::future<void> preloadOiioModule() {
+  return std::async(std::launch::async, [] { oiioModule(); });
+}
+
 }  // namespace proxyvis

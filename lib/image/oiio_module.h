@@ -8,6 +8,7 @@
 // API: each call goes through the table below.
 #include <filesystem>
 #include <functional>
+#include <future>
 #include <span>
 #include <string_view>
 #include <vector>
@@ -45,6 +46,11 @@ struct OiioModuleHost {
 // Throws Error (exit 2) naming the module's path when it is missing, cannot be loaded or is of
 // another build.
 const OiioModule& oiioModule();
+
+// Starts loading the module on another thread, so that its ~0.4 s of CPU in the dynamic loader
+// overlaps the program's own start (loading a scene); get() waits and throws what oiioModule()
+// throws: call it before the work whose result needs the module, so that a missing one fails early.
+std::future<void> preloadOiioModule();
 
 }  // namespace proxyvis
 

@@ -54,19 +54,19 @@ def validate(js: pathlib.Path, files) -> None:
 
 
 def decompressed(js, files, work):
-    """Each compressed file decoded into a plain one by decompress.mjs."""
-    out = []
-    for f in files:
-        plain = work / ("decoded_" + f.name)
-        r = run(["node", js / "decompress.mjs", f, plain])
-        check(r.returncode == 0, f"decompress {f.name}: {r.stderr.strip()[:200]}")
-        out.append(plain)
+    """Each compressed file decoded into a plain one by decompress.mjs (one node run for all)."""
+    out = [work / ("decoded_" + f.name) for f in files]
+    r = run(["node", js / "decompress.mjs", *(p for pair in zip(files, out) for p in pair)])
+    check(r.returncode == 0 and all(p.exists() for p in out),
+          f"decompress {len(files)} files: {r.stderr.strip()[:200]}")
     return out
 
 
 def proxy_output(bin_dir, bunny, kind, out, extra=()) -> bool:
+    # A coarse wrap (alpha 1/10 of the diagonal): the files are what is tested, and it is 3x faster.
+    coarse = ["--alpha", "0.1"] if kind != "general" else []
     r = run([bin_dir / "proxy-gen", bunny, "--kind", kind, "-o", out, "--quiet",
-             "--check-rays", "5000", *extra])
+             "--check-rays", "5000", *coarse, *extra])
     check(r.returncode == 0, f"proxy-gen --kind {kind} -o {out.name} {' '.join(extra)}: "
           f"{r.stderr.strip()}")
     r = run([bin_dir / "proxy-check", bunny, out, "--expect", kind, "--rays", "20000", "--quiet"])

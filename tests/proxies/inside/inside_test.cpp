@@ -39,7 +39,7 @@ INSTANTIATE_TEST_SUITE_P(
     testing::Values(Case{"bunny.off", "wrap", 0, 0}, Case{"bunny.off", "wrap", 0.05, 1.0 / 300},
                     Case{"spot_triangulated.obj", "wrap", 0.03, 0},
                     Case{"bunny.off", "erode", 0, 0}, Case{"spot_triangulated.obj", "erode", 0, 0},
-                    Case{"bunny.off", "erode", 0.1, 0}, Case{"dragon.drc", "wrap", 0.02, 0}));
+                    Case{"bunny.off", "erode", 0.05, 0}, Case{"dragon.drc", "wrap", 0.02, 0}));
 
 struct BudgetCase {
   const char* mesh;
