@@ -209,8 +209,9 @@ std::optional<Vec3d> Placer::choose(const Profile& profile, bool check_mesh) con
                    [](const Ranked& a, const Ranked& b) { return a.added < b.added; });
   // The nested point is tested too: rounded to float, it may leave the old faces' planes by a
   // rounding error, and on a mesh already relaxed against the input that can reach it.
+  size_t first_touch = 0;  // the new face that refused the last candidate
   auto valid = [&](const Vec3d& x) {
-    if (bound_ && !bound_->allows(star.old_star, star.newStar(x))) return false;
+    if (bound_ && !bound_->allows(star.old_star, star.newStar(x), &first_touch)) return false;
     if (check_mesh && !(global_ ? global_->allows(profile, x) : locallyFree(profile, x)))
       return false;
     return true;

@@ -157,13 +157,21 @@ InputBound::InputBound(const TriMesh& input) : impl_(std::make_unique<Impl>()) {
 InputBound::~InputBound() = default;
 
 bool InputBound::allows(const std::vector<std::array<Vec3d, 3>>& old_star,
-                        const std::vector<std::array<Vec3d, 3>>& new_star) const {
+                        const std::vector<std::array<Vec3d, 3>>& new_star,
+                        size_t* first_touch) const {
   const Impl& m = *impl_;
-  Bounds3d box;
-  for (const auto& t : new_star) {
-    if (touches(t)) return false;
-    for (const Vec3d& p : t) box.extend(p);
+  const size_t n_new = new_star.size();
+  const size_t start = first_touch && *first_touch < n_new ? *first_touch : 0;
+  for (size_t k = 0; k < n_new; ++k) {
+    const size_t i = (start + k) % n_new;
+    if (touches(new_star[i])) {
+      if (first_touch) *first_touch = i;
+      return false;
+    }
   }
+  Bounds3d box;
+  for (const auto& t : new_star)
+    for (const Vec3d& p : t) box.extend(p);
   for (const auto& t : old_star)
     for (const Vec3d& p : t) box.extend(p);
   // Only a component smaller than the stars' box can fit between them.

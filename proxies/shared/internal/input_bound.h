@@ -35,9 +35,13 @@ class InputBound {
 
   // `old_star` and `new_star` are triangles (3 corners each) with the same boundary; the
   // union of old_star and reversed new_star is closed. True when no triangle of new_star
-  // touches the input and no input component lies between the two stars.
+  // touches the input and no input component lies between the two stars. `first_touch`, when
+  // given, is the new face tested first and is set to the one that touched: a caller trying
+  // several positions of one star starts where the last one was refused (same answer, fewer
+  // tree traversals).
   bool allows(const std::vector<std::array<Vec3d, 3>>& old_star,
-              const std::vector<std::array<Vec3d, 3>>& new_star) const;
+              const std::vector<std::array<Vec3d, 3>>& new_star,
+              size_t* first_touch = nullptr) const;
 
   // True when triangle t touches an input triangle (what allows refuses for a new face).
   bool touches(const std::array<Vec3d, 3>& t) const;

@@ -59,12 +59,13 @@ class Relaxer {
     const Vec3d dirs[2] = {gradient * (-1.0 / glen), (near - p) / dist};
     double best_gain = 0;
     Vec3d best = p;
+    size_t first_touch = 0;  // the new face that refused the last position
     for (const Vec3d& d : dirs) {
       for (double s : {0.9, 0.5, 0.25, 0.1}) {
         const Vec3d x = roundToFloat(p + d * (dist * s));
         const double gain = -dot(x - p, gradient);
         if (!(gain > best_gain)) continue;
-        if (admissible(v, x)) {
+        if (admissible(v, x, &first_touch)) {
           best_gain = gain;
           best = x;
           break;
@@ -90,7 +91,7 @@ class Relaxer {
     return {Vec3d(mesh_.vertices[t[(k + 1) % 3]]), Vec3d(mesh_.vertices[t[(k + 2) % 3]])};
   }
 
-  bool admissible(uint32_t v, const Vec3d& x) const {
+  bool admissible(uint32_t v, const Vec3d& x, size_t* first_touch) const {
     const std::vector<uint32_t>& star = faces_of_[v];
     std::vector<Tri> old_star, new_star;
     for (uint32_t f : star) {
@@ -103,7 +104,7 @@ class Relaxer {
       old_star.push_back({p, b, c});
       new_star.push_back({x, b, c});
     }
-    if (!bound_.allows(old_star, new_star)) return false;
+    if (!bound_.allows(old_star, new_star, first_touch)) return false;
     // Corner ids in the order of new_star's points: (v, then the face's order after v).
     std::vector<Triangle> corners;
     for (uint32_t f : star) {
