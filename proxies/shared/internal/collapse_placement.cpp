@@ -144,8 +144,22 @@ bool locallyFree(const Profile& profile, const Vec3d& xv) {
 
 }  // namespace
 
-double addedVolume(const Profile& profile, const Point3& x) {
-  return Star(profile).addedVolume(toVec(x));
+// Star(profile).addedVolume(x), term for term in the same order, without building the star: CGAL
+// asks for it for every edge whose placement it (re)computes.
+double addedVolume(const Profile& profile, const Point3& xp) {
+  const Vec3d x = toVec(xp);
+  const auto& vpm = profile.vertex_point_map();
+  const auto& triangles = profile.triangles();
+  const size_t first_kept =
+      (profile.left_face_exists() ? 1 : 0) + (profile.right_face_exists() ? 1 : 0);
+  double before = 0, after = 0;
+  for (size_t i = 0; i < triangles.size(); ++i) {
+    const auto& t = triangles[i];
+    const Vec3d a = toVec(get(vpm, t.v0)), b = toVec(get(vpm, t.v1)), c = toVec(get(vpm, t.v2));
+    before += dot(a, cross(b, c));
+    if (i >= first_kept) after += dot(a, cross(x, c));
+  }
+  return (after - before) / 6.0;
 }
 
 GlobalFreeCheck::GlobalFreeCheck(SurfaceMesh& sm) : sm_(sm) {
