@@ -4,6 +4,8 @@
 // proxy_tight_tests are numbers, run in the Release suite only).
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include "mesh/validation.h"
 #include "proxies/check/containment.h"
 #include "proxies/shared/internal/face_crossing.h"
@@ -100,6 +102,87 @@ TEST(FacesCross, SharedCornersAreNotCrossingsButFoldsThroughThemAre) {
       cgal::facesCross(a, face({Vec3d(0, 0, 1), Vec3d(2, 0, 1), Vec3d(0, 2, 1)}, {5, 6, 7})));
   // A new face must be a real triangle.
   EXPECT_TRUE(cgal::facesCross(face({o, Vec3d(1, 0, 0), Vec3d(2, 0, 0)}, {0, 8, 9}), a));
+}
+
+// The rule of facesCross with CGAL's 3D predicates only: what its floating-point and 2D shortcuts
+// must agree with.
+bool facesCross3d(const cgal::IdFace& a, const cgal::IdFace& b) {
+  using K = cgal::Kernel;
+  int shared = 0;
+  std::array<int, 3> in_b{-1, -1, -1};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (a.id[i] == b.id[j]) in_b[i] = j, ++shared;
+  const K::Triangle_3 ta(a.p[0], a.p[1], a.p[2]), tb(b.p[0], b.p[1], b.p[2]);
+  if (ta.is_degenerate()) return true;
+  if (tb.is_degenerate()) return false;
+  if (shared == 0) return CGAL::do_intersect(ta, tb);
+  if (shared == 1) {
+    const int i = in_b[0] >= 0 ? 0 : (in_b[1] >= 0 ? 1 : 2), j = in_b[i];
+    return CGAL::do_intersect(K::Segment_3(a.p[(i + 1) % 3], a.p[(i + 2) % 3]), tb) ||
+           CGAL::do_intersect(K::Segment_3(b.p[(j + 1) % 3], b.p[(j + 2) % 3]), ta);
+  }
+  const int i = in_b[0] < 0 ? 0 : (in_b[1] < 0 ? 1 : 2);
+  int j = 0;
+  while (j < 3 && (b.id[j] == a.id[(i + 1) % 3] || b.id[j] == a.id[(i + 2) % 3])) ++j;
+  const cgal::Point3 &u = a.p[(i + 1) % 3], &w = a.p[(i + 2) % 3];
+  return CGAL::coplanar(u, w, a.p[i], b.p[j]) &&
+         CGAL::coplanar_orientation(u, w, a.p[i], b.p[j]) == CGAL::POSITIVE;
+}
+
+// Voxel-like faces: corners on a grid of step 0.1 (not exact in binary), all in one plane
+// x_k = c (the 2D shortcut) or, one time in four, with one corner off it (the 3D path), sharing
+// 0, 1 or 2 corners; collinear and repeated corners included. 20,000 pairs, fixed seed.
+TEST(FacesCross, ShortcutsAgreeWithThe3DPredicatesOnGridFaces) {
+  std::mt19937_64 rng(12);
+  auto coord = [&] { return 0.1 * double(int(rng() % 7) - 3); };
+  int counts[2][3] = {};  // [crossing][shared corners]
+  for (int n = 0; n < 20000; ++n) {
+    const int axis = int(rng() % 3);
+    const double c = coord();
+    auto point = [&] {
+      Vec3d p(coord(), coord(), coord());
+      p[axis] = c;
+      return p;
+    };
+    std::array<Vec3d, 3> pa{point(), point(), point()}, pb{point(), point(), point()};
+    std::array<uint32_t, 3> ib{3, 4, 5};
+    const int shared = int(rng() % 3);
+    for (int s = 0; s < shared; ++s) {  // b's corner s is a's corner (s + 1) % 3, reversed order
+      const int k = (s + 1) % 3;
+      pb[2 - s] = pa[k];
+      ib[2 - s] = uint32_t(k);
+    }
+    if (rng() % 4 == 0) pb[rng() % 3][axis] += 0.1;  // off the plane: the 3D path
+    const cgal::IdFace a = face(pa, {0, 1, 2}), b = face(pb, ib);
+    const bool expected = facesCross3d(a, b);
+    ASSERT_EQ(cgal::facesCross(a, b), expected) << "pair " << n;
+    ++counts[expected][shared];
+  }
+  for (int shared = 0; shared < 3; ++shared)
+    for (int crossing = 0; crossing < 2; ++crossing)
+      EXPECT_GT(counts[crossing][shared], 100) << shared << " shared, crossing " << crossing;
+}
+
+TEST(FacesCross, DegenerateFacesAreFoundAsCGALFindsThem) {
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int degenerate = 0;
+  for (int n = 0; n < 20000; ++n) {
+    // One time in four on integers, where the collinear ones are exactly collinear.
+    const bool grid = rng() % 4 == 0;
+    auto value = [&] { return grid ? double(int(rng() % 17) - 8) : u(rng); };
+    const Vec3d a(value(), value(), value()), b(value(), value(), value());
+    const double t = grid ? double(int(rng() % 5) - 2) : (rng() % 2 ? 0.5 : u(rng));
+    // On the line through a and b, up to rounding; or off it by 1e-12 or more.
+    const Vec3d off = rng() % 2 ? Vec3d(0, 0, 0) : Vec3d(u(rng), u(rng), u(rng)) * 1e-12;
+    const Vec3d c = a + (b - a) * t + off;
+    const cgal::Point3 pa(a.x, a.y, a.z), pb(b.x, b.y, b.z), pc(c.x, c.y, c.z);
+    const bool expected = CGAL::collinear(pa, pb, pc);
+    ASSERT_EQ(cgal::isDegenerate(pa, pb, pc), expected) << "triangle " << n;
+    degenerate += expected;
+  }
+  EXPECT_GT(degenerate, 100);
 }
 
 }  // namespace
