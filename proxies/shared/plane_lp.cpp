@@ -18,6 +18,7 @@ struct Plane {
 // are merged, keeping the most restrictive one, which shrinks the triple count a lot.
 std::vector<Plane> normalizePlanes(const PlaneLpProblem& problem, size_t& num_constraints) {
   std::vector<Plane> planes;
+  planes.reserve(problem.constraints.size() + 6);
   auto add = [&](Vec3d n, double d) {
     const double len = length(n);
     if (!(len > 0) || !std::isfinite(len)) return;

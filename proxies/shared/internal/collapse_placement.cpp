@@ -33,6 +33,8 @@ struct Star {
     const auto& triangles = profile.triangles();
     const size_t first_kept =
         (profile.left_face_exists() ? 1 : 0) + (profile.right_face_exists() ? 1 : 0);
+    old_star.reserve(triangles.size());
+    kept.reserve(triangles.size());
     for (size_t i = 0; i < triangles.size(); ++i) {
       const auto& t = triangles[i];
       const Tri tri{toVec(get(vpm, t.v0)), toVec(get(vpm, t.v1)), toVec(get(vpm, t.v2))};
@@ -75,6 +77,7 @@ std::optional<Vec3d> nestedPlacement(const Star& star, double max_move_edges) {
   problem.half_size = std::max(max_move_edges * length(star.p1 - star.p0), 1e-30);
   problem.candidates = {star.p0, star.p1, problem.center};
   problem.objective = Vec3d(0, 0, 0);
+  problem.constraints.reserve(star.old_star.size());
   for (const Tri& t : star.old_star) {
     const Vec3d n = cross(t[1] - t[0], t[2] - t[0]);
     problem.constraints.push_back({n, dot(n, t[0])});
