@@ -222,6 +222,84 @@ def sha256(path):
     return h.hexdigest()
 
 
+def write_meshes(cells, kinds, protos, mesh_dir, mesh_info):
+    """Each cell's deformed mesh in mesh_dir (Draco, PLY when the conversion fails), reusing the
+    files of an earlier run whose key and SHA-256 match (meshes/manifest.json). Returns the
+    instances' (name, bounds), their files, the triangle count, the reused count and the names
+    kept as PLY."""
+    manifest_path = os.path.join(mesh_dir, "manifest.json")
+    manifest = {}
+    if os.path.exists(manifest_path):
+        with open(manifest_path) as f:
+            manifest = json.load(f)
+    inst_protos, files, triangles, reused, as_ply = [], [], 0, 0, []
+    for c, ((i, j), kind) in enumerate(zip(cells, kinds)):
+        name = f"{kind}-{c:04d}"
+        verts, faces, box, fblock, src_sha = protos[kind]
+        params = deform_params(i, j)
+        key = {"prototype": kind, "source_sha256": src_sha, "params": params}
+        old = manifest.get(name)
+        path = None
+        if old and old.get("key") == key and os.path.exists(os.path.join(mesh_dir, old["file"])) \
+                and sha256(os.path.join(mesh_dir, old["file"])) == old["sha256"]:
+            path = os.path.join(mesh_dir, old["file"])
+            dbox = (old["bounds"][0], old["bounds"][1])
+            reused += 1
+        else:
+            dverts = deform(verts, box, params)
+            dbox = bounds(dverts)
+            ply = os.path.join(mesh_dir, name + ".tmp.ply")
+            write_ply(ply, dverts, fblock, len(faces) // 3)
+            drc = os.path.join(mesh_dir, name + ".drc")
+            r = subprocess.run([mesh_info, ply, "--quiet", "--save", drc, "--draco-bits",
+                                "0"], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                               text=True)
+            if r.returncode == 0:
+                os.remove(ply)
+                path = drc
+            else:
+                path = os.path.join(mesh_dir, name + ".ply")
+                os.replace(ply, path)
+                as_ply.append(name)
+                print(f"note: {name}: Draco conversion failed ({r.stderr.strip()}); kept the "
+                      "PLY", file=sys.stderr)
+            manifest[name] = {"key": key, "file": os.path.basename(path),
+                              "sha256": sha256(path), "bounds": [list(dbox[0]), list(dbox[1])],
+                              "triangles": len(faces) // 3}
+        inst_protos.append((name, dbox))
+        files.append(path)
+        triangles += len(faces) // 3
+    with open(manifest_path + ".tmp", "w") as f:
+        json.dump(manifest, f, indent=1, sort_keys=True)
+    os.replace(manifest_path + ".tmp", manifest_path)
+    return inst_protos, files, triangles, reused, as_ply
+
+
+def make_proxies(proxy_gen, scene_path, out, inst_protos, ratio, stages):
+    """Outside and inside proxies of every mesh by proxy-gen: each mesh's scene entries."""
+    proxies = {name: [] for name, _ in inst_protos}
+    for kind in ("outside", "inside"):
+        t0 = time.time()
+        out_dir = os.path.join(out, "proxies", kind)
+        entries, rep = make_park.run_proxy_gen(proxy_gen, scene_path, kind, out_dir,
+                                               ratio=ratio)
+        cache = rep.get("cache", {})
+        stages[f"proxy-gen {kind} ({cache.get('cached', '?')} cached, "
+               f"{cache.get('generated', '?')} generated)"] = time.time() - t0
+        faces = 0
+        for name, _ in inst_protos:
+            e = entries.get(name)
+            if e is None:
+                sys.exit(f"proxy-gen wrote no {kind} proxy for {name}")
+            entry = make_park.proxy_entry(
+                kind, name, e, os.path.relpath(os.path.join(out_dir, e["file"]), out))
+            proxies[name].append(entry)
+        for m in rep.get("meshes", []):
+            faces += m.get("faces", 0) if "skipped" not in m else 0
+        print(f"{kind} proxies: {faces:,} triangles in all")
+    return proxies
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -263,52 +341,9 @@ def main():
                          sha256(os.path.join(ROOT, PROTO[n][0])))
     stages["load prototypes"] = time.time() - t0
 
-    manifest_path = os.path.join(mesh_dir, "manifest.json")
-    manifest = {}
-    if os.path.exists(manifest_path):
-        with open(manifest_path) as f:
-            manifest = json.load(f)
     t0 = time.time()
-    inst_protos, files, triangles, reused, as_ply = [], [], 0, 0, []
-    for c, ((i, j), kind) in enumerate(zip(cells, kinds)):
-        name = f"{kind}-{c:04d}"
-        verts, faces, box, fblock, src_sha = protos[kind]
-        params = deform_params(i, j)
-        key = {"prototype": kind, "source_sha256": src_sha, "params": params}
-        old = manifest.get(name)
-        path = None
-        if old and old.get("key") == key and os.path.exists(os.path.join(mesh_dir, old["file"])) \
-                and sha256(os.path.join(mesh_dir, old["file"])) == old["sha256"]:
-            path = os.path.join(mesh_dir, old["file"])
-            dbox = (old["bounds"][0], old["bounds"][1])
-            reused += 1
-        else:
-            dverts = deform(verts, box, params)
-            dbox = bounds(dverts)
-            ply = os.path.join(mesh_dir, name + ".tmp.ply")
-            write_ply(ply, dverts, fblock, len(faces) // 3)
-            drc = os.path.join(mesh_dir, name + ".drc")
-            r = subprocess.run([args.mesh_info, ply, "--quiet", "--save", drc, "--draco-bits",
-                                "0"], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-                               text=True)
-            if r.returncode == 0:
-                os.remove(ply)
-                path = drc
-            else:
-                path = os.path.join(mesh_dir, name + ".ply")
-                os.replace(ply, path)
-                as_ply.append(name)
-                print(f"note: {name}: Draco conversion failed ({r.stderr.strip()}); kept the "
-                      "PLY", file=sys.stderr)
-            manifest[name] = {"key": key, "file": os.path.basename(path),
-                              "sha256": sha256(path), "bounds": [list(dbox[0]), list(dbox[1])],
-                              "triangles": len(faces) // 3}
-        inst_protos.append((name, dbox))
-        files.append(path)
-        triangles += len(faces) // 3
-    with open(manifest_path + ".tmp", "w") as f:
-        json.dump(manifest, f, indent=1, sort_keys=True)
-    os.replace(manifest_path + ".tmp", manifest_path)
+    inst_protos, files, triangles, reused, as_ply = write_meshes(cells, kinds, protos, mesh_dir,
+                                                                 args.mesh_info)
     stages["deform + write meshes"] = time.time() - t0
 
     placed = make_park.layout(inst_protos, grid=grid, choose=lambda i, j: i * grid + j,
@@ -352,26 +387,7 @@ def main():
           f"{'PLY' if len(as_ply) == args.count else 'Draco'} files in {mesh_dir}")
 
     if not args.no_proxies:
-        proxies = {name: [] for name, _ in inst_protos}
-        for kind in ("outside", "inside"):
-            t0 = time.time()
-            out_dir = os.path.join(out, "proxies", kind)
-            entries, rep = make_park.run_proxy_gen(args.proxy_gen, scene_path, kind, out_dir,
-                                                   ratio=args.ratio)
-            cache = rep.get("cache", {})
-            stages[f"proxy-gen {kind} ({cache.get('cached', '?')} cached, "
-                   f"{cache.get('generated', '?')} generated)"] = time.time() - t0
-            faces = 0
-            for name, _ in inst_protos:
-                e = entries.get(name)
-                if e is None:
-                    sys.exit(f"proxy-gen wrote no {kind} proxy for {name}")
-                entry = make_park.proxy_entry(
-                    kind, name, e, os.path.relpath(os.path.join(out_dir, e["file"]), out))
-                proxies[name].append(entry)
-            for m in rep.get("meshes", []):
-                faces += m.get("faces", 0) if "skipped" not in m else 0
-            print(f"{kind} proxies: {faces:,} triangles in all")
+        proxies = make_proxies(args.proxy_gen, scene_path, out, inst_protos, args.ratio, stages)
         make_park.write_text(scene_path, make_park.dumps_scene(scene(proxies)))
     print(f"wrote {scene_path}")
     for k, v in stages.items():
