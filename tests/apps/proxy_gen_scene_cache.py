@@ -67,15 +67,7 @@ def states(report) -> dict:
     return {m["name"]: m.get("cache") for m in report["meshes"] if "skipped" not in m}
 
 
-def main() -> None:
-    global BIN, DATA
-    BIN, DATA, work = (pathlib.Path(a) for a in sys.argv[1:4])
-    if work.exists():
-        shutil.rmtree(work)
-    work.mkdir(parents=True)
-    scene = write_scene(work)
-    cache = work / "cache"
-
+def first_run(scene, work, cache) -> float:
     # First run: every plant generated; the ground and the make_proxy:false mesh skipped.
     r1, p1, t1 = gen(scene, work / "out1", cache)
     skipped = {m["name"]: m["skipped"] for m in r1["meshes"] if "skipped" in m}
@@ -103,7 +95,10 @@ def main() -> None:
                 fail(f"{p['file']}: sha256 {got}, scene records {p['sha256']}")
     if "flower2.outside.ply" in hashes(work / "out1"):
         fail("a proxy was written for the make_proxy:false mesh")
+    return t1
 
+
+def cached_and_missed(scene, work, cache, t1) -> None:
     # Second run: all cached, faster, the same bytes.
     r2, p2, t2 = gen(scene, work / "out2", cache)
     if states(r2) != {"flower": "cached", "grass": "cached"}:
@@ -132,6 +127,8 @@ def main() -> None:
         fail(f"changed grass file: {states(r4)}")
     shutil.copyfile(DATA / "ecosys" / "GRASS9.drc", work / "meshes" / "grass.drc")
 
+
+def damaged_entries(scene, work, cache) -> None:
     # Damaged entries: truncated and changed proxy files, garbage report; plus a stale temporary.
     entries = sorted(cache.glob("*.ply"))
     for damage in ("truncate", "flip", "report"):
@@ -155,6 +152,8 @@ def main() -> None:
                 states(r6) != {"flower": "cached", "grass": "cached"}:
             fail(f"{damage}: {states(r5)} then {states(r6)}")
 
+
+def no_cache_and_killed_runs(scene, work, cache) -> None:
     # --no-cache: nothing read or written, same outputs.
     before = hashes(cache)
     r7, _, _ = gen(scene, work / "out7", None, "--no-cache")
@@ -186,6 +185,8 @@ def main() -> None:
     if hashes(work / "out8") != hashes(work / "out1"):
         fail("after killed runs the outputs differ from the first run's")
 
+
+def scene_check(work) -> None:
     # proxy-check: exactly N classified segments per prototype, and no HM' for outside proxies.
     n = 300
     run([BIN / "proxy-check", work / "out1" / "scene.json", "--distribution", "scene",
@@ -198,6 +199,21 @@ def main() -> None:
             fail(f"{c['label']}: rays {c['rays']}, counts {c['counts']}, {c['shortfall']}")
         if c["attempts"] < n or c["attempts"] != n + c["skipped"]:
             fail(f"{c['label']}: attempts {c['attempts']}, skipped {c['skipped']}")
+
+
+def main() -> None:
+    global BIN, DATA
+    BIN, DATA, work = (pathlib.Path(a) for a in sys.argv[1:4])
+    if work.exists():
+        shutil.rmtree(work)
+    work.mkdir(parents=True)
+    scene = write_scene(work)
+    cache = work / "cache"
+    t1 = first_run(scene, work, cache)
+    cached_and_missed(scene, work, cache, t1)
+    damaged_entries(scene, work, cache)
+    no_cache_and_killed_runs(scene, work, cache)
+    scene_check(work)
     print("ok")
 
 
