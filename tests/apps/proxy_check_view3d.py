@@ -412,24 +412,9 @@ def plant(page, folder, name, old, new):
     return path
 
 
-def main():
-    args = sys.argv[1:]
-    screenshot = None
-    if "--screenshot" in args:
-        i = args.index("--screenshot")
-        screenshot = args[i + 1]
-        del args[i:i + 2]
-    if len(args) != 3:
-        print(__doc__)
-        return 2
-    bin_dir, data_dir, work = args
-    chromium = next((shutil.which(n) for n in CHROMIUM_NAMES if shutil.which(n)), None)
-    if not chromium:
-        print("SKIP: Chromium is not installed")
-        return 77
-    start = time.monotonic()
-    shutil.rmtree(work, ignore_errors=True)
-    os.makedirs(work)
+def write_pages(bin_dir, data_dir, work):
+    """The pages to look at: proxy-check --html of a good outside proxy and of a defect one
+    (scaled by 0.9: it breaks the class), and proxy-gen --report's page of the good one."""
     proxy_gen = os.path.join(bin_dir, "proxy-gen")
     proxy_check = os.path.join(bin_dir, "proxy-check")
     bunny = os.path.join(data_dir, "bunny.off")
@@ -459,6 +444,28 @@ def main():
             fail("the planted defect (proxy scaled by 0.9) shows no HM' segment")
     print(f"proxy-gen {t_gen:.1f} s, proxy-check good {t_good:.1f} s, defect {t_bad:.1f} s; "
           f"page {len(good_bytes) / 1e6:.2f} MB")
+    return good, bad, gen_page
+
+
+def main():
+    args = sys.argv[1:]
+    screenshot = None
+    if "--screenshot" in args:
+        i = args.index("--screenshot")
+        screenshot = args[i + 1]
+        del args[i:i + 2]
+    if len(args) != 3:
+        print(__doc__)
+        return 2
+    bin_dir, data_dir, work = args
+    chromium = next((shutil.which(n) for n in CHROMIUM_NAMES if shutil.which(n)), None)
+    if not chromium:
+        print("SKIP: Chromium is not installed")
+        return 77
+    start = time.monotonic()
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    good, bad, gen_page = write_pages(bin_dir, data_dir, work)
 
     browser = Browser(chromium, work)
     failed = False
