@@ -22,6 +22,12 @@ Vec3d toVec(const Point3& p) {
 
 using Tri = std::array<Vec3d, 3>;
 
+// CGAL lists the faces of the collapsing edge first (those that exist), then the faces
+// (a, moving vertex, c) that survive it: the index of the first of those.
+size_t firstKept(const Profile& profile) {
+  return (profile.left_face_exists() ? 1 : 0) + (profile.right_face_exists() ? 1 : 0);
+}
+
 // The faces around a collapsing edge: `old_star` all of them, `kept` the (a, c) corners of the
 // faces that survive as (a, x, c) once the edge becomes vertex x.
 struct Star {
@@ -31,8 +37,7 @@ struct Star {
   explicit Star(const Profile& profile) : p0(toVec(profile.p0())), p1(toVec(profile.p1())) {
     const auto& vpm = profile.vertex_point_map();
     const auto& triangles = profile.triangles();
-    const size_t first_kept =
-        (profile.left_face_exists() ? 1 : 0) + (profile.right_face_exists() ? 1 : 0);
+    const size_t first_kept = firstKept(profile);
     old_star.reserve(triangles.size());
     kept.reserve(triangles.size());
     for (size_t i = 0; i < triangles.size(); ++i) {
@@ -48,13 +53,6 @@ struct Star {
     out.reserve(kept.size());
     for (const auto& k : kept) out.push_back({k[0], x, k[1]});
     return out;
-  }
-  // Volume added by moving the star to x (six times the signed tetrahedra, up to a constant).
-  double addedVolume(const Vec3d& x) const {
-    double before = 0, after = 0;
-    for (const Tri& t : old_star) before += dot(t[0], cross(t[1], t[2]));
-    for (const auto& k : kept) after += dot(k[0], cross(x, k[1]));
-    return (after - before) / 6.0;
   }
   // No surviving face may flip (normal within ~78° of its old one) or vanish.
   bool keepsOrientation(const Vec3d& x) const {
@@ -106,8 +104,7 @@ IdFace meshFace(const SurfaceMesh& sm, SurfaceMesh::Face_index f) {
 std::vector<IdFace> newStar(const Profile& profile, const Point3& x) {
   const SurfaceMesh& sm = profile.surface_mesh();
   const auto& triangles = profile.triangles();
-  const size_t first_kept =
-      (profile.left_face_exists() ? 1 : 0) + (profile.right_face_exists() ? 1 : 0);
+  const size_t first_kept = firstKept(profile);
   std::vector<IdFace> out;
   for (size_t i = first_kept; i < triangles.size(); ++i) {
     const auto& t = triangles[i];
@@ -147,14 +144,14 @@ bool locallyFree(const Profile& profile, const Vec3d& xv) {
 
 }  // namespace
 
-// Star(profile).addedVolume(x), term for term in the same order, without building the star: CGAL
-// asks for it for every edge whose placement it (re)computes.
+// Volume added by moving the star to x (six times the signed tetrahedra, up to a constant), read
+// from the profile without building a Star: CGAL asks for it for every edge whose placement it
+// (re)computes.
 double addedVolume(const Profile& profile, const Point3& xp) {
   const Vec3d x = toVec(xp);
   const auto& vpm = profile.vertex_point_map();
   const auto& triangles = profile.triangles();
-  const size_t first_kept =
-      (profile.left_face_exists() ? 1 : 0) + (profile.right_face_exists() ? 1 : 0);
+  const size_t first_kept = firstKept(profile);
   double before = 0, after = 0;
   for (size_t i = 0; i < triangles.size(); ++i) {
     const auto& t = triangles[i];
@@ -220,7 +217,8 @@ std::optional<Vec3d> Placer::choose(const Profile& profile, bool check_mesh) con
     // Only tested points are rounded: the nested phase keeps its exact LP point, as it
     // always has (its outputs are unchanged by the input bound's arrival).
     const Vec3d x = bound_ ? roundToFloat(candidates[i]) : candidates[i];
-    if (star.keepsOrientation(x)) ranked.push_back({star.addedVolume(x), x});
+    if (star.keepsOrientation(x))
+      ranked.push_back({addedVolume(profile, Point3(x[0], x[1], x[2])), x});
   }
   std::stable_sort(ranked.begin(), ranked.end(),
                    [](const Ranked& a, const Ranked& b) { return a.added < b.added; });
