@@ -14,6 +14,7 @@
 #include <numeric>
 
 #include "mesh/cgal_bridge.h"
+#include "proxies/shared/internal/touch_cache.h"
 
 namespace proxyvis::cgal {
 namespace {
@@ -113,6 +114,7 @@ struct InputBound::Impl {
   Tree tree;
   std::vector<Component> components;  // sorted by box diagonal, smallest first
   std::vector<double> diagonals;
+  TouchCache cache;  // touches() is const to its callers; the cache only remembers answers
 };
 
 InputBound::InputBound(const TriMesh& input) : impl_(std::make_unique<Impl>()) {
@@ -193,11 +195,17 @@ bool InputBound::allows(const std::vector<std::array<Vec3d, 3>>& old_star,
 }
 
 bool InputBound::touches(const std::array<Vec3d, 3>& t) const {
+  const TouchCache::Key key = TouchCache::keyOf(t);
+  if (const std::optional<bool> known = impl_->cache.find(key)) return *known;
   const Triangle3 tri(toPoint(t[0]), toPoint(t[1]), toPoint(t[2]));
-  if (tri.is_degenerate()) return true;
-  TouchTraits touch(tri);
-  impl_->tree.traversal(tri, touch);
-  return touch.hit();
+  bool hit = tri.is_degenerate();
+  if (!hit) {
+    TouchTraits touch(tri);
+    impl_->tree.traversal(tri, touch);
+    hit = touch.hit();
+  }
+  impl_->cache.store(key, hit);
+  return hit;
 }
 
 Vec3d InputBound::closestPoint(const Vec3d& p) const {

@@ -26,6 +26,7 @@ inline Vec3d roundToFloat(const Vec3d& x) {
   return {roundToFloat(x.x), roundToFloat(x.y), roundToFloat(x.z)};
 }
 
+// One per thread: touches() remembers its answers (internal/touch_cache.h).
 class InputBound {
  public:
   explicit InputBound(const TriMesh& input);
