@@ -30,6 +30,7 @@ PKGS=(
   libcgal-dev libgmp-dev libmpfr-dev libeigen3-dev
   libopenmesh-dev libembree-dev libdraco-dev
   libopenimageio-dev openimageio-tools libopencv-core-dev
+  libopenexr-dev  # EXR files without loading OpenImageIO's ~250 libraries (lib/image/exr_io.h)
   libmeshoptimizer-dev libtbb-dev libtinygltf-dev
   libcli11-dev libfmt-dev nlohmann-json3-dev libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev

@@ -46,6 +46,7 @@ void writeImage(const Image& image, const std::filesystem::path& path,
       spec.attribute("png:compressionLevel", 1);
       spec.attribute("png:filter", 8);  // PNG_FILTER_NONE
     }
+    if (ext == ".exr") spec.attribute("compression", options.exr_compression);
     for (const ImageAttribute& a : options.attributes)
       std::visit([&](const auto& v) { spec.attribute(a.name, v); }, a.value);
     bool ok = out->open(named.string(), spec);

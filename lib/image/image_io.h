@@ -24,6 +24,9 @@ struct ImageAttribute {
 struct ImageWriteOptions {
   float exposure = 1.0f;    // PNG only: scale before clamping
   bool full_float = false;  // EXR: 32-bit float channels instead of half
+  // EXR: OpenEXR's compression by its OIIO name: none, rle, zips, zip, piz, pxr24, b44, b44a,
+  // dwaa, dwab.
+  std::string exr_compression = "zip";
   // EXR/TIFF channel names (one per channel); empty: OIIO's defaults (R, G, B, A, ...).
   std::vector<std::string> channel_names;
   std::vector<ImageAttribute> attributes;  // metadata written with the pixels

@@ -22,7 +22,7 @@ inline constexpr std::string_view kOiioModuleFile = "libpv_oiio.so";
 
 // Changed whenever the tables or the types they pass change: a module of another build is refused
 // instead of being called with the wrong layout.
-inline constexpr int kOiioModuleAbi = 1;
+inline constexpr int kOiioModuleAbi = 2;
 
 // What the module does: the OIIO-backed functions of image_io.h and color_map.h.
 struct OiioModule {
@@ -51,6 +51,10 @@ const OiioModule& oiioModule();
 // overlaps the program's own start (loading a scene); get() waits and throws what oiioModule()
 // throws: call it before the work whose result needs the module, so that a missing one fails early.
 std::future<void> preloadOiioModule();
+
+// preloadOiioModule() when writing `output` needs the module (any format but EXR, which
+// image/exr_io.h writes); otherwise a future that is ready at once.
+std::future<void> preloadOiioModuleFor(const std::filesystem::path& output);
 
 }  // namespace proxyvis
 

@@ -71,7 +71,7 @@ void writeCellFile(const CellImages& images, CellFile file, const SceneDesc& sce
       // Lossless either way: a noisy render's half floats barely compress, and zip took 4x the
       // CPU of rle for files only a quarter smaller (docs/slurm.md, "Measured"). The AOVs keep
       // zip: their counts repeat, and rle would make them 18x larger.
-      exr.attributes.push_back({"compression", std::string("rle")});
+      exr.exr_compression = "rle";
       writeImage(r.radiance, dir / (images.stem + ".exr"), exr);
       break;
     }

@@ -6,7 +6,8 @@
   images) does: seen through the dynamic loader's own log (LD_DEBUG=files);
 - a program whose module is missing from its folder fails with exit 2, one error line naming the
   module's path, and no output; with the module beside it, it works when run by absolute path
-  from another working directory.
+  from another working directory;
+- render writing an EXR (OpenEXR, lib/image/exr_io.h) never loads it and needs no module.
 
   oiio_module.py RENDER RENDER_COMPARE REPO_ROOT WORK_DIR
 """
@@ -83,6 +84,15 @@ def main():
     check(not os.path.exists(image), f"{image} written without the module")
     check(not os.path.exists(os.path.dirname(image)) or not os.listdir(os.path.dirname(image)),
           "files left in the output folder")
+
+    # An EXR needs no module: OpenEXR writes it, and OpenImageIO is never loaded.
+    exr = os.path.join(work, "out", "a.exr")
+    files = loaded_files([lone, scene, "--width", "8", "--height", "8", "--spp", "1", "-q",
+                          "-o", exr])
+    check(os.path.isfile(exr), f"{exr} not written without the module")
+    oiio = [f for f in files if "OpenImageIO" in f or "libpv_oiio" in f]
+    check(not oiio, "render -o a.exr loaded OpenImageIO:\n" + "\n".join(oiio))
+    check(any("OpenEXR" in f for f in files), "render -o a.exr did not load OpenEXR")
 
     # With the module beside it, the copy works from another working directory.
     shutil.copy(module, bin_dir)

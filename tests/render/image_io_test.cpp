@@ -3,9 +3,13 @@
 // use, image/oiio_module.h) reach the caller as the same error types.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstring>
 #include <filesystem>
+#include <limits>
 
 #include "image/image_io.h"
+#include "image/oiio_module.h"
 #include "render/image_metadata.h"
 #include "util/error.h"
 #include "util/input_file.h"
@@ -80,6 +84,68 @@ TEST(ImageIo, AovChannelsAreLayers) {
   std::sort(names.begin(), names.end());  // EXR stores channels sorted by name
   EXPECT_EQ(names, (std::vector<std::string>{"rays.original", "rays.probe", "rays.proxy",
                                              "visibility.Y"}));
+}
+
+// EXR goes through OpenEXR (image/exr_io.h), every other format through the OIIO module: the
+// two must agree on EXR files, both ways, to the bit. Values cover half's rounding, its range
+// (65504 and beyond), denormals, negatives, zero and infinity.
+TEST(ImageIo, OpenExrAndOiioWriteAndReadTheSameExr) {
+  std::vector<float> values = {0.0f,  -0.0f,    1.0f / 3, 2.0f / 3, 1e-6f, 6e-8f,
+                               -1.7f, 65504.0f, 70000.0f, 1e30f,    0.1f,  123.456f};
+  values.push_back(std::numeric_limits<float>::infinity());
+  values.push_back(0.9999f);
+  values.push_back(1.0009765625f);  // 1 + 2^-10: one half ulp above 1
+  Image image{5, 3, 3, {}};
+  for (const float scale : {1.0f, -2.0f, 0.5f})
+    for (const float v : values) image.pixels.push_back(v * scale);
+  ASSERT_EQ(image.pixels.size(), 45u);
+  for (const bool full : {false, true}) {
+    ImageWriteOptions options;
+    options.full_float = full;
+    options.attributes = {{"proxyvis:spp", 64},
+                          {"proxyvis:seconds", 0.25f},
+                          {"proxyvis:scene_name", std::string("garden")}};
+    const fs::path ours = scratchFile(full ? "ours_float.exr" : "ours_half.exr");
+    const fs::path oiio = ours.parent_path() / (full ? "oiio_float.exr" : "oiio_half.exr");
+    writeImage(image, ours, options);
+    oiioModule().write_image(image, oiio, options);
+    const Image a = readImage(ours), b = readImage(oiio);
+    const Image a_oiio = oiioModule().read_image(ours), b_oiio = oiioModule().read_image(oiio);
+    ASSERT_EQ(a.channels, 3);
+    for (const Image* x : {&b, &a_oiio, &b_oiio}) {
+      EXPECT_EQ(x->width, a.width);
+      EXPECT_EQ(x->height, a.height);
+      ASSERT_EQ(x->pixels.size(), a.pixels.size());
+      for (size_t i = 0; i < a.pixels.size(); ++i)  // bit for bit (-0 and +0 differ)
+        EXPECT_EQ(std::signbit(x->pixels[i]), std::signbit(a.pixels[i])) << i;
+      EXPECT_EQ(std::memcmp(x->pixels.data(), a.pixels.data(), a.pixels.size() * 4), 0)
+          << (full ? "float" : "half");
+    }
+    if (full) {
+      EXPECT_EQ(a.pixels, image.pixels);
+    }
+    const ImageHeader h = readImageHeader(ours), h_oiio = oiioModule().read_image_header(ours);
+    EXPECT_EQ(h.channel_names, h_oiio.channel_names);
+    EXPECT_EQ(h.channel_names, (std::vector<std::string>{"R", "G", "B"}));
+    for (const char* key : {"proxyvis:spp", "proxyvis:seconds", "proxyvis:scene_name"})
+      EXPECT_EQ(h.attribute(key), h_oiio.attribute(key)) << key;
+    EXPECT_EQ(h.attribute("compression"), "");  // not an attribute of ours
+    EXPECT_FALSE(h_oiio.attribute("DateTime").empty());
+  }
+}
+
+// OIIO's order for the channels it reads: unlayered first (R G B A leading), then each layer's.
+TEST(ImageIo, ExrChannelsAreReadInOiiosOrder) {
+  const fs::path file = scratchFile("layers.exr");
+  const Image image{1, 1, 6, {1, 2, 3, 4, 5, 6}};
+  ImageWriteOptions options;
+  options.full_float = true;
+  options.channel_names = {"z.Y", "B", "a.R", "G", "R", "a.G"};
+  writeImage(image, file, options);
+  EXPECT_EQ(readImageHeader(file).channel_names,
+            oiioModule().read_image_header(file).channel_names);
+  EXPECT_EQ(readImage(file).pixels, oiioModule().read_image(file).pixels);
+  EXPECT_EQ(readImage(file).pixels, (std::vector<float>{5, 4, 2, 3, 6, 1}));  // R G B a.R a.G z.Y
 }
 
 TEST(ImageIo, AutoExposureMapsThe99thPercentileToOne) {
