@@ -14,8 +14,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <ctime>
 #include <tuple>
+#include <utility>
 
 #include "util/error.h"
 #include "util/lower_case.h"
@@ -73,6 +75,23 @@ std::string nowAsCapDate() {
   char text[32];
   std::strftime(text, sizeof text, "%Y:%m:%d %H:%M:%S", &local);
   return text;
+}
+
+// A header may claim any data window: its size, or an Error naming the file when it is empty or
+// larger than any image proxyvis writes (2^28 values, 1 GiB as floats: an 8K x 8K RGBA render),
+// before anything is allocated for it.
+std::pair<int, int> readableSize(const Imath::Box2i& window, size_t channels,
+                                 const std::filesystem::path& path) {
+  constexpr int64_t kMaxValues = int64_t(1) << 28;
+  const int64_t width = int64_t(window.max.x) - window.min.x + 1;
+  const int64_t height = int64_t(window.max.y) - window.min.y + 1;
+  if (width <= 0 || height <= 0 || channels == 0 || width * height > kMaxValues / int64_t(channels))
+    throw Error(path.string(), "cannot read image",
+                fmt::format("its header claims {} x {} pixels of {} channels, more than the {} "
+                            "values proxyvis reads",
+                            width, height, channels, kMaxValues),
+                "the file is damaged or not one proxyvis wrote");
+  return {int(width), int(height)};
 }
 
 // OpenEXR reports everything by exception; each becomes an Error naming the file.
@@ -137,11 +156,10 @@ ImageHeader readExrHeader(const std::filesystem::path& path) {
   return readingExr(path, [&] {
     Imf::InputFile file(path.c_str());
     const Imf::Header& h = file.header();
-    const Imath::Box2i window = h.dataWindow();
     ImageHeader header;
-    header.width = window.max.x - window.min.x + 1;
-    header.height = window.max.y - window.min.y + 1;
     header.channel_names = orderedChannels(h);
+    std::tie(header.width, header.height) =
+        readableSize(h.dataWindow(), header.channel_names.size(), path);
     for (auto it = h.begin(); it != h.end(); ++it) {
       const std::string name = it.name() == std::string("capDate") ? "DateTime" : it.name();
       const Imf::Attribute& a = it.attribute();
@@ -161,18 +179,20 @@ Image readExr(const std::filesystem::path& path) {
     Imf::InputFile file(path.c_str());
     const Imath::Box2i window = file.header().dataWindow();
     const std::vector<std::string> names = orderedChannels(file.header());
-    Image image{
-        window.max.x - window.min.x + 1, window.max.y - window.min.y + 1, int(names.size()), {}};
+    Image image{0, 0, int(names.size()), {}};
+    std::tie(image.width, image.height) = readableSize(window, names.size(), path);
+    // Checked against the chunk offsets it read with the header: a damaged size claims chunks
+    // the file does not have, and is refused before its pixels are allocated.
+    if (!file.isComplete())
+      throw Error(path.string(), "cannot read image", "some of its pixel chunks are missing",
+                  "the file is damaged or was cut short");
     const size_t x_stride = sizeof(float) * image.channels;
     const size_t y_stride = x_stride * image.width;
     image.pixels.resize(size_t(image.width) * image.height * image.channels);
     Imf::FrameBuffer frame;
-    for (int c = 0; c < image.channels; ++c) {
-      // The slice's origin is pixel (0, 0) of the data window's coordinates.
-      char* base = reinterpret_cast<char*>(image.pixels.data() + c) - window.min.x * x_stride -
-                   window.min.y * y_stride;
-      frame.insert(names[c], Imf::Slice(Imf::FLOAT, base, x_stride, y_stride));
-    }
+    for (int c = 0; c < image.channels; ++c)  // the first pixel is the data window's corner
+      frame.insert(names[c], Imf::Slice::Make(Imf::FLOAT, image.pixels.data() + c, window, x_stride,
+                                              y_stride));
     file.setFrameBuffer(frame);
     file.readPixels(window.min.y, window.max.y);
     return image;
