@@ -72,8 +72,8 @@ int runRender(RenderOptions& o) {
     throw Error("-o -", "an image cannot be written to stdout", {}, "name an .exr or .png file");
   checkOutputs({o.scene.string()}, {{"-o", o.output.string()}, {"--json", o.common.json_path}});
   const RenderImageFormat format = renderImageFormat(o.output);
-  std::future<void> image_module =
-      preloadOiioModuleFor(o.output);  // the image writer, while the scene loads
+  // The image writer, while the scene loads.
+  std::future<void> image_module = preloadOiioModuleFor(o.output);
   const EstimatorKind kind = parseEstimatorName(o.estimator);
   o.render.resolve();
   SceneDesc desc = loadSceneDesc(o.scene);

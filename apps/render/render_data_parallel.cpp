@@ -75,8 +75,8 @@ int runDataParallelRender(DataParallelRenderRequest& o) {
         checkOutputs({o.scene.string()},
                      {{"-o", o.output.string()}, {"--json", o.common.json_path}});
       format = renderImageFormat(o.output);
-      if (root)
-        image_module = preloadOiioModuleFor(o.output);  // the image writer, while the scene loads
+      // The image writer, while the scene loads.
+      if (root) image_module = preloadOiioModuleFor(o.output);
       o.render.resolve();
       desc = loadSceneDesc(o.scene);
       o.render.applyTo(desc);

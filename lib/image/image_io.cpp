@@ -23,7 +23,7 @@ std::unique_ptr<OIIO::ImageInput> openImage(const std::filesystem::path& path) {
 
 void writeImage(const Image& image, const std::filesystem::path& path,
                 const ImageWriteOptions& options) {
-  PV_CHECK(image.pixels.size() == size_t(image.width) * image.height * image.channels);
+  checkWritable(image, options);
   const std::string ext = lowerExtension(path);
   const bool ldr = ext == ".png" || ext == ".jpg" || ext == ".jpeg";
   writeAtomically(path, [&](const std::filesystem::path& tmp) {
@@ -35,10 +35,7 @@ void writeImage(const Image& image, const std::filesystem::path& path,
         image.width, image.height, image.channels,
         ldr ? OIIO::TypeDesc::UINT8
             : (options.full_float || ext != ".exr" ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF));
-    if (!options.channel_names.empty()) {
-      PV_CHECK(int(options.channel_names.size()) == image.channels);
-      spec.channelnames = options.channel_names;
-    }
+    if (!options.channel_names.empty()) spec.channelnames = options.channel_names;
     if (ext == ".png") {
       // Rendered images are noisy: zlib's fastest level, no row filter: 4-5x less CPU than OIIO's
       // default (level 6, adaptive filters) and smaller files (a 512x512 report's PNGs 9.2 MB, not

@@ -34,6 +34,10 @@ struct ImageWriteOptions {
 void writeImage(const Image& image, const std::filesystem::path& path,
                 const ImageWriteOptions& options = {});
 
+// What both writers (OpenEXR's and the OIIO module's) require, checked with PV_CHECK (a caller's
+// bug): as many pixel values as the size says, and one name per channel when names are given.
+void checkWritable(const Image& image, const ImageWriteOptions& options);
+
 // Reads an image's metadata (every attribute, numbers as text) and channel names, for tests and
 // tools. Throws Error naming the file on failure.
 struct ImageHeader {

@@ -4,12 +4,18 @@
 #include <cmath>
 
 #include "image/image_io.h"
+#include "util/error.h"
 
 namespace proxyvis {
 
 float linearToSrgb(float v) {
   v = std::clamp(v, 0.0f, 1.0f);
   return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+}
+
+void checkWritable(const Image& image, const ImageWriteOptions& options) {
+  PV_CHECK(image.pixels.size() == size_t(image.width) * image.height * image.channels);
+  PV_CHECK(options.channel_names.empty() || int(options.channel_names.size()) == image.channels);
 }
 
 std::string ImageHeader::attribute(const std::string& name) const {

@@ -6,25 +6,39 @@
 #include "image/image_io.h"
 #include "image/oiio_module.h"
 #include "util/atomic_write.h"
-#include "util/error.h"
 
 namespace proxyvis {
 
+namespace {
+
+// The one rule for which files go through the module: every format but EXR.
+bool needsModule(const std::filesystem::path& path) {
+  return !isExrPath(path);
+}
+
+}  // namespace
+
 void writeImage(const Image& image, const std::filesystem::path& path,
                 const ImageWriteOptions& options) {
-  if (!isExrPath(path)) return oiioModule().write_image(image, path, options);
-  PV_CHECK(image.pixels.size() == size_t(image.width) * image.height * image.channels);
-  PV_CHECK(options.channel_names.empty() || int(options.channel_names.size()) == image.channels);
+  if (needsModule(path)) return oiioModule().write_image(image, path, options);
+  checkWritable(image, options);
   writeAtomically(path,
                   [&](const std::filesystem::path& tmp) { writeExr(image, tmp, options, path); });
 }
 
 ImageHeader readImageHeader(const std::filesystem::path& path) {
-  return isExrPath(path) ? readExrHeader(path) : oiioModule().read_image_header(path);
+  return needsModule(path) ? oiioModule().read_image_header(path) : readExrHeader(path);
 }
 
 Image readImage(const std::filesystem::path& path) {
-  return isExrPath(path) ? readExr(path) : oiioModule().read_image(path);
+  return needsModule(path) ? oiioModule().read_image(path) : readExr(path);
+}
+
+std::future<void> preloadOiioModuleFor(const std::filesystem::path& output) {
+  if (needsModule(output)) return preloadOiioModule();
+  std::promise<void> nothing_to_load;
+  nothing_to_load.set_value();
+  return nothing_to_load.get_future();
 }
 
 }  // namespace proxyvis

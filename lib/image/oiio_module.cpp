@@ -4,7 +4,6 @@
 
 #include <string>
 
-#include "image/exr_io.h"
 #include "util/atomic_write.h"
 #include "util/error.h"
 
@@ -45,13 +44,6 @@ const OiioModule& oiioModule() {
 
 std::future<void> preloadOiioModule() {
   return std::async(std::launch::async, [] { oiioModule(); });
-}
-
-std::future<void> preloadOiioModuleFor(const fs::path& output) {
-  if (!isExrPath(output)) return preloadOiioModule();
-  std::promise<void> nothing_to_load;
-  nothing_to_load.set_value();
-  return nothing_to_load.get_future();
 }
 
 }  // namespace proxyvis

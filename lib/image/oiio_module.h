@@ -53,7 +53,8 @@ const OiioModule& oiioModule();
 std::future<void> preloadOiioModule();
 
 // preloadOiioModule() when writing `output` needs the module (any format but EXR, which
-// image/exr_io.h writes); otherwise a future that is ready at once.
+// image/exr_io.h writes; the rule lives with image_io.h's dispatch, image_io_loaded.cpp);
+// otherwise a future that is ready at once.
 std::future<void> preloadOiioModuleFor(const std::filesystem::path& output);
 
 }  // namespace proxyvis

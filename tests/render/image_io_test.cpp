@@ -9,7 +9,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <limits>
 #include <random>
 
@@ -177,8 +176,7 @@ TEST(ImageIo, DamagedExrLoadsOrThrowsError) {
   Image image{6, 4, 3, {}};
   for (int i = 0; i < 72; ++i) image.pixels.push_back(0.1f * float(i));
   writeImage(image, good);
-  std::ifstream in(good, std::ios::binary);
-  const std::string original((std::istreambuf_iterator<char>(in)), {});
+  const std::string original = readTextFile(good);
   ASSERT_GT(original.size(), 300u);
   const std::vector<bool> size_byte = attributeSizeBytes(original);
   ASSERT_GE(std::count(size_byte.begin(), size_byte.end(), true), 32);  // the 8 required + capDate
