@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "mesh/io/mesh_io.h"
+#include "proxies/outside/outside_proxy.h"
 #include "proxies/pipeline/proxy_outputs.h"
 #include "proxies/pipeline/proxy_pipeline.h"
 #include "proxies/pipeline/proxy_report_text.h"
@@ -33,6 +34,7 @@ namespace {
 struct Args {
   std::string input, output, out_dir, kind = "outside", method;
   std::optional<double> alpha, offset, ratio, erosion, voxel;
+  std::optional<size_t> parts;
   std::string budget = "hard";
   size_t max_faces = 0, min_faces = 12;
   double max_seconds = 600;
@@ -65,6 +67,7 @@ ProxyGenOptions toOptions(const Args& a, const CommonOptions& common) {
   o.ratio = a.ratio;
   o.erosion = a.erosion;
   o.voxel = a.voxel;
+  o.parts = a.parts;
   o.hard_budget = a.budget == "hard";
   o.max_faces = a.max_faces;
   o.min_faces = a.min_faces;
@@ -157,11 +160,18 @@ void addProxyOptions(CLI::App& app, Args& a) {
   app.add_option(
          "--method", a.method,
          "outside: wrap (default; the tightest: volume ratio 1.01-1.23 at --ratio 0.02 on the "
-         "bundled closed meshes, 1.39 on a thin-legged cow), hull (convex: fastest, but 1.3-2.7); "
+         "bundled closed meshes, 1.39 on a thin-legged cow), hull (convex: fastest, but 1.3-2.7), "
+         "convex-parts (a "
+         "proved union of convex pieces, as collision proxies are); "
          "inside: wrap (default; 0.76-0.98 of the volume at --ratio 0.02), erode (voxel erosion: "
          "0.74-0.78 on compact shapes, 0.33 on the dragon's thin parts); general: qem (default), "
          "cgal-sms, meshopt (no guarantee). See docs/proxy_tightness.md")
-      ->check(CLI::IsMember({"wrap", "hull", "erode", "qem", "cgal-sms", "meshopt"}));
+      ->check(
+          CLI::IsMember({"wrap", "hull", "convex-parts", "erode", "qem", "cgal-sms", "meshopt"}));
+  app.add_option("--parts", a.parts,
+                 "convex-parts: the most convex pieces (default 16; with a face budget one per 12 "
+                 "faces, 2 to 32)")
+      ->check(CLI::Range(size_t(1), kMaxConvexParts));
   app.add_option("-o,--output", a.output,
                  "Output mesh (mesh input): .ply, .obj, .off, .drc (lossless), or .glb/.gltf with "
                  "the proof in the node's extras (docs/gltf.md)");

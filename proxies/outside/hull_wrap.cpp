@@ -14,6 +14,7 @@
 #include <fmt/core.h>
 
 #include "mesh/cgal_bridge.h"
+#include "proxies/outside/canonical_hull.h"
 #include "proxies/outside/outside_proxy.h"
 #include "proxies/shared/cgal/wrap_budget.h"
 #include "proxies/shared/input_geometry.h"
@@ -21,12 +22,8 @@
 #include "util/error.h"
 
 namespace proxyvis {
-namespace {
 
-using cgal::Point3;
-using cgal::SurfaceMesh;
-using cgal::Vector3;
-
+namespace cgal {
 // convex_hull_3 (CGAL 5.5's quickhull) keeps the border of each visible region in a std::map
 // keyed by vertex handles, i.e. by address, and starts the new cone at its first entry. The
 // hull's vertices and faces thus come out in an order that depends on where the allocator put
@@ -62,6 +59,14 @@ SurfaceMesh canonicalHull(const SurfaceMesh& hull) {
   for (const auto& t : faces) out.add_face(vmap[t[0]], vmap[t[1]], vmap[t[2]]);
   return out;
 }
+
+}  // namespace cgal
+
+namespace {
+
+using cgal::Point3;
+using cgal::SurfaceMesh;
+using cgal::Vector3;
 
 // Scales the hull about its vertex centroid c so that every face plane moves outward by at
 // least `distance`: a plane at distance h from c moves by s·h, so s = distance / min h.
@@ -107,7 +112,7 @@ TriMesh makeHullProxy(const TriMesh& input, const HullOptions& options) {
   if (hull.number_of_faces() < 4 || !CGAL::is_triangle_mesh(hull))
     throw Error(input.source, "cannot build a convex hull proxy",
                 "the input is flat (its hull has no volume)");
-  hull = canonicalHull(hull);
+  hull = cgal::canonicalHull(hull);
   pushHullOutward(hull, options.epsilon * input.diagonal(), input.source);
   return cgal::fromSurfaceMesh(hull, "hull of " + input.source);
 }

@@ -25,6 +25,31 @@ struct WrapOptions {
   const TimeBudget* budget = nullptr;  // polled while wrapping; null = no limit
 };
 
+// Union of convex pieces (proxies/outside/convex_parts.cpp): space cut by planes into up to
+// max_parts convex cells, each cut chosen to remove the most hull volume; each cell's part of the
+// input wrapped in its convex hull grown by epsilon · diagonal / parts; the pieces united exactly.
+inline constexpr size_t kMaxConvexParts = 256;
+struct ConvexPartsOptions {
+  size_t max_parts = 16;
+  // Stop cutting when the best cut removes less than this fraction of the whole hull's volume.
+  double min_gain = 0.004;
+  // Growth of the pieces, a fraction of the diagonal shared among the parts: strictly outside
+  // the input, and far above the rounding of the double clipping and of the float output.
+  double epsilon = 1e-3;
+  // The face budget the union will be reduced to (0 = none): each piece is first reduced to a
+  // share of it (3 × budget / parts, at least 16), which keeps the exact union small.
+  size_t face_budget = 0;
+  const TimeBudget* budget = nullptr;
+};
+struct ConvexPartsStats {
+  size_t parts = 0;
+  size_t piece_faces = 0;  // the pieces' faces before the union
+};
+// Throws Error on max_parts outside [1, kMaxConvexParts], an input requireProxyGeometry refuses
+// as a solid (all vertices in one plane), a union that is not manifold, or a spent budget.
+TriMesh makeConvexPartsProxy(const TriMesh& input, const ConvexPartsOptions& options = {},
+                             ConvexPartsStats* stats = nullptr);
+
 // Convex hull (CGAL convex_hull_3) pushed outward by options.epsilon · diagonal. Works on any
 // input, open or not. Throws Error when the input is flat (no 3-D hull), has no triangles or
 // fails requireProxyGeometry (proxies/shared/input_geometry.h).

@@ -301,6 +301,7 @@ void throwBudgetNotMet(const BudgetContext& ctx, size_t smallest) {
 std::string tuningFlags(ProxyClass kind, const std::string& method) {
   if (method == "wrap") return "--alpha/--offset";
   if (method == "erode") return "--erosion/--voxel";
+  if (method == "convex-parts") return "--parts";
   if (kind == ProxyClass::kGeneral) return "--ratio/--max-faces";
   return "";
 }

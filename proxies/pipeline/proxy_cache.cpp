@@ -67,19 +67,21 @@ std::optional<std::string> readOwnFileBytes(const fs::path& path) {
 
 nlohmann::json proxyCacheSettings(const ProxyGenOptions& o) {
   // Numbers as text with all their digits: the key must not depend on how JSON prints doubles.
-  return {{"kind", proxyClassName(o.kind)},
-          {"method", o.method.empty() ? "default" : o.method},
-          {"alpha", optionalNumber(o.alpha)},
-          {"offset", optionalNumber(o.offset)},
-          {"ratio", optionalNumber(o.ratio)},
-          {"max_faces", o.max_faces},
-          {"min_faces", o.min_faces},
-          {"erosion", optionalNumber(o.erosion)},
-          {"voxel", optionalNumber(o.voxel)},
-          {"fill_holes", o.fill_holes},
-          {"hard_budget", o.hard_budget},
-          {"seed", std::to_string(o.seed)},
-          {"hausdorff_samples", o.hausdorff_samples}};
+  nlohmann::json settings = {{"kind", proxyClassName(o.kind)},
+                             {"method", o.method.empty() ? "default" : o.method},
+                             {"alpha", optionalNumber(o.alpha)},
+                             {"offset", optionalNumber(o.offset)},
+                             {"ratio", optionalNumber(o.ratio)},
+                             {"max_faces", o.max_faces},
+                             {"min_faces", o.min_faces},
+                             {"erosion", optionalNumber(o.erosion)},
+                             {"voxel", optionalNumber(o.voxel)},
+                             {"fill_holes", o.fill_holes},
+                             {"hard_budget", o.hard_budget},
+                             {"seed", std::to_string(o.seed)},
+                             {"hausdorff_samples", o.hausdorff_samples}};
+  if (o.parts) settings["parts"] = *o.parts;
+  return settings;
 }
 
 std::string proxyCacheKey(const std::string& input_sha256, const nlohmann::json& settings) {

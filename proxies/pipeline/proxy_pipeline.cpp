@@ -67,7 +67,8 @@ void checkOptionRanges(const ProxyGenOptions& o) {
 // and the inside methods a volume, the wrap and the simplifiers a surface.
 GeometryNeed geometryNeed(ProxyClass kind, const std::string& method) {
   if (kind == ProxyClass::kInside) return GeometryNeed::kSolid;
-  if (kind == ProxyClass::kOutside && method == "hull") return GeometryNeed::kSolid;
+  if (kind == ProxyClass::kOutside && (method == "hull" || method == "convex-parts"))
+    return GeometryNeed::kSolid;
   return GeometryNeed::kSurface;
 }
 
@@ -102,6 +103,7 @@ struct Built {
   TriMesh mesh;          // before the budget
   bool bounded = false;  // reduce with simplifyBounded (outside/inside) rather than not at all
   std::optional<uint64_t> seeds, voxels;  // inside wrap, erode
+  std::optional<uint64_t> parts;          // convex parts: the pieces made
 };
 
 Built build(const TriMesh& reference, const ProxyGenOptions& o, const std::string& method,
@@ -113,6 +115,19 @@ Built build(const TriMesh& reference, const ProxyGenOptions& o, const std::strin
       HullOptions h;
       params.hull_epsilon = h.epsilon;
       b.mesh = makeHullProxy(reference, h);
+    } else if (method == "convex-parts") {
+      ConvexPartsOptions c;
+      const size_t faces = requestedFaces(o, reference);
+      // About a dozen faces per piece at a face budget: fewer pieces cannot follow the shape,
+      // more leave each too few faces to stay near its hull.
+      c.max_parts = o.parts ? *o.parts : faces > 0 ? std::clamp<size_t>(faces / 12, 2, 32) : 16;
+      c.face_budget = faces;
+      c.budget = budget;
+      params.parts = c.max_parts;
+      params.parts_epsilon = c.epsilon;
+      ConvexPartsStats stats;
+      b.mesh = makeConvexPartsProxy(reference, c, &stats);
+      b.parts = stats.parts;
     } else {
       b.mesh = makeWrapProxy(reference, wrapOptions<WrapOptions>(o, params, budget));
     }
@@ -155,8 +170,8 @@ Built build(const TriMesh& reference, const ProxyGenOptions& o, const std::strin
 }  // namespace
 
 const std::vector<std::string>& proxyMethods(ProxyClass kind) {
-  static const std::vector<std::string> outside{"wrap", "hull"}, inside{"wrap", "erode"},
-      general{"qem", "cgal-sms", "meshopt"};
+  static const std::vector<std::string> outside{"wrap", "hull", "convex-parts"},
+      inside{"wrap", "erode"}, general{"qem", "cgal-sms", "meshopt"};
   return kind == ProxyClass::kOutside ? outside : kind == ProxyClass::kInside ? inside : general;
 }
 
@@ -332,6 +347,7 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
   budget.check("building the proxy");
   report.seeds = built.seeds;
   report.voxels = built.voxels;
+  report.parts = built.parts;
   report.faces_before_budget = built.mesh.numTriangles();
   const size_t max_faces = budgetFaces(input, options, built, params);
   params.budget = options.hard_budget ? "hard" : "soft";

@@ -46,6 +46,8 @@ struct ProxyGenOptions {
   std::optional<double> erosion;  // erode: fraction of the diagonal (default 1/75)
   std::optional<double> voxel;    // erode: voxel edge, fraction of the diagonal (default 1/150)
   bool fill_holes = false;        // inside: fill the holes of an open input first
+  std::optional<size_t>
+      parts;  // convex-parts: most pieces (default: budget / 12 in [2, 32], or 16)
   // A face budget the caller gave (max_faces, ratio) that no verified proxy meets: true = throw
   // CheckFailed saying what was reached (nothing is written), false = return the proxy with
   // report "budget_reached": false. Budgets not asked for never throw (docs/budgets.md).
@@ -60,7 +62,8 @@ struct ProxyGenOptions {
   std::function<void(const std::string& stage)> on_stage;
 };
 
-// Methods accepted for a kind ("hull", "wrap" / "wrap", "erode" / "qem", "cgal-sms", "meshopt").
+// Methods accepted for a kind ("wrap", "hull", "convex-parts" / "wrap", "erode" / "qem",
+// "cgal-sms", "meshopt").
 const std::vector<std::string>& proxyMethods(ProxyClass kind);
 
 struct ProxyGenResult {

@@ -31,6 +31,8 @@ void fields(ProxyParameters& p, V& v) {
   v("erosion", p.erosion);
   v("voxel", p.voxel);
   v("ratio", p.ratio);
+  v("parts", p.parts);
+  v("parts_epsilon", p.parts_epsilon);
   v("max_faces_from_ratio", p.max_faces_from_ratio);
   v("min_faces", p.min_faces);
   v("max_faces_auto", p.max_faces_auto);
@@ -73,6 +75,7 @@ void fields(ProxyReport& r, V& v) {
   v("holes_filled", r.holes_filled);
   v("seeds", r.seeds);
   v("voxels", r.voxels);
+  v("parts", r.parts);
   v("faces_before_budget", r.faces_before_budget);
   v.nonEmpty("budget_attempts", r.budget_attempts);
   v.nonEmpty("budget_ladder", r.budget_ladder);

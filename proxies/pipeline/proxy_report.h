@@ -34,6 +34,8 @@ struct ProxyParameters {
   uint64_t seed = 0;
   std::optional<double> max_seconds;
   std::optional<double> hull_epsilon, alpha, offset, erosion, voxel, ratio;
+  std::optional<uint64_t> parts;        // convex-parts: the most pieces asked for
+  std::optional<double> parts_epsilon;  // convex-parts: the pieces' growth (of the diagonal)
   std::optional<uint64_t> max_faces_from_ratio, min_faces;  // outside/inside with --ratio
   std::optional<uint64_t> max_faces_auto;                   // the input's count, as a goal
   std::string budget;                                       // "hard" or "soft"
@@ -85,6 +87,7 @@ struct ProxyReport {
   std::optional<uint64_t> holes_filled;   // --fill-holes
   std::optional<uint64_t> seeds;          // inside wrap
   std::optional<uint64_t> voxels;         // erode
+  std::optional<uint64_t> parts;          // convex parts: the pieces united
   uint64_t faces_before_budget = 0;
   std::vector<BudgetAttempt> budget_attempts;  // empty: no key
   std::vector<LadderEntry> budget_ladder;      // empty: no key

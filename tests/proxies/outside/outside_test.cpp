@@ -42,7 +42,65 @@ INSTANTIATE_TEST_SUITE_P(
                     Case{"spot_triangulated.obj", "hull", 0.05, 0},
                     Case{"spot_triangulated.obj", "wrap", 0, 1.0 / 30},
                     Case{"spot_triangulated.obj", "wrap", 0.03, 0},
-                    Case{"dragon.drc", "hull", 0, 0}, Case{"dragon.drc", "wrap", 0.02, 0}));
+                    Case{"dragon.drc", "hull", 0, 0}, Case{"dragon.drc", "wrap", 0.02, 0},
+                    Case{"bunny.off", "convex-parts", 0, 0},
+                    Case{"bunny.off", "convex-parts", 0.02, 0},
+                    Case{"spot_triangulated.obj", "convex-parts", 0.02, 0}));
+
+// The union of convex pieces against the single hull: each piece is the hull of the input in one
+// cell of a partition of space, so the union is tighter; and it is proved by the exact check.
+TEST(OutsideConvexParts, UnionIsTighterThanTheHullAndContainsTheInput) {
+  for (const char* name : {"hard/cow.off", "hard/3holes.off", "spot_triangulated.obj"}) {
+    SCOPED_TRACE(name);
+    const TriMesh& input = mesh(name);
+    ConvexPartsOptions options;
+    options.max_parts = 8;
+    ConvexPartsStats stats;
+    const TriMesh parts = makeConvexPartsProxy(input, options, &stats);
+    EXPECT_GE(stats.parts, 2u);
+    EXPECT_LE(stats.parts, 8u);
+    EXPECT_EQ(checkContainment(input, parts).verdict, ContainmentVerdict::kContains);
+    const double hull = makeHullProxy(input).signedVolume();
+    EXPECT_LT(parts.signedVolume(), 0.95 * hull);
+    EXPECT_GT(parts.signedVolume(), input.signedVolume());
+  }
+}
+
+TEST(OutsideConvexParts, OnePartIsTheGrownHull) {
+  const TriMesh& input = mesh("bunny.off");
+  ConvexPartsOptions options;
+  options.max_parts = 1;
+  ConvexPartsStats stats;
+  const TriMesh one = makeConvexPartsProxy(input, options, &stats);
+  EXPECT_EQ(stats.parts, 1u);
+  EXPECT_EQ(checkContainment(input, one).verdict, ContainmentVerdict::kContains);
+  // One piece of at most 96 faces around the hull: more volume than the hull, not much more.
+  const double hull = makeHullProxy(input).signedVolume();
+  EXPECT_LE(one.numTriangles(), 96u);
+  EXPECT_GT(one.signedVolume(), hull);
+  EXPECT_LT(one.signedVolume(), hull * 1.25);
+}
+
+// Two runs in one process (different heap layouts) may triangulate the pieces' coplanar facets
+// differently (docs/proxy_tightness.md); the shape and the proof must not change.
+TEST(OutsideConvexParts, SameInputSameShape) {
+  const TriMesh& input = mesh("hard/cow.off");
+  ConvexPartsOptions options;
+  options.max_parts = 6;
+  const TriMesh a = makeConvexPartsProxy(input, options);
+  const TriMesh b = makeConvexPartsProxy(input, options);
+  EXPECT_NEAR(a.signedVolume() / b.signedVolume(), 1.0, 1e-3);
+  EXPECT_EQ(checkContainment(input, a).verdict, ContainmentVerdict::kContains);
+  EXPECT_EQ(checkContainment(input, b).verdict, ContainmentVerdict::kContains);
+}
+
+TEST(OutsideConvexParts, PartsOutOfRangeAreRefused) {
+  ConvexPartsOptions options;
+  options.max_parts = 0;
+  EXPECT_THROW(makeConvexPartsProxy(mesh("bunny.off"), options), Error);
+  options.max_parts = kMaxConvexParts + 1;
+  EXPECT_THROW(makeConvexPartsProxy(mesh("bunny.off"), options), Error);
+}
 
 TEST(OutsideHull, UnpushedHullTouchesTheSurface) {
   // Why HullOptions::epsilon exists: CGAL's hull faces lie on input faces, which the exact

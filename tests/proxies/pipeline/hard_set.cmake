@@ -10,7 +10,7 @@ set(hard_dir ${CMAKE_SOURCE_DIR}/data/hard)
 set(no_interior "boundary edges|non-manifold|no interior|has no inside")
 set(closed_meshes 3holes.off fandisk.off cow.off)
 set(open_meshes truck.obj camelhead.off beetle.off)
-set(methods outside:wrap outside:hull inside:wrap inside:erode general:qem general:cgal-sms
+set(methods outside:wrap outside:hull outside:convex-parts inside:wrap inside:erode general:qem general:cgal-sms
   general:meshopt)
 
 # hard_case(MESH KIND METHOD BUDGET_NAME RATIO [extra args for hard_set_case.py...])

@@ -58,15 +58,17 @@ class RandomReports {
     p.fill_holes = coin();
     p.seed = count();
     p.budget = coin() ? "hard" : "soft";
-    for (std::optional<double>* v :
-         {&p.max_seconds, &p.hull_epsilon, &p.alpha, &p.offset, &p.erosion, &p.voxel, &p.ratio})
+    for (std::optional<double>* v : {&p.max_seconds, &p.hull_epsilon, &p.alpha, &p.offset,
+                                     &p.erosion, &p.voxel, &p.ratio, &p.parts_epsilon})
       *v = maybe<double>([&] { return number(); });
-    for (std::optional<uint64_t>* v : {&p.max_faces_from_ratio, &p.min_faces, &p.max_faces_auto})
+    for (std::optional<uint64_t>* v :
+         {&p.max_faces_from_ratio, &p.min_faces, &p.max_faces_auto, &p.parts})
       *v = maybe<uint64_t>([&] { return count(); });
     for (uint64_t i = 0, n = rng_() % 4; i < n; ++i) r.seconds[text()] = number();
     r.holes_filled = maybe<uint64_t>([&] { return count(); });
     r.seeds = maybe<uint64_t>([&] { return count(); });
     r.voxels = maybe<uint64_t>([&] { return count(); });
+    r.parts = maybe<uint64_t>([&] { return count(); });
     r.faces_before_budget = count();
     for (uint64_t i = 0, n = rng_() % 3; i < n; ++i)
       r.budget_attempts.push_back({text(), number(), count(), coin(), coin(), count(), text()});
