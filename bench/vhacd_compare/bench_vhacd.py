@@ -7,6 +7,7 @@ share of the input's volume left outside the output is measured by Monte Carlo (
 same seeded points for every row, 1 M by default, with its standard error).
 
   bench/vhacd_compare/bench_vhacd.py [--bin build/bin] [--mesh FILE ...] [--samples N]
+                                     [--row wrap|hull|convex-parts|vhacd|vhacd-64 ...]
                                      [--json OUT.json]
 
 Needs `npm ci` in bench/vhacd_compare (./setup.sh bench-deps does it). Never fails on a figure.
@@ -23,6 +24,9 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 DEFAULT_MESHES = ["data/hard/3holes.off", "data/hard/fandisk.off", "data/hard/cow.off",
                   "data/bunny.off", "data/spot_triangulated.obj", "data/dragon.drc"]
+
+
+ROWS = ["wrap", "hull", "convex-parts", "vhacd", "vhacd-64"]
 
 
 def run(cmd):
@@ -85,6 +89,8 @@ def main():
     ap.add_argument("--mesh", action="append", help="default: the hard set's closed meshes and "
                     "the bundled bunny, spot and dragon")
     ap.add_argument("--samples", type=int, default=1_000_000)
+    ap.add_argument("--row", action="append", choices=ROWS,
+                    help="only these rows (repeatable); default: all")
     ap.add_argument("--json", help="also write the rows as JSON")
     a = ap.parse_args()
     meshes = a.mesh or [os.path.join(ROOT, m) for m in DEFAULT_MESHES]
@@ -96,11 +102,14 @@ def main():
         n = input_faces(a.bin, mesh)
         for label, budget in (("2 %", max(12, int(0.02 * n))), ("200", 200)):
             with tempfile.TemporaryDirectory() as work:
-                for make in (lambda: ours(a.bin, mesh, "wrap", budget, work, a.samples),
-                             lambda: ours(a.bin, mesh, "hull", budget, work, a.samples),
-                             lambda: ours(a.bin, mesh, "convex-parts", budget, work, a.samples),
-                             lambda: vhacd(a.bin, mesh, budget, work, a.samples),
-                             lambda: vhacd(a.bin, mesh, budget, work, a.samples, 64)):
+                makers = {
+                    "wrap": lambda: ours(a.bin, mesh, "wrap", budget, work, a.samples),
+                    "hull": lambda: ours(a.bin, mesh, "hull", budget, work, a.samples),
+                    "convex-parts":
+                        lambda: ours(a.bin, mesh, "convex-parts", budget, work, a.samples),
+                    "vhacd": lambda: vhacd(a.bin, mesh, budget, work, a.samples),
+                    "vhacd-64": lambda: vhacd(a.bin, mesh, budget, work, a.samples, 64)}
+                for make in (makers[r] for r in (a.row or ROWS)):
                     try:
                         row = make()
                     except RuntimeError as e:
