@@ -14,7 +14,6 @@
 // above that rounding) keeps every piece strictly away from the input, as the exact containment
 // check (which counts touching as crossing) requires, and its corners are rounded to float
 // outward. That check still runs on the result: nothing here is trusted.
-#include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
@@ -23,7 +22,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <queue>
 
 #include <fmt/core.h>
@@ -45,7 +43,6 @@ using ExactKernel = CGAL::Exact_predicates_exact_constructions_kernel;
 using ExactMesh = CGAL::Surface_mesh<ExactKernel::Point_3>;
 
 using Polygon = std::vector<Vec3d>;
-using Delaunay = CGAL::Delaunay_triangulation_3<cgal::Kernel>;
 
 // The closed half-space dot(normal, x) <= offset is "below".
 struct Plane {
@@ -219,67 +216,6 @@ std::vector<Cell> partition(const TriMesh& input, const ConvexPartsOptions& opti
   return cells;
 }
 
-// The convex hull's surface as the Delaunay triangulation of the points has it: every point on
-// the hull's boundary is a vertex, and coplanar facets are triangulated by CGAL's symbolic
-// perturbation, which depends on the points alone. convex_hull_3 picks those triangulations (and
-// whether a point inside a facet is kept) by vertex address, so two runs in one process made
-// different pieces. Empty when the points span no volume.
-SurfaceMesh uniqueHull(const std::vector<Point3>& points) {
-  const Delaunay dt(points.begin(), points.end());
-  SurfaceMesh hull;
-  if (dt.dimension() < 3) return hull;
-  std::map<Point3, SurfaceMesh::Vertex_index> index;
-  auto vertex = [&](Delaunay::Vertex_handle v) {
-    auto [it, added] = index.try_emplace(v->point());
-    if (added) it->second = hull.add_vertex(v->point());
-    return it->second;
-  };
-  std::vector<Delaunay::Cell_handle> cells;
-  dt.incident_cells(dt.infinite_vertex(), std::back_inserter(cells));
-  std::vector<std::array<SurfaceMesh::Vertex_index, 3>> faces;
-  for (Delaunay::Cell_handle c : cells) {
-    const int i = c->index(dt.infinite_vertex());
-    std::array<SurfaceMesh::Vertex_index, 3> t;
-    for (int j = 0; j < 3; ++j) t[j] = vertex(c->vertex(Delaunay::vertex_triple_index(i, j)));
-    faces.push_back(t);
-  }
-  // The facets all come out with one orientation; outward is the one of positive volume.
-  double volume = 0;
-  for (const auto& t : faces) {
-    const Point3 &a = hull.point(t[0]), &b = hull.point(t[1]), &d = hull.point(t[2]);
-    volume += CGAL::scalar_product(a - CGAL::ORIGIN,
-                                   CGAL::cross_product(b - CGAL::ORIGIN, d - CGAL::ORIGIN));
-  }
-  for (const auto& t : faces)
-    volume > 0 ? hull.add_face(t[0], t[1], t[2]) : hull.add_face(t[0], t[2], t[1]);
-  return cgal::canonicalHull(hull);
-}
-
-// The hull's corners only: a vertex of convex_hull_3's output that lies inside a facet (every
-// neighbour in one plane with it) or inside an edge (between two neighbours on one line) is
-// dropped, so the set depends on the points alone. Sorted.
-std::vector<Point3> extremeCorners(const SurfaceMesh& hull) {
-  std::vector<Point3> corners;
-  for (auto v : hull.vertices()) {
-    const Point3& p = hull.point(v);
-    std::vector<Point3> ring;
-    for (auto h : CGAL::halfedges_around_target(hull.halfedge(v), hull))
-      ring.push_back(hull.point(hull.source(h)));
-    bool inside_edge = false;
-    for (size_t a = 0; a < ring.size() && !inside_edge; ++a)
-      for (size_t b = a + 1; b < ring.size() && !inside_edge; ++b)
-        inside_edge = CGAL::collinear(ring[a], p, ring[b]) &&
-                      CGAL::collinear_are_strictly_ordered_along_line(ring[a], p, ring[b]);
-    if (inside_edge) continue;
-    bool flat = true;
-    for (size_t k = 2; k < ring.size() && flat; ++k)
-      flat = CGAL::coplanar(p, ring[0], ring[1], ring[k]);
-    if (!flat || CGAL::collinear(p, ring[0], ring[1])) corners.push_back(p);
-  }
-  std::sort(corners.begin(), corners.end());
-  return corners;
-}
-
 // x rounded to a float on the side of x that `up` names: the grown hull then contains the exact
 // Minkowski sum whatever the coordinates' magnitude.
 float roundOutward(double x, bool up) {
@@ -302,8 +238,8 @@ TriMesh grownHull(const Cell& cell, double e, const std::string& source) {
   const bool solid = quick.number_of_faces() >= 4 && CGAL::is_triangle_mesh(quick);
   std::vector<Point3> grown;
   if (solid) {
-    points = extremeCorners(quick);
-    const SurfaceMesh hull = uniqueHull(points);
+    points = cgal::extremeCorners(quick);
+    const SurfaceMesh hull = cgal::uniqueHull(points);
     double cx = 0, cy = 0, cz = 0;
     for (const Point3& p : points) cx += p.x(), cy += p.y(), cz += p.z();
     const Point3 c(cx / points.size(), cy / points.size(), cz / points.size());
@@ -322,7 +258,7 @@ TriMesh grownHull(const Cell& cell, double e, const std::string& source) {
         grown.emplace_back(roundOutward(c.x() + (p.x() - c.x()) * s, p.x() > c.x()),
                            roundOutward(c.y() + (p.y() - c.y()) * s, p.y() > c.y()),
                            roundOutward(c.z() + (p.z() - c.z()) * s, p.z() > c.z()));
-      return cgal::fromSurfaceMesh(uniqueHull(grown), source);
+      return cgal::fromSurfaceMesh(cgal::uniqueHull(grown), source);
     }
   } else if (quick.number_of_vertices() >= 3) {
     points.assign(quick.points().begin(), quick.points().end());
@@ -334,7 +270,7 @@ TriMesh grownHull(const Cell& cell, double e, const std::string& source) {
       grown.emplace_back(roundOutward(p.x() + (k & 1 ? e : -e), k & 1),
                          roundOutward(p.y() + (k & 2 ? e : -e), k & 2),
                          roundOutward(p.z() + (k & 4 ? e : -e), k & 4));
-  return cgal::fromSurfaceMesh(uniqueHull(grown), source);
+  return cgal::fromSurfaceMesh(cgal::uniqueHull(grown), source);
 }
 
 ExactMesh toExact(const TriMesh& m) {

@@ -1,5 +1,6 @@
 // Outside proxies from CGAL: convex_hull_3 and alpha_wrap_3 (P. Portaneri, M. Rouxel-Labbé,
 // M. Hemmer, D. Cohen-Steiner, P. Alliez, "Alpha wrapping with an offset", ACM TOG 41(4), 2022).
+#include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/alpha_wrap_3.h>
 #include <CGAL/convex_hull_3.h>
 
@@ -8,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <tuple>
 #include <vector>
 
@@ -58,6 +60,61 @@ SurfaceMesh canonicalHull(const SurfaceMesh& hull) {
   for (SurfaceMesh::Vertex_index v : verts) vmap.push_back(out.add_vertex(hull.point(v)));
   for (const auto& t : faces) out.add_face(vmap[t[0]], vmap[t[1]], vmap[t[2]]);
   return out;
+}
+
+using Delaunay = CGAL::Delaunay_triangulation_3<Kernel>;
+
+SurfaceMesh uniqueHull(const std::vector<Point3>& points) {
+  const Delaunay dt(points.begin(), points.end());
+  SurfaceMesh hull;
+  if (dt.dimension() < 3) return hull;
+  std::map<Point3, SurfaceMesh::Vertex_index> index;
+  auto vertex = [&](Delaunay::Vertex_handle v) {
+    auto [it, added] = index.try_emplace(v->point());
+    if (added) it->second = hull.add_vertex(v->point());
+    return it->second;
+  };
+  std::vector<Delaunay::Cell_handle> cells;
+  dt.incident_cells(dt.infinite_vertex(), std::back_inserter(cells));
+  std::vector<std::array<SurfaceMesh::Vertex_index, 3>> faces;
+  for (Delaunay::Cell_handle c : cells) {
+    const int i = c->index(dt.infinite_vertex());
+    std::array<SurfaceMesh::Vertex_index, 3> t;
+    for (int j = 0; j < 3; ++j) t[j] = vertex(c->vertex(Delaunay::vertex_triple_index(i, j)));
+    faces.push_back(t);
+  }
+  // The facets all come out with one orientation; outward is the one of positive volume.
+  double volume = 0;
+  for (const auto& t : faces) {
+    const Point3 &a = hull.point(t[0]), &b = hull.point(t[1]), &d = hull.point(t[2]);
+    volume += CGAL::scalar_product(a - CGAL::ORIGIN,
+                                   CGAL::cross_product(b - CGAL::ORIGIN, d - CGAL::ORIGIN));
+  }
+  for (const auto& t : faces)
+    volume > 0 ? hull.add_face(t[0], t[1], t[2]) : hull.add_face(t[0], t[2], t[1]);
+  return cgal::canonicalHull(hull);
+}
+
+std::vector<Point3> extremeCorners(const SurfaceMesh& hull) {
+  std::vector<Point3> corners;
+  for (auto v : hull.vertices()) {
+    const Point3& p = hull.point(v);
+    std::vector<Point3> ring;
+    for (auto h : CGAL::halfedges_around_target(hull.halfedge(v), hull))
+      ring.push_back(hull.point(hull.source(h)));
+    bool inside_edge = false;
+    for (size_t a = 0; a < ring.size() && !inside_edge; ++a)
+      for (size_t b = a + 1; b < ring.size() && !inside_edge; ++b)
+        inside_edge = CGAL::collinear(ring[a], p, ring[b]) &&
+                      CGAL::collinear_are_strictly_ordered_along_line(ring[a], p, ring[b]);
+    if (inside_edge) continue;
+    bool flat = true;
+    for (size_t k = 2; k < ring.size() && flat; ++k)
+      flat = CGAL::coplanar(p, ring[0], ring[1], ring[k]);
+    if (!flat || CGAL::collinear(p, ring[0], ring[1])) corners.push_back(p);
+  }
+  std::sort(corners.begin(), corners.end());
+  return corners;
 }
 
 }  // namespace cgal
