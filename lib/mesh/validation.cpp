@@ -8,24 +8,10 @@
 
 #include "mesh/edge_counts.h"
 #include "mesh/internal/self_intersections.h"
+#include "util/disjoint_sets.h"
 
 namespace proxyvis {
 namespace {
-
-// Union-find with path halving; ids are dense 0..n-1.
-struct DisjointSets {
-  std::vector<uint32_t> parent;
-  explicit DisjointSets(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  uint32_t find(uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(uint32_t a, uint32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
 
 // Maps every vertex to the first vertex with bit-identical coordinates (MANIFEST: topology is
 // computed after welding positions that are exactly equal). Equal means equal as numbers, so

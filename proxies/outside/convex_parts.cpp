@@ -1,7 +1,7 @@
 // Outside proxy as a union of convex pieces (the collision-proxy form of V-HACD and CoACD), built
 // so that it contains the input by construction: the space is cut by planes into convex cells,
-// each cell gets the convex hull of the input surface clipped to it, grown by a small cube, and
-// the pieces are joined by an exact union (CGAL corefinement on an exact kernel). Each piece is
+// each cell gets the convex hull of the input surface clipped to it, grown outward, and the
+// pieces are joined by an exact union (CGAL corefinement on an exact kernel). Each piece is
 // the hull of float points, so it is exactly convex in the coordinates it is written in: nothing
 // is rounded before the union, whose inputs must not cross themselves.
 //
@@ -10,10 +10,10 @@
 // S that no hull covers (near a cell's edge deep inside S, where no surface point pulls the hull)
 // cannot reach the outside without crossing ∂S, which lies inside the union: it is in a cavity of
 // the union, and the cavities' shells (the components of negative volume) are dropped. Clipping
-// is done in double; the cube (a ten-thousandth of the diagonal over the number of parts, far
-// above that rounding) keeps every piece strictly away from the input, as the exact containment
-// check (which counts touching as crossing) requires, and its corners are rounded to float
-// outward. That check still runs on the result: nothing here is trusted.
+// is done in double; the growth (ConvexPartsOptions::epsilon, far above that rounding) keeps
+// every piece strictly away from the input, as the exact containment check (which counts
+// touching as crossing) requires, and the grown corners are rounded to float outward. That
+// check still runs on the result: nothing here is trusted.
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
@@ -22,7 +22,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <queue>
 
 #include <fmt/core.h>
 
@@ -32,6 +31,7 @@
 #include "proxies/outside/outside_proxy.h"
 #include "proxies/shared/bounded_simplify.h"
 #include "proxies/shared/input_geometry.h"
+#include "util/disjoint_sets.h"
 #include "util/error.h"
 
 namespace proxyvis {
@@ -305,23 +305,18 @@ TriMesh fromExact(const ExactMesh& m, const std::string& source) {
 // The mesh without its components of negative volume: the shells of cavities, which filled
 // make the union contain every point of the input that no piece covered.
 TriMesh withoutCavities(const TriMesh& m) {
-  std::vector<uint32_t> parent(m.vertices.size());
-  for (uint32_t i = 0; i < parent.size(); ++i) parent[i] = i;
-  auto find = [&](uint32_t v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-  };
+  DisjointSets sets(m.vertices.size());
   for (const Triangle& t : m.triangles)
-    for (int k = 1; k < 3; ++k) parent[find(t[k])] = find(t[0]);
+    for (int k = 1; k < 3; ++k) sets.unite(t[0], t[k]);
   std::vector<double> volume(m.vertices.size(), 0);
   for (const Triangle& t : m.triangles)
-    volume[find(t[0])] +=
+    volume[sets.find(t[0])] +=
         dot(Vec3d(m.vertices[t[0]]), cross(Vec3d(m.vertices[t[1]]), Vec3d(m.vertices[t[2]])));
   TriMesh out;
   out.source = m.source;
   out.vertices = m.vertices;
   for (const Triangle& t : m.triangles)
-    if (volume[find(t[0])] > 0) out.triangles.push_back(t);
+    if (volume[sets.find(t[0])] > 0) out.triangles.push_back(t);
   // Compact the vertices the dropped shells used (a proxy has no stray vertices).
   std::vector<uint32_t> index(m.vertices.size(), ~0u);
   out.vertices.clear();
@@ -356,7 +351,7 @@ TriMesh unitePieces(const TriMesh& input, const std::vector<Cell>& cells,
   for (size_t i = 0; i < cells.size(); ++i) {
     checkBudget(options.budget, "the convex parts");
     TriMesh piece = grownHull(cells[i], e * double(1 + i), source);
-    if (share > 0 && piece.numTriangles() > share) {
+    if (piece.numTriangles() > share) {
       BoundedSimplifyOptions s;
       s.max_faces = share;
       s.side = BoundSide::kOutside;

@@ -11,10 +11,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 
 #include "mesh/cgal_bridge.h"
 #include "proxies/shared/internal/touch_cache.h"
+#include "util/disjoint_sets.h"
 
 namespace proxyvis::cgal {
 namespace {
@@ -120,19 +120,14 @@ struct InputBound::Impl {
 InputBound::InputBound(const TriMesh& input) : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   // Components by shared vertex indices (union-find).
-  std::vector<uint32_t> parent(input.vertices.size());
-  std::iota(parent.begin(), parent.end(), 0u);
-  auto find = [&](uint32_t v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-  };
+  DisjointSets sets(input.vertices.size());
   m.triangles.reserve(input.triangles.size());
   for (const Triangle& t : input.triangles) {
     const Point3 a = toPoint(Vec3d(input.vertices[t[0]])), b = toPoint(Vec3d(input.vertices[t[1]])),
                  c = toPoint(Vec3d(input.vertices[t[2]]));
     if (!CGAL::collinear(a, b, c)) m.triangles.emplace_back(a, b, c);
-    parent[find(t[1])] = find(t[0]);
-    parent[find(t[2])] = find(t[0]);
+    sets.unite(t[0], t[1]);
+    sets.unite(t[0], t[2]);
   }
   m.tree.insert(m.triangles.begin(), m.triangles.end());
   m.tree.build();
@@ -143,7 +138,7 @@ InputBound::InputBound(const TriMesh& input) : impl_(std::make_unique<Impl>()) {
     for (uint32_t v : t) used[v] = true;
   for (uint32_t v = 0; v < input.vertices.size(); ++v) {
     if (!used[v]) continue;
-    const uint32_t r = find(v);
+    const uint32_t r = sets.find(v);
     if (slot[r] < 0) {
       slot[r] = int(m.components.size());
       m.components.push_back({{}, Vec3d(input.vertices[v])});
