@@ -58,12 +58,15 @@ inline ProxyGenOptions genOptions(ProxyClass kind, const std::string& method, si
 }
 
 // One case of the outside / inside containment suites: a mesh, a method, a face budget as a
-// fraction of the input's faces (0 = no budget) and the method's size parameter (0 = default).
+// fraction of the input's faces (0 = no budget), the method's size parameter (0 = default) and,
+// where a case guards a measured tightness, the volume ratio it must reach (outside: at most,
+// inside: at least; 0 = none).
 struct ContainmentCase {
   const char* mesh;
   const char* method;
   double budget_fraction;
   double size;
+  double volume_ratio_bound = 0;
 };
 inline void PrintTo(const ContainmentCase& c, std::ostream* os) {
   *os << c.mesh << ' ' << c.method << " budget " << c.budget_fraction << " size " << c.size;
