@@ -123,13 +123,17 @@ constexpr size_t kMaxTightFaces = 1500;
 constexpr size_t kMaxTightStartFaces = 4000;
 
 // Where the tight phase starts: kBoundPhaseFactor times a small budget, at most kMaxTightFaces;
-// twice a budget of at least kMaxTightFaces, at most kMaxTightStartFaces. Such budgets used to
-// be met by nesting alone: with its last 2,000 collapses tight, the dragon's 2 % (2,000 faces)
-// went from 0.841 to 0.856 of the volume inside and from 1.131 to 1.104 outside, for about
-// 2.5 s more. Budgets just below kMaxTightFaces keep their short tight phase: bun_zipper's
-// (1,388 faces) from twice would cost 1.4 s more on a run that is already the slowest.
-size_t tightStartFaces(size_t budget) {
-  if (budget >= kMaxTightFaces) return std::max(budget, std::min(2 * budget, kMaxTightStartFaces));
+// for an inside proxy, twice a budget of at least kMaxTightFaces, at most kMaxTightStartFaces.
+// Such budgets used to be met by nesting alone: with its last 2,000 collapses tight, the
+// dragon's inside proxy at 2 % (2,000 faces) went from 0.841 to 0.856 of the volume, in 5.3 s
+// instead of 3.2 s. Outside, the same took it from 1.131 to 1.104 but from 3.2 to 6.2 s, past
+// the 5 s an outside wrap at 2 % may take (docs/proxy_speed.md), so outside keeps nesting alone
+// there. Budgets just below kMaxTightFaces keep their short tight phase: bun_zipper's (1,388
+// faces) from twice would cost 1.4 s more on a run that is already the slowest.
+size_t tightStartFaces(size_t budget, BoundSide side) {
+  if (budget >= kMaxTightFaces)
+    return side == BoundSide::kInside ? std::max(budget, std::min(2 * budget, kMaxTightStartFaces))
+                                      : budget;
   return std::min(kBoundPhaseFactor * budget, kMaxTightFaces);
 }
 
@@ -145,7 +149,7 @@ constexpr size_t kMaxRelaxFaces = 3000;
 // (neither the tight phase nor the relaxation pays there), or too many faces left for the tight
 // phase.
 bool nestedPhase(SurfaceMesh& sm, const BoundedSimplifyOptions& options, size_t* collapses) {
-  const size_t phase1 = tightStartFaces(options.max_faces);
+  const size_t phase1 = tightStartFaces(options.max_faces, options.side);
   if (sm.number_of_faces() > phase1) collapse(sm, phase1, options, nullptr, collapses);
   sm.collect_garbage();
   if (sm.number_of_faces() <= options.max_faces && sm.number_of_faces() > kMaxRelaxFaces)

@@ -32,7 +32,9 @@ TEST_P(InsideContainment, ExactCheckProvesContainment) {
   const double ratio = *r.report.volume_ratio;
   EXPECT_GT(ratio, 0.3);
   EXPECT_LE(ratio, 1.0);
-  if (GetParam().volume_ratio_bound > 0) EXPECT_GE(ratio, GetParam().volume_ratio_bound);
+  if (GetParam().volume_ratio_bound > 0) {
+    EXPECT_GE(ratio, GetParam().volume_ratio_bound);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(ClosedMeshes, InsideContainment,

@@ -59,8 +59,7 @@ inline ProxyGenOptions genOptions(ProxyClass kind, const std::string& method, si
 
 // One case of the outside / inside containment suites: a mesh, a method, a face budget as a
 // fraction of the input's faces (0 = no budget), the method's size parameter (0 = default) and,
-// where a case guards a measured tightness, the volume ratio it must reach (outside: at most,
-// inside: at least; 0 = none).
+// where an inside case guards a measured tightness, the least volume ratio (0 = none).
 struct ContainmentCase {
   const char* mesh;
   const char* method;
