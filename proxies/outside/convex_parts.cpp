@@ -20,10 +20,13 @@
 #include <CGAL/convex_hull_3.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include <fmt/core.h>
+#include <tbb/parallel_for.h>
 
 #include "mesh/cgal_bridge.h"
 #include "mesh/validation.h"
@@ -168,22 +171,24 @@ SplitChoice bestSplit(const Cell& cell) {
   for (size_t i = 0; i < cell.polygons.size(); i += stride)
     sample.polygons.push_back(cell.polygons[i]);
   const double sample_volume = hullVolume(estimatePoints(sample, kSearchPoints));
-  SplitChoice best;
-  for (int axis = 0; axis < 3; ++axis) {
+  // The candidates are independent: evaluated in parallel, compared in their fixed order.
+  std::array<SplitChoice, 21> candidates;
+  tbb::parallel_for(0, 21, [&](int c) {
+    const int axis = c / 7, k = 1 + c % 7;
     const double lo = box.lo[axis], hi = box.hi[axis];
-    if (!(hi > lo)) continue;
-    for (int k = 1; k < 8; ++k) {
-      Plane plane;
-      plane.normal[axis] = 1;
-      plane.offset = lo + (hi - lo) * k / 8;
-      Cell below, above;
-      splitCell(sample, plane, below, above);
-      if (below.polygons.empty() || above.polygons.empty()) continue;
-      const double gain = sample_volume - hullVolume(estimatePoints(below, kSearchPoints)) -
-                          hullVolume(estimatePoints(above, kSearchPoints));
-      if (gain > best.gain) best = {plane, gain};
-    }
-  }
+    if (!(hi > lo)) return;
+    Plane plane;
+    plane.normal[axis] = 1;
+    plane.offset = lo + (hi - lo) * k / 8;
+    Cell below, above;
+    splitCell(sample, plane, below, above);
+    if (below.polygons.empty() || above.polygons.empty()) return;
+    candidates[c] = {plane, sample_volume - hullVolume(estimatePoints(below, kSearchPoints)) -
+                                hullVolume(estimatePoints(above, kSearchPoints))};
+  });
+  SplitChoice best;
+  for (const SplitChoice& c : candidates)
+    if (c.gain > best.gain) best = c;
   return best;
 }
 
@@ -331,6 +336,31 @@ TriMesh withoutCavities(const TriMesh& m) {
   return out;
 }
 
+// Piece i's grown hull, and that hull reduced to `share` faces by nested collapses when it has
+// more (each collapse keeps the piece around the previous one, so around its cell's part of the
+// input). The pieces do not depend on each other: they are built in parallel, and are the same
+// whatever the thread count.
+struct Piece {
+  TriMesh hull;
+  std::optional<TriMesh> reduced;
+};
+std::vector<Piece> buildPieces(const std::vector<Cell>& cells, const ConvexPartsOptions& options,
+                               double e, size_t share, const std::string& source) {
+  std::vector<Piece> pieces(cells.size());
+  tbb::parallel_for(size_t(0), cells.size(), [&](size_t i) {
+    checkBudget(options.budget, "the convex parts");
+    Piece& piece = pieces[i];
+    piece.hull = grownHull(cells[i], e * double(1 + i), source);
+    if (piece.hull.numTriangles() <= share) return;
+    BoundedSimplifyOptions s;
+    s.max_faces = share;
+    s.side = BoundSide::kOutside;
+    s.budget = options.budget;
+    piece.reduced = simplifyBounded(piece.hull, s);
+  });
+  return pieces;
+}
+
 // The exact union of the pieces, rounded to float. Piece i is grown by (1 + i) · e: where two
 // pieces overlap, the later one's surface then stays a clear distance outside the earlier one's
 // instead of crossing it at a grazing angle (both hug the same input near their common cut),
@@ -338,29 +368,24 @@ TriMesh withoutCavities(const TriMesh& m) {
 TriMesh unitePieces(const TriMesh& input, const std::vector<Cell>& cells,
                     const ConvexPartsOptions& options, double e, ConvexPartsStats& stats) {
   const std::string source = "convex parts of " + input.source;
-  // Each piece is reduced to its share of the face budget by nested collapses (each keeps the
-  // piece around the previous one, so around its cell's part of the input); the pipeline then
-  // reduces the union to the budget itself.
-  // Without a budget each piece keeps kPieceFaces: the union stays small enough to unite exactly
-  // and to check, and a convex piece of that many faces is close to its hull.
+  // Each piece is reduced to its share of the face budget; the pipeline then reduces the union
+  // to the budget itself. Without a budget each piece keeps kPieceFaces: the union stays small
+  // enough to unite exactly and to check, and a convex piece of that many faces is close to its
+  // hull.
   const size_t share = options.face_budget == 0
                            ? kPieceFaces
                            : std::max<size_t>(16, 3 * options.face_budget / cells.size());
+  std::vector<Piece> pieces = buildPieces(cells, options, e, share, source);
   ExactMesh united;
   stats.piece_faces = 0;
   for (size_t i = 0; i < cells.size(); ++i) {
     checkBudget(options.budget, "the convex parts");
-    TriMesh piece = grownHull(cells[i], e * double(1 + i), source);
-    if (piece.numTriangles() > share) {
-      BoundedSimplifyOptions s;
-      s.max_faces = share;
-      s.side = BoundSide::kOutside;
-      s.budget = options.budget;
-      TriMesh reduced = simplifyBounded(piece, s);
-      // Nested collapses keep containment but not convexity; a piece that crosses itself could
-      // not be united, so it stays unreduced.
-      if (!PMP::does_self_intersect(toExact(reduced))) piece = std::move(reduced);
-    }
+    TriMesh piece = std::move(pieces[i].hull);
+    // Nested collapses keep containment but not convexity; a piece that crosses itself could not
+    // be united, so it stays unreduced. (Tested here, one piece at a time: CGAL's lazy exact
+    // numbers are not shared across threads.)
+    if (pieces[i].reduced && !PMP::does_self_intersect(toExact(*pieces[i].reduced)))
+      piece = std::move(*pieces[i].reduced);
     stats.piece_faces += piece.numTriangles();
     if (i == 0) {
       united = toExact(piece);
