@@ -153,6 +153,9 @@ double hullVolume(const std::vector<Point3>& points) {
 constexpr size_t kSearchPoints = 1500;
 constexpr size_t kSearchPolygons = 600;
 constexpr size_t kPieceFaces = 96;
+// A cell's candidate cuts: each axis at 1/8 ... 7/8 of the cell's extent.
+constexpr int kCutsPerAxis = 7;
+constexpr int kCuts = 3 * kCutsPerAxis;
 
 struct SplitChoice {
   Plane plane;
@@ -172,14 +175,14 @@ SplitChoice bestSplit(const Cell& cell) {
     sample.polygons.push_back(cell.polygons[i]);
   const double sample_volume = hullVolume(estimatePoints(sample, kSearchPoints));
   // The candidates are independent: evaluated in parallel, compared in their fixed order.
-  std::array<SplitChoice, 21> candidates;
-  tbb::parallel_for(0, 21, [&](int c) {
-    const int axis = c / 7, k = 1 + c % 7;
+  std::array<SplitChoice, kCuts> candidates;
+  tbb::parallel_for(0, kCuts, [&](int c) {
+    const int axis = c / kCutsPerAxis, k = 1 + c % kCutsPerAxis;
     const double lo = box.lo[axis], hi = box.hi[axis];
     if (!(hi > lo)) return;
     Plane plane;
     plane.normal[axis] = 1;
-    plane.offset = lo + (hi - lo) * k / 8;
+    plane.offset = lo + (hi - lo) * k / (kCutsPerAxis + 1);
     Cell below, above;
     splitCell(sample, plane, below, above);
     if (below.polygons.empty() || above.polygons.empty()) return;

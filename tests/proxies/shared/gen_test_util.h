@@ -69,6 +69,7 @@ struct ContainmentCase {
 };
 inline void PrintTo(const ContainmentCase& c, std::ostream* os) {
   *os << c.mesh << ' ' << c.method << " budget " << c.budget_fraction << " size " << c.size;
+  if (c.volume_ratio_bound > 0) *os << " volume ratio bound " << c.volume_ratio_bound;
 }
 
 struct ContainmentRun {
