@@ -16,6 +16,8 @@
 //                            | [12 or 16 numbers, row-major 3x4 / 4x4],
 //               "place": true,     // false: only placed through "instances"
 //               "make_proxy": true, // false: proxy-gen's scene mode skips this mesh
+//               "proxy_max_faces": 96, // proxy-gen's face budget for this mesh (0 = none),
+//                                      // instead of --max-faces / --ratio
 //               "proxies": [{"kind": "outside", "method": "wrap",
 //                            "file": "dragon-plane/dragon.outside.ply",
 //                            "class": "outside",     // verified by proxy-gen/proxy-check
@@ -94,6 +96,9 @@ struct SceneMeshDesc {
   // false: proxy-gen's scene mode builds no proxy for this mesh (e.g. a terrain that only
   // receives shadows); proxies listed here are still used.
   bool make_proxy = true;
+  // proxy-gen's face budget for this mesh's proxy (0: none), instead of the run's --max-faces or
+  // --ratio: a scene's budget shared out over its meshes (scripts/allocate_proxy_budgets.py).
+  std::optional<uint32_t> proxy_max_faces;
   std::vector<ProxyRef> proxies;
 };
 

@@ -215,8 +215,8 @@ ProxyRef parseProxy(const Field& f, const fs::path& dir) {
 }
 
 SceneMeshDesc parseMesh(const Field& f, const fs::path& dir) {
-  f.expectObject(
-      {"name", "file", "gltf_mesh", "albedo", "transform", "place", "make_proxy", "proxies"});
+  f.expectObject({"name", "file", "gltf_mesh", "albedo", "transform", "place", "make_proxy",
+                  "proxy_max_faces", "proxies"});
   SceneMeshDesc m;
   m.name = f["name"].asString();
   if (m.name.empty() || m.name.find_first_of(" \t\r\n#") != std::string::npos)
@@ -239,6 +239,12 @@ SceneMeshDesc parseMesh(const Field& f, const fs::path& dir) {
   if (f.has("transform")) m.transform = parseTransform(f["transform"]);
   if (f.has("place")) m.place = f["place"].asBool();
   if (f.has("make_proxy")) m.make_proxy = f["make_proxy"].asBool();
+  if (f.has("proxy_max_faces")) {
+    m.proxy_max_faces = f["proxy_max_faces"].asUint32();
+    if (*m.proxy_max_faces > 1'000'000'000)
+      f["proxy_max_faces"].fail("a face budget above 10^9",
+                                "proxy-gen's --max-faces allows at most that");
+  }
   if (f.has("proxies")) {
     const Field ps = f["proxies"];
     for (size_t i = 0, n = ps.arraySize(); i < n; ++i) m.proxies.push_back(parseProxy(ps[i], dir));

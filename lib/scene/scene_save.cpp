@@ -79,6 +79,7 @@ json sceneToJson(const SceneDesc& scene, const fs::path& dir, const fs::path& in
     jm.update(
         json{{"albedo", toJson(m.albedo)}, {"transform", toJson(m.transform)}, {"place", m.place}});
     if (!m.make_proxy) jm["make_proxy"] = false;
+    if (m.proxy_max_faces) jm["proxy_max_faces"] = *m.proxy_max_faces;
     json proxies = json::array();
     for (const ProxyRef& p : m.proxies) {
       json jp = {{"kind", p.kind}};

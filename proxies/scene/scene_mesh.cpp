@@ -86,8 +86,24 @@ ProxyRef proxyRefFor(const ProxyReport& report, ProxyClass kind, const fs::path&
   return ref;
 }
 
-SceneMeshProxy proxyForSceneMesh(const SceneMeshDesc& mesh, const ProxyGenOptions& options,
+namespace {
+
+// The scene's own budget for a mesh ("proxy_max_faces") replaces the run's --max-faces and
+// --ratio; everything else is the run's.
+ProxyGenOptions meshOptions(const SceneMeshDesc& mesh, const ProxyGenOptions& run) {
+  ProxyGenOptions o = run;
+  if (mesh.proxy_max_faces) {
+    o.max_faces = *mesh.proxy_max_faces;
+    o.ratio.reset();
+  }
+  return o;
+}
+
+}  // namespace
+
+SceneMeshProxy proxyForSceneMesh(const SceneMeshDesc& mesh, const ProxyGenOptions& run_options,
                                  const fs::path& out, const ProxyCache* cache) {
+  const ProxyGenOptions options = meshOptions(mesh, run_options);
   SceneMeshProxy result;
   if (!mesh.make_proxy) {
     result.skipped = "\"make_proxy\": false in the scene";

@@ -37,7 +37,7 @@ constexpr const char* kFullScene = R"({
      "proxies": [{"kind": "outside", "method": "hull", "file": "meshes/a.hull.obj",
                   "class": "outside"},
                  {"kind": "general", "file": "meshes/a.qem.obj"}]},
-    {"name": "b", "file": "meshes/a.obj", "place": false,
+    {"name": "b", "file": "meshes/a.obj", "place": false, "proxy_max_faces": 96,
      "transform": [1, 0, 0, 5, 0, 1, 0, 6, 0, 0, 1, 7, 0, 0, 0, 1]}
   ],
   "instances": {"file": "inst.txt"}
@@ -107,6 +107,8 @@ TEST_F(FullSceneFixture, ParsesEveryField) {
   EXPECT_FALSE(b.place);
   EXPECT_EQ(b.transform.apply({0, 0, 0}), Vec3f(5, 6, 7));
   EXPECT_EQ(b.albedo, Vec3f(0.7f, 0.7f, 0.7f));  // default
+  EXPECT_EQ(b.proxy_max_faces, 96u);
+  EXPECT_FALSE(a.proxy_max_faces.has_value());  // the run's --max-faces / --ratio
 
   EXPECT_EQ(s.instances_file, dir.path() / "inst.txt");
   ASSERT_EQ(s.instances.size(), 2u);
@@ -171,6 +173,15 @@ TEST_F(FullSceneFixture, WrongTypesAndValuesNameTheirPath) {
   EXPECT_NE(
       errorFor("\"radiance\": [4, 5, 6]", "\"radiance\": [-4, 5, 6]").find("lights[0].radiance"),
       std::string::npos);
+  EXPECT_NE(errorFor("\"proxy_max_faces\": 96", "\"proxy_max_faces\": -1")
+                .find("meshes[1].proxy_max_faces"),
+            std::string::npos);
+  EXPECT_NE(errorFor("\"proxy_max_faces\": 96", "\"proxy_max_faces\": 96.5")
+                .find("meshes[1].proxy_max_faces"),
+            std::string::npos);
+  EXPECT_NE(errorFor("\"proxy_max_faces\": 96", "\"proxy_max_faces\": 2000000000")
+                .find("meshes[1].proxy_max_faces: a face budget above 10^9"),
+            std::string::npos);
   EXPECT_NE(errorFor("\"type\": \"quad\"", "\"type\": \"disk\"")
                 .find("lights[0].type: unknown light type"),
             std::string::npos);
@@ -229,6 +240,7 @@ TEST_F(FullSceneFixture, SaveThenLoadRoundTrips) {
     EXPECT_EQ(t.meshes[i].albedo, s.meshes[i].albedo);
     EXPECT_TRUE(t.meshes[i].transform == s.meshes[i].transform);
     EXPECT_EQ(t.meshes[i].place, s.meshes[i].place);
+    EXPECT_EQ(t.meshes[i].proxy_max_faces, s.meshes[i].proxy_max_faces);
     ASSERT_EQ(t.meshes[i].proxies.size(), s.meshes[i].proxies.size());
     for (size_t k = 0; k < s.meshes[i].proxies.size(); ++k) {
       EXPECT_EQ(t.meshes[i].proxies[k].file, s.meshes[i].proxies[k].file);
