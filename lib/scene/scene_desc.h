@@ -97,7 +97,8 @@ struct SceneMeshDesc {
   // receives shadows); proxies listed here are still used.
   bool make_proxy = true;
   // proxy-gen's face budget for this mesh's proxy (0: none), instead of the run's --max-faces or
-  // --ratio: a scene's budget shared out over its meshes (scripts/allocate_proxy_budgets.py).
+  // --ratio: a scene's budget shared out over its meshes
+  // (scripts/proxy_budgets/allocate_proxy_budgets.py).
   std::optional<uint32_t> proxy_max_faces;
   std::vector<ProxyRef> proxies;
 };
