@@ -26,17 +26,20 @@ std::vector<Classification> classifyScenePairs(const PairCheckOptions& o, const 
   std::vector<StreamTarget> targets(pairs.size());
   for (size_t i = 0; i < pairs.size(); ++i) {
     const ScenePair& c = pairs[i];
+    const SceneMeshDesc& mesh = scene.meshes[c.mesh];
+    // A placed mesh's segments are in world space: so are its meshes here. Instances map their
+    // segments into object space instead.
+    Bounds3f both;
     for (const TriMesh* m : {&c.original, &c.proxy_mesh}) {
       TraceSceneBuilder builder(device);
-      builder.addMesh(*m);
+      const TriMesh traced = mesh.place ? transformedMesh(*m, mesh.transform) : TriMesh();
+      builder.addMesh(mesh.place ? traced : *m);
       scenes.push_back(builder.build());
+      both.extend(mesh.place ? traced.bounds() : m->bounds());
     }
     // A segment outside the box of both misses both: only the others are counted.
-    Bounds3f both = c.original.bounds();
-    both.extend(c.proxy_mesh.bounds());
-    placements[i] = scene.meshes[c.mesh].place
-                        ? placedMeshPlacements(c.mesh, both, o.seed)
-                        : instancedMeshPlacements(scene, c.mesh, both, o.seed);
+    placements[i] = mesh.place ? placedMeshPlacements(c.mesh, both, o.seed)
+                               : instancedMeshPlacements(scene, c.mesh, both, o.seed);
     targets[i] = {scenes[2 * i].get(), scenes[2 * i + 1].get(), &placements[i]};
   }
   ClassifyOptions co;
@@ -92,10 +95,10 @@ std::vector<ScenePair> checkScenePairs(const SceneDesc& scene, const PairCheckOp
   tbb::parallel_for(size_t(0), pairs, [&](size_t i) {
     ScenePair& c = checked[i];
     const SceneMeshDesc& mesh = scene.meshes[c.mesh];
-    const bool world = full && mesh.place;
-    c.original = world ? transformedMesh(loadMesh(mesh.file), mesh.transform) : loadMesh(mesh.file);
-    const std::filesystem::path& file = mesh.proxies[c.proxy].file;
-    c.proxy_mesh = world ? transformedMesh(loadMesh(file), mesh.transform) : loadMesh(file);
+    // Object space: where the class was proved, and what the exact check tests. Rounding a
+    // placement's transform in float can make surfaces that touch there cross by an ulp.
+    c.original = loadMesh(mesh.file);
+    c.proxy_mesh = loadMesh(mesh.proxies[c.proxy].file);
   });
   std::vector<Classification> classified;
   if (full) classified = classifyScenePairs(options, scene, *full, checked);

@@ -1,9 +1,10 @@
 #pragma once
 // proxy-check SCENE.json: every (mesh, proxy) pair of a scene checked, under the sphere
-// distribution or the scene's own (docs/classification.md). Instanced or placed, a proxy is
-// checked against its original in object space (containment does not change under an affine,
-// invertible placement); a placed mesh under the scene distribution in world space, where its
-// segments are.
+// distribution or the scene's own (docs/classification.md). Instanced or placed, a proxy's exact
+// check and distances are in object space, where its class was proved (containment does not
+// change under an affine, invertible placement; the placement's float rounding could make
+// touching surfaces cross). Under the scene distribution a placed mesh is traced in world space,
+// where its segments are; an instanced one maps them into object space.
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -21,8 +22,8 @@ inline constexpr uint64_t kSceneAttemptsPerRay = 1000;
 // One (mesh, proxy) pair of the scene: its meshes and its check.
 struct ScenePair {
   uint32_t mesh = 0;
-  size_t proxy = 0;  // in the mesh's proxies
-  TriMesh original, proxy_mesh;
+  size_t proxy = 0;              // in the mesh's proxies
+  TriMesh original, proxy_mesh;  // object space
   PairCheckReport report;
 };
 

@@ -186,6 +186,10 @@ def allocate(a, measured, counts):
     A mesh without a proxy at some budget (proxy-gen found none cheaper than the original) keeps
     the run's settings, and its proxy's triangles at no budget come off the share."""
     everywhere = set.intersection(*(set(m) for m in measured.values()))
+    if not everywhere:
+        die(1, f"no mesh of {a.scene} got a {a.kind} proxy at every budget",
+            f"see the proxy-gen reports in {os.path.join(a.out_dir, 'options')}",
+            "an open mesh has no inside proxy; a mesh with \"make_proxy\": false gets none")
     names = sorted(everywhere)
     fixed = {n: p for n, p in measured[0].items() if n not in everywhere}
     for n in sorted(set.union(*(set(m) for m in measured.values())) - everywhere):

@@ -9,3 +9,5 @@ proxyvis_add_test(check_rays_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/check_rays_t
   LIBS pv_proxy_check pv_trace)
 proxyvis_add_test(check_data_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/check_data_test.cpp
   LIBS pv_proxy_check pv_trace pv_mesh pv_proxy_outside)
+proxyvis_add_test(scene_pair_space_test SOURCES ${CMAKE_CURRENT_LIST_DIR}/scene_pair_space_test.cpp
+  LIBS pv_proxy_check pv_scene pv_mesh)
