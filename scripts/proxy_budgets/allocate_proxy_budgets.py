@@ -213,6 +213,30 @@ def allocate(a, measured, counts):
     return budgets, picks, original
 
 
+def measure_result(a, budget_scene, final, options_dir):
+    """Step 3: the chosen proxies (from proxy-gen's cache) and both checks on --check-seed."""
+    run([os.path.join(a.bin, "proxy-gen"), budget_scene, "--kind", a.kind, "--out-dir", final,
+         "--json", final + ".gen.json", "-q", *a.extra], final + ".gen.log")
+    held_out = {}
+    for label, scene_json in (("final", os.path.join(final, "scene.json")),
+                              ("baseline", os.path.join(options_dir, "b0", "scene.json"))):
+        path = os.path.join(a.out_dir, f"{label}.check.json")
+        run([os.path.join(a.bin, "proxy-check"), scene_json, "--distribution", "scene", "--rays",
+             a.rays, "--seed", a.check_seed, "--json", path, "-q"], path[:-5] + ".log")
+        held_out[label] = read_checks(path, a.kind)
+    return held_out
+
+
+def print_table(rows, kind):
+    waste = "wasted forwards" if kind == "outside" else "missed blocks"
+    print(f"| proxies | triangles | share | {RATE_KEY[kind]} per instance | {waste} per draw |")
+    print("|---|---:|---:|---:|---:|")
+    for r in rows:
+        fmt = lambda x: "-" if x is None else f"{x:.4f}"  # noqa: E731
+        print(f"| {r['label']} | {r['triangles']:,} | {100 * r['share']:.2f} % | "
+              f"{fmt(r['rate_per_instance'])} | {fmt(r['forwards_per_draw'])} |")
+
+
 def main():
     a = parse_args(sys.argv[1:])
     try:
@@ -226,17 +250,8 @@ def main():
     budget_scene = os.path.join(a.out_dir, "budgets.json")
     write_budget_scene(scene, a.scene, budgets, budget_scene)
 
-    gen, check = os.path.join(a.bin, "proxy-gen"), os.path.join(a.bin, "proxy-check")
     final = os.path.join(a.out_dir, "final")
-    run([gen, budget_scene, "--kind", a.kind, "--out-dir", final, "--json", final + ".gen.json",
-         "-q", *a.extra], final + ".gen.log")
-    held_out = {}
-    for label, scene_json in (("final", os.path.join(final, "scene.json")),
-                              ("baseline", os.path.join(options_dir, "b0", "scene.json"))):
-        path = os.path.join(a.out_dir, f"{label}.check.json")
-        run([check, scene_json, "--distribution", "scene", "--rays", a.rays, "--seed",
-             a.check_seed, "--json", path, "-q"], path[:-5] + ".log")
-        held_out[label] = read_checks(path, a.kind)
+    held_out = measure_result(a, budget_scene, final, options_dir)
 
     rows = [summary(f"budget {b or 'none'} (seed {a.seed})", m, counts, original)
             for b, m in measured.items()]
@@ -255,16 +270,8 @@ def main():
     with open(tmp, "w") as f:
         json.dump(report, f, indent=1)
     os.replace(tmp, os.path.join(a.out_dir, "allocation.json"))
-    rate = RATE_KEY[a.kind]
-    waste = "wasted forwards" if a.kind == "outside" else "missed blocks"
-    print(f"| proxies | triangles | share | {rate} per instance | {waste} per draw |")
-    print("|---|---:|---:|---:|---:|")
-    for r in rows:
-        fmt = lambda x: "-" if x is None else f"{x:.4f}"  # noqa: E731
-        print(f"| {r['label']} | {r['triangles']:,} | {100 * r['share']:.2f} % | "
-              f"{fmt(r['rate_per_instance'])} | {fmt(r['forwards_per_draw'])} |")
+    print_table(rows, a.kind)
     print(f"scene with proxies: {report['scene_with_proxies']}")
-
 
 if __name__ == "__main__":
     main()
