@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""Shares one triangle budget over the proxies of a scene's meshes, where it saves the most
-forwards, and proves the result on segments it was not chosen on.
+"""Shares one triangle budget over the proxies of a scene's meshes, where proxy-check measures
+the most gain, and reports the result on segments it was not chosen on.
 
 A uniform --ratio gives every mesh the same share of its faces. In a scene of many instanced
 meshes that is not where the triangles pay: a grass's proxy gets tighter when reduced, a
@@ -21,7 +21,7 @@ Steps, each kept in OUT_DIR so that a second run only does what is missing:
    printed rate is not the one the choice was made on.
 
 usage: allocate_proxy_budgets.py SCENE --share S --out-dir DIR [--bin DIR] [--kind outside]
-           [--budgets 16,32,...] [--rays N] [--seed N] [--check-seed N] [--objective forwards]
+           [--budgets 16,32,...] [--rays N] [--seed N] [--check-seed N] [--objective wasted-hits]
            [-- PROXY_GEN_ARGS...]
 Exit codes: 0 done, 1 a tool failed or no choice fits the share, 2 bad arguments or scene.
 """
@@ -86,8 +86,10 @@ def read_checks(path, kind):
 
 def objective_of(name, pick, counts, objective):
     """What a mesh's proxy adds to the objective: its rate times its instances ("rate"), or its
-    wasted forwards (outside: MH') per draw of the renderer's distribution, all its instances
-    together ("forwards")."""
+    wasted hits per draw of the renderer's distribution ("wasted-hits": outside, MH', segments
+    that hit the proxy and miss the original; inside, HM'). proxy-check maps each segment into
+    one instance among those whose box it crosses, so this counts a segment once per mesh, not
+    once per instance or per rank it would be forwarded to."""
     if pick["rate"] is None:
         return 0.0
     return pick["rate"] * (counts[name] if objective == "rate" else pick["per_draw"])
@@ -104,7 +106,7 @@ def summary(label, picks, counts, original):
     triangles = sum(p["faces"] * counts[n] for n, p in picks.items())
     return {"label": label, "triangles": triangles, "share": triangles / original,
             "rate_per_instance": instance_rate(picks, counts),
-            "forwards_per_draw": sum(objective_of(n, p, counts, "forwards")
+            "wasted_hits_per_draw": sum(objective_of(n, p, counts, "wasted-hits")
                                      for n, p in picks.items())}
 
 
@@ -145,9 +147,10 @@ def parse_args(argv):
     ap.add_argument("--seed", type=int, default=0, help="proxy-check seed of the choice")
     ap.add_argument("--check-seed", type=int, default=1,
                     help="proxy-check seed of the printed result (not --seed: new segments)")
-    ap.add_argument("--objective", choices=["rate", "forwards"], default="forwards",
-                    help="least rate averaged per instance, or least wasted forwards (outside) / "
-                         "missed blocks (inside) per draw of the renderer's segments")
+    ap.add_argument("--objective", choices=["rate", "wasted-hits"], default="wasted-hits",
+                    help="least rate averaged per instance, or least wasted hits per draw of the "
+                         "renderer's segments: outside, proxy hits that miss the original; "
+                         "inside, original hits the proxy misses")
     a = ap.parse_args(argv)
     try:
         a.budgets = sorted({int(b) for b in a.budgets.split(",")})
@@ -228,13 +231,12 @@ def measure_result(a, budget_scene, final, options_dir):
 
 
 def print_table(rows, kind):
-    waste = "wasted forwards" if kind == "outside" else "missed blocks"
-    print(f"| proxies | triangles | share | {RATE_KEY[kind]} per instance | {waste} per draw |")
+    print(f"| proxies | triangles | share | {RATE_KEY[kind]} per instance | wasted hits per draw |")
     print("|---|---:|---:|---:|---:|")
     for r in rows:
         fmt = lambda x: "-" if x is None else f"{x:.4f}"  # noqa: E731
         print(f"| {r['label']} | {r['triangles']:,} | {100 * r['share']:.2f} % | "
-              f"{fmt(r['rate_per_instance'])} | {fmt(r['forwards_per_draw'])} |")
+              f"{fmt(r['rate_per_instance'])} | {fmt(r['wasted_hits_per_draw'])} |")
 
 
 def main():

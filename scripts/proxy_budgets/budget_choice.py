@@ -1,6 +1,6 @@
 """One option per item within a cap, least summed value: the multiple-choice knapsack behind
 allocate_proxy_budgets.py (an item is a mesh, an option its proxy at one face budget, the cost
-its triangles times its instances, the value its weighted rate of wasted forwards).
+its triangles times its instances, the value what its proxy wastes).
 
 Solved exactly by dynamic programming over the cost, rounded up to units of cap / resolution:
 rounding up keeps every choice within the cap, and costs off by less than one unit per item are

@@ -10,8 +10,8 @@ Checks, each against facts fixed here or computed here independently of the code
 - the allocation keeps the proxies within --share, counted per instance;
 - a mesh's "proxy_max_faces" gives the same proxy, byte for byte, as --max-faces with that
   budget for the whole scene (the final proxies against the measured options);
-- the choice wastes, on the segments it was chosen on, no more forwards per draw than any single
-  budget for every mesh that fits the share;
+- the choice has, on the segments it was chosen on, no more wasted hits per draw (MH') than any
+  single budget for every mesh that fits the share;
 - the printed result is measured on another seed, every final proxy proved outside;
 - bad arguments exit 2 and an unreachable share exits 1, writing no allocation.
 """
@@ -98,7 +98,7 @@ def allocate(scene, out, share, *extra, expect=0):
     return p
 
 
-def wasted_forwards(checks):
+def wasted_hits(checks):
     """Segments per draw that hit an outside proxy and miss its original (the default
     objective), from proxy-check's counts."""
     return sum(c["counts"]["MH"] / c["attempts"] for c in checks)
@@ -154,14 +154,14 @@ def main():
     chosen = {n: report["meshes"][n]["budget"] for n in PLANTS}
     picked = [c for b in options for c in options[b]
               if chosen[c["label"].split(" / ")[0]] == b]
-    chosen_forwards = wasted_forwards(picked)
+    chosen_hits = wasted_hits(picked)
     for b, cs in options.items():
-        if totals[b] <= share * original and wasted_forwards(cs) < chosen_forwards - 1e-12:
-            fail(f"budget {b} for every mesh fits and wastes fewer forwards than the choice")
+        if totals[b] <= share * original and wasted_hits(cs) < chosen_hits - 1e-12:
+            fail(f"budget {b} for every mesh fits and wastes fewer hits than the choice")
     rows = {r["label"]: r for r in report["rows"]}
-    if abs(rows["chosen (seed 0, the segments it was chosen on)"]["forwards_per_draw"]
-           - chosen_forwards) > 1e-9:
-        fail("the reported forwards on seed 0 are not the options' forwards of the choice")
+    if abs(rows["chosen (seed 0, the segments it was chosen on)"]["wasted_hits_per_draw"]
+           - chosen_hits) > 1e-9:
+        fail("the reported wasted hits on seed 0 are not the options' of the choice")
     held = json.loads((out / "final.check.json").read_text())
     if held["seed"] != 1 or any(c["counts"]["HM"] != 0 or c["exact"] != "contains"
                                 for c in held["checks"]):
