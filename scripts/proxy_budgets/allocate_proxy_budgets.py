@@ -167,8 +167,28 @@ def parse_args(argv):
     return a
 
 
+def claim_options_dir(a, options_dir):
+    """Options kept in OUT/options are reused only by runs that would measure them the same way:
+    the settings they were made with are written beside them, and other settings are refused."""
+    settings = {"scene": os.path.abspath(a.scene), "kind": a.kind, "rays": a.rays, "seed": a.seed,
+                "proxy_gen_args": a.extra}
+    path = os.path.join(options_dir, "settings.json")
+    if os.path.exists(path):
+        with open(path) as f:
+            old = json.load(f)
+        if old != settings:
+            changed = ", ".join(k for k in settings if old.get(k) != settings[k])
+            die(2, f"{options_dir} holds options measured with other settings ({changed})",
+                "they would be reused as they are", "remove that folder or give another --out-dir")
+        return
+    with open(path + ".tmp", "w") as f:
+        json.dump(settings, f, indent=1)
+    os.replace(path + ".tmp", path)
+
+
 def measure_options(a, options_dir):
     """Step 1: proxies and their checks at every budget (0 = none); returns {budget: checks}."""
+    claim_options_dir(a, options_dir)
     gen, check = os.path.join(a.bin, "proxy-gen"), os.path.join(a.bin, "proxy-check")
     measured = {}
     for b in [0] + a.budgets:

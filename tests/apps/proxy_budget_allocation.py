@@ -13,7 +13,8 @@ Checks, each against facts fixed here or computed here independently of the code
 - the choice has, on the segments it was chosen on, no more wasted hits per draw (MH') than any
   single budget for every mesh that fits the share;
 - the printed result is measured on another seed, every final proxy proved outside;
-- bad arguments exit 2 and an unreachable share exits 1, writing no allocation.
+- bad arguments exit 2 and an unreachable share exits 1, writing no allocation; options kept
+  from a run with other settings are refused (exit 2), not reused.
 """
 import hashlib
 import itertools
@@ -175,6 +176,7 @@ def main():
     allocate(scene, bad, "0.5", "--check-seed", "0", expect=2)
     allocate(scene, bad, "0.5", "--budgets", "3", expect=2)
     allocate(scene, bad, "1e-6", expect=1)
+    allocate(scene, bad, "0.5", "--seed", "5", expect=2)  # options measured with seed 0
     if (bad / "allocation.json").exists() or (bad / "budgets.json").exists():
         fail("a failed allocation left its outputs")
     print(f"allocation within {share:.4f}: {triangles} of {original} triangles")
