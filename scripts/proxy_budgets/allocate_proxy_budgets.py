@@ -120,8 +120,9 @@ def write_budget_scene(scene, scene_path, budgets, out):
             p["file"] = os.path.normpath(os.path.join(base, p["file"]))
         if m["name"] in budgets:
             m["proxy_max_faces"] = budgets[m["name"]]
-    if "instances" in scene:
-        scene["instances"]["file"] = os.path.normpath(os.path.join(base, scene["instances"]["file"]))
+    instances = scene.get("instances")
+    if instances:
+        instances["file"] = os.path.normpath(os.path.join(base, instances["file"]))
     tmp = out + ".tmp"
     with open(tmp, "w") as f:
         json.dump(scene, f, indent=1)
