@@ -229,7 +229,7 @@ void addProxyOptions(CLI::App& app, Args& a) {
                  "With --ratio (outside/inside): the budget is at least this many faces, so that "
                  "a scene's small meshes keep proxies about as tight as their wraps (ecosys: "
                  "--ratio 0.03 --min-faces 64, docs/proxy_tightness.md)")
-      ->check(CLI::Range(size_t(4), size_t(1000000000)))
+      ->check(CLI::Range(size_t(4), size_t(kMaxFacesLimit)))
       ->capture_default_str();
   app.add_option("--erosion", a.erosion,
                  "erode: erosion distance as a fraction of the diagonal (default 1/75)")

@@ -241,7 +241,7 @@ SceneMeshDesc parseMesh(const Field& f, const fs::path& dir) {
   if (f.has("make_proxy")) m.make_proxy = f["make_proxy"].asBool();
   if (f.has("proxy_max_faces")) {
     m.proxy_max_faces = f["proxy_max_faces"].asUint32();
-    if (*m.proxy_max_faces > 1'000'000'000)
+    if (*m.proxy_max_faces > kMaxFacesLimit)
       f["proxy_max_faces"].fail("a face budget above 10^9",
                                 "proxy-gen's --max-faces allows at most that");
   }

@@ -1,4 +1,5 @@
 #pragma once
+#include <cstdint>
 #include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
@@ -8,6 +9,10 @@ namespace proxyvis {
 // Class of a proxy relative to its original (docs/design.md): outside = contains it (no HM'
 // rays), inside = contained in it (no MH' rays), general = both error kinds possible.
 enum class ProxyClass { kOutside, kInside, kGeneral };
+
+// The largest face budget a proxy may be given: proxy-gen's --max-faces and --min-faces, and a
+// scene mesh's "proxy_max_faces".
+inline constexpr uint64_t kMaxFacesLimit = 1'000'000'000;
 
 inline const char* proxyClassName(ProxyClass c) {
   return c == ProxyClass::kOutside ? "outside" : c == ProxyClass::kInside ? "inside" : "general";

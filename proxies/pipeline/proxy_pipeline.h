@@ -29,7 +29,6 @@ inline constexpr ParameterRange kErosionRange{1e-3, 0.5};
 inline constexpr ParameterRange kVoxelRange{2e-3, 0.25};
 inline constexpr ParameterRange kRatioRange{1e-6, 1};
 inline constexpr ParameterRange kMaxSecondsRange{0.01, 7 * 24 * 3600};
-inline constexpr uint64_t kMaxFacesLimit = 1'000'000'000;
 
 struct ProxyGenOptions {
   ProxyClass kind = ProxyClass::kOutside;
