@@ -31,11 +31,12 @@ std::vector<Classification> classifyScenePairs(const PairCheckOptions& o, const 
     // segments into object space instead.
     Bounds3f both;
     for (const TriMesh* m : {&c.original, &c.proxy_mesh}) {
+      TriMesh placed;
+      if (mesh.place) m = &(placed = transformedMesh(*m, mesh.transform));
       TraceSceneBuilder builder(device);
-      const TriMesh traced = mesh.place ? transformedMesh(*m, mesh.transform) : TriMesh();
-      builder.addMesh(mesh.place ? traced : *m);
+      builder.addMesh(*m);
       scenes.push_back(builder.build());
-      both.extend(mesh.place ? traced.bounds() : m->bounds());
+      both.extend(m->bounds());
     }
     // A segment outside the box of both misses both: only the others are counted.
     placements[i] = mesh.place ? placedMeshPlacements(c.mesh, both, o.seed)

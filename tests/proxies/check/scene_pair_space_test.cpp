@@ -5,6 +5,7 @@
 
 #include <fmt/core.h>
 
+#include <limits>
 #include <string>
 
 #include "mesh/io/mesh_io.h"
@@ -50,7 +51,7 @@ TEST(ScenePairSpace, PlacedProxyIsCheckedWhereItWasProved) {
   // The gap from 1 ulp of 1.0 up: the first whose rounded world copies cross.
   bool crossing_found = false;
   for (int ulps = 1; ulps <= 8 && !crossing_found; ++ulps) {
-    dir.write("inner.off", boxOff(1.0 - ulps * 1.1920929e-7));
+    dir.write("inner.off", boxOff(1.0 - ulps * double(std::numeric_limits<float>::epsilon())));
     const SceneDesc scene = loadSceneDesc(dir / "scene.json");
     const SceneMeshDesc& box = scene.meshes[1];
     const TriMesh original = loadMesh(box.file), proxy = loadMesh(box.proxies[0].file);
