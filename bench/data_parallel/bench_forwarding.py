@@ -24,21 +24,15 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.join(ROOT, "tests", "mpi"))
 from mpi_support import mpi_env, mpirun_cmd  # noqa: E402
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+from scene_paths import load_scene_absolute  # noqa: E402
 
 
 def without_inside(scene, out_dir):
     """The scene with only its outside proxies, written beside the original's paths."""
-    with open(scene) as f:
-        s = json.load(f)
-    base = os.path.dirname(os.path.abspath(scene))
+    s = load_scene_absolute(scene)
     for m in s["meshes"]:
-        m["file"] = os.path.join(base, m["file"]) if not os.path.isabs(m["file"]) else m["file"]
-        for p in m.get("proxies", []):
-            p["file"] = os.path.join(base, p["file"]) if not os.path.isabs(p["file"]) else p["file"]
         m["proxies"] = [p for p in m.get("proxies", []) if p["kind"] != "inside"]
-    if "instances" in s:
-        f = s["instances"]["file"]
-        s["instances"]["file"] = f if os.path.isabs(f) else os.path.join(base, f)
     path = os.path.join(out_dir, os.path.basename(scene).replace(".json", ".outside-only.json"))
     with open(path, "w") as f:
         json.dump(s, f)

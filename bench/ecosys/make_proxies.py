@@ -13,6 +13,9 @@ import os
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
+from scene_paths import load_scene_absolute  # noqa: E402
+
 
 def sha256(path):
     with open(path, "rb") as f:
@@ -29,14 +32,7 @@ def main():
     method = args[args.index("--method") + 1] if "--method" in args else (
         "qem" if kind == "general" else "wrap")
     os.makedirs(out_dir, exist_ok=True)
-    scene_dir = os.path.dirname(os.path.abspath(scene_path))
-    with open(scene_path) as f:
-        scene = json.load(f)
-    for m in scene["meshes"]:
-        m["file"] = os.path.normpath(os.path.join(scene_dir, m["file"]))
-    if "instances" in scene:
-        scene["instances"]["file"] = os.path.normpath(
-            os.path.join(scene_dir, scene["instances"]["file"]))
+    scene = load_scene_absolute(scene_path)
     plants = [m for m in scene["meshes"] if m.get("place", True) is False]
 
     def build(mesh):

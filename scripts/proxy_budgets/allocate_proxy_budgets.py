@@ -33,6 +33,9 @@ import sys
 
 from budget_choice import choose
 
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from scene_paths import load_scene_absolute  # noqa: E402
+
 PROG = "allocate_proxy_budgets.py"
 RATE_KEY = {"outside": "P_hit_proxy_given_miss_original",
             "inside": "P_miss_proxy_given_hit_original"}
@@ -47,6 +50,10 @@ def die(code, what, why="", todo=""):
     sys.exit(code)
 
 
+def tool(a, name):
+    return os.path.join(a.bin, name)
+
+
 def run(args, log):
     with open(log, "w") as out:
         p = subprocess.run([str(a) for a in args], stdout=out, stderr=subprocess.STDOUT)
@@ -54,20 +61,16 @@ def run(args, log):
         die(1, f"{' '.join(map(str, args[:2]))} ... exited {p.returncode}", f"see {log}")
 
 
-def instance_counts(scene_path):
+def instance_counts(scene):
     """Placements per mesh name: 1 for a placed mesh, plus one per line of the instance list."""
-    with open(scene_path) as f:
-        scene = json.load(f)
     counts = {m["name"]: int(m.get("place", True)) for m in scene["meshes"]}
-    inst = scene.get("instances")
-    if inst:
-        path = os.path.join(os.path.dirname(os.path.abspath(scene_path)), inst["file"])
-        with open(path) as f:
+    if scene.get("instances"):
+        with open(scene["instances"]["file"]) as f:
             for line in f:
                 words = line.split("#")[0].split()
                 if words:
                     counts[words[0]] = counts.get(words[0], 0) + 1
-    return scene, counts
+    return counts
 
 
 def read_checks(path, kind):
@@ -110,19 +113,12 @@ def summary(label, picks, counts, original):
                                      for n, p in picks.items())}
 
 
-def write_budget_scene(scene, scene_path, budgets, out):
-    """The input scene with absolute paths and each chosen mesh's "proxy_max_faces"."""
-    base = os.path.dirname(os.path.abspath(scene_path))
+def write_budget_scene(scene, budgets, out):
+    """The scene (paths absolute) with each chosen mesh's "proxy_max_faces"."""
     scene = json.loads(json.dumps(scene))
     for m in scene["meshes"]:
-        m["file"] = os.path.normpath(os.path.join(base, m["file"]))
-        for p in m.get("proxies", []):
-            p["file"] = os.path.normpath(os.path.join(base, p["file"]))
         if m["name"] in budgets:
             m["proxy_max_faces"] = budgets[m["name"]]
-    instances = scene.get("instances")
-    if instances:
-        instances["file"] = os.path.normpath(os.path.join(base, instances["file"]))
     tmp = out + ".tmp"
     with open(tmp, "w") as f:
         json.dump(scene, f, indent=1)
@@ -190,7 +186,7 @@ def claim_options_dir(a, options_dir):
 def measure_options(a, options_dir):
     """Step 1: proxies and their checks at every budget (0 = none); returns {budget: checks}."""
     claim_options_dir(a, options_dir)
-    gen, check = os.path.join(a.bin, "proxy-gen"), os.path.join(a.bin, "proxy-check")
+    gen, check = tool(a, "proxy-gen"), tool(a, "proxy-check")
     measured = {}
     for b in [0] + a.budgets:
         out = os.path.join(options_dir, f"b{b}")
@@ -239,13 +235,13 @@ def allocate(a, measured, counts):
 
 def measure_result(a, budget_scene, final, options_dir):
     """Step 3: the chosen proxies (from proxy-gen's cache) and both checks on --check-seed."""
-    run([os.path.join(a.bin, "proxy-gen"), budget_scene, "--kind", a.kind, "--out-dir", final,
+    run([tool(a, "proxy-gen"), budget_scene, "--kind", a.kind, "--out-dir", final,
          "--json", final + ".gen.json", "-q", *a.extra], final + ".gen.log")
     held_out = {}
     for label, scene_json in (("final", os.path.join(final, "scene.json")),
                               ("baseline", os.path.join(options_dir, "b0", "scene.json"))):
         path = os.path.join(a.out_dir, f"{label}.check.json")
-        run([os.path.join(a.bin, "proxy-check"), scene_json, "--distribution", "scene", "--rays",
+        run([tool(a, "proxy-check"), scene_json, "--distribution", "scene", "--rays",
              a.rays, "--seed", a.check_seed, "--json", path, "-q"], path[:-5] + ".log")
         held_out[label] = read_checks(path, a.kind)
     return held_out
@@ -263,7 +259,8 @@ def print_table(rows, kind):
 def main():
     a = parse_args(sys.argv[1:])
     try:
-        scene, counts = instance_counts(a.scene)
+        scene = load_scene_absolute(a.scene)
+        counts = instance_counts(scene)
     except (OSError, ValueError, KeyError) as e:
         die(2, a.scene, f"cannot read the scene or its instance list ({e})", "give a scene JSON")
     options_dir = os.path.join(a.out_dir, "options")
@@ -271,7 +268,7 @@ def main():
     measured = measure_options(a, options_dir)
     budgets, picks, original = allocate(a, measured, counts)
     budget_scene = os.path.join(a.out_dir, "budgets.json")
-    write_budget_scene(scene, a.scene, budgets, budget_scene)
+    write_budget_scene(scene, budgets, budget_scene)
 
     final = os.path.join(a.out_dir, "final")
     held_out = measure_result(a, budget_scene, final, options_dir)
