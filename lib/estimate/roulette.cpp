@@ -16,14 +16,6 @@ double addedVariance(double a, double q) {
   return q > 0 ? a * (1 / q - 1) : std::numeric_limits<double>::infinity();
 }
 
-// argmin over q in [lo, 1] of (v0 + a/q)(c0 + b q), for a, b, c0 >= 0: the product is
-// v0 c0 + a b + v0 b q + a c0 / q, convex in q, stationary at sqrt(a c0 / (v0 b)).
-double minimiseOne(double v0, double a, double c0, double b, double lo) {
-  if (a <= 0) return lo;            // no error to correct: the cheapest allowed q
-  if (v0 <= 0 || b <= 0) return 1;  // decreasing in q everywhere
-  return std::clamp(std::sqrt(a * c0 / (v0 * b)), lo, 1.0);
-}
-
 // Coordinate descent on (q0, q1): each step is exact per coordinate and the product is convex in
 // each, so it settles in a handful of rounds; the cap only bounds a pathological oscillation.
 constexpr int kMaxDescentRounds = 200;
@@ -31,6 +23,14 @@ constexpr int kMaxDescentRounds = 200;
 constexpr double kDescentTolerance = 1e-13;
 
 }  // namespace
+
+double efficiencyOptimalQ(double base_variance, double error_variance, double base_cost,
+                          double cost_per_q, double q_min) {
+  if (error_variance <= 0) return q_min;
+  if (base_variance <= 0 || cost_per_q <= 0) return 1;
+  return std::clamp(std::sqrt(error_variance * base_cost / (base_variance * cost_per_q)), q_min,
+                    1.0);
+}
 
 RouletteModel RouletteModel::fromPoint(const ClassProbabilities& c, const ClassCosts& costs) {
   const double v = c.vAvg();
@@ -65,11 +65,11 @@ RouletteQ optimalRouletteQ(const RouletteModel& m, ProxyClass cls, double q_min)
     const RouletteQ old = q;
     if (need0) {
       const double v0 = base + (need1 && m.p_hm > 0 ? m.p_hm / q.q1 : 0);
-      q.q0 = minimiseOne(v0, m.p_mh, cbar_p + q.q1 * b1, b0, q_min);
+      q.q0 = efficiencyOptimalQ(v0, m.p_mh, cbar_p + q.q1 * b1, b0, q_min);
     }
     if (need1) {
       const double v0 = base + (need0 && m.p_mh > 0 ? m.p_mh / q.q0 : 0);
-      q.q1 = minimiseOne(v0, m.p_hm, cbar_p + q.q0 * b0, b1, q_min);
+      q.q1 = efficiencyOptimalQ(v0, m.p_hm, cbar_p + q.q0 * b0, b1, q_min);
     }
     if (std::abs(q.q0 - old.q0) < kDescentTolerance && std::abs(q.q1 - old.q1) < kDescentTolerance)
       break;

@@ -45,6 +45,16 @@ double rouletteCost(const RouletteModel& m, const RouletteQ& q);
 // Exact visibility: one original ray per sample, c_s + sum_i P(V'=i) c_o|i.
 double exactCost(const RouletteModel& m);
 
+// The q in [q_min, 1] minimising (base_variance + error_variance / q) * (base_cost + cost_per_q *
+// q): variance x cost of one roulette choice whose correction, taken with probability q, costs
+// cost_per_q and adds error_variance (1/q - 1) to the variance. The product is convex in q and
+// stationary at sqrt(error_variance * base_cost / (base_variance * cost_per_q)). q_min where
+// error_variance <= 0 (nothing to correct), 1 where base_variance <= 0 or cost_per_q <= 0 (the
+// product falls with q everywhere). Both roulettes derive their q from it: per proxy-answer class
+// here (optimalRouletteQ) and per region for forwarded segments (lib/distributed).
+double efficiencyOptimalQ(double base_variance, double error_variance, double base_cost,
+                          double cost_per_q, double q_min);
+
 // The q minimising Var x Cost over [q_min, 1]^2, with q1 = 0 exactly for a verified outside proxy
 // and q0 = 0 for a verified inside one (that error class cannot occur). An error class that is
 // possible but estimated at 0 gets q_min, which keeps the estimate unbiased when the statistics

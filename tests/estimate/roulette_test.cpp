@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -170,6 +171,31 @@ TEST(Roulette, PossibleErrorClassNeverGetsZero) {
       optimalRouletteQ(RouletteModel::fromPoint(c, ClassCosts{}), ProxyClass::kGeneral, 0.05);
   EXPECT_EQ(q.q0, 0.05);
   EXPECT_EQ(q.q1, 0.05);
+}
+
+// The one-choice optimum both roulettes use (optimalRouletteQ here, forwarding in lib/distributed):
+// the grid's best q of (v0 + a/q)(c0 + b q), and the clamps.
+TEST(EfficiencyOptimalQ, MatchesAGridSearchAndClamps) {
+  struct Case {
+    double v0, a, c0, b;
+  };
+  for (const Case& c : {Case{0.2, 0.01, 1.0, 5.0}, Case{0.05, 0.02, 3.0, 1.0},
+                        Case{0.3, 0.001, 0.5, 20.0}, Case{0.01, 0.05, 1.0, 0.5}}) {
+    const double q = efficiencyOptimalQ(c.v0, c.a, c.c0, c.b, 1e-3);
+    auto product = [&](double x) { return (c.v0 + c.a / x) * (c.c0 + c.b * x); };
+    double best = 1, best_product = product(1);
+    for (int i = 1; i <= 100000; ++i) {
+      const double x = 1e-3 + (1 - 1e-3) * i / 100000.0;
+      if (product(x) < best_product) best = x, best_product = product(x);
+    }
+    EXPECT_NEAR(q, best, 1e-4) << c.v0 << " " << c.a << " " << c.c0 << " " << c.b;
+    EXPECT_EQ(q, std::clamp(std::sqrt(c.a * c.c0 / (c.v0 * c.b)), 1e-3, 1.0));
+  }
+  EXPECT_EQ(efficiencyOptimalQ(0.2, 0, 1, 1, 0.05), 0.05);  // nothing to correct
+  EXPECT_EQ(efficiencyOptimalQ(0, 0.1, 1, 1, 0.05), 1.0);   // the errors outweigh V(1-V)
+  EXPECT_EQ(efficiencyOptimalQ(-0.1, 0.1, 1, 1, 0.05), 1.0);
+  EXPECT_EQ(efficiencyOptimalQ(0.2, 0.1, 1, 0, 0.05), 1.0);      // a free correction
+  EXPECT_EQ(efficiencyOptimalQ(0.2, 1e-9, 1, 1e6, 0.05), 0.05);  // clamped to the floor
 }
 
 }  // namespace
