@@ -62,10 +62,8 @@ void addOptions(CLI::App& app, RenderOptions& o) {
 
 int runRender(RenderOptions& o) {
   if (o.data_parallel.enabled) {
-    if (o.seconds > 0)
-      throw Error("", "--time is not available with --data-parallel", {}, "use --spp");
-    DataParallelRenderRequest request{o.scene,  o.output,        o.estimator, o.spp,
-                                      o.render, o.data_parallel, o.common};
+    DataParallelRenderRequest request{o.scene,   o.output, o.estimator,     o.spp,
+                                      o.seconds, o.render, o.data_parallel, o.common};
     return runDataParallelRender(request);
   }
   if (o.output == "-")

@@ -62,7 +62,10 @@ int runDataParallelRender(DataParallelRenderRequest& o) {
     RenderImageFormat format{};
     SceneDesc desc;
     std::future<void> image_module;
+    // Refused on every rank alike, so that rank 0 alone prints the line (MpiComm::agree).
     comm.collectively([&] {
+      if (o.seconds > 0)
+        throw Error("", "--time is not available with --data-parallel", {}, "use --spp");
       if (o.output == "-")
         throw Error("-o -", "an image cannot be written to stdout", {},
                     "name an .exr or .png file");
@@ -83,7 +86,7 @@ int runDataParallelRender(DataParallelRenderRequest& o) {
     });
 
     const auto scene = DistributedScene::load(
-        desc, distributedSceneOptions(o.render, forwarding == Forwarding::kProxies), comm);
+        desc, distributedSceneOptions(o.render, forwarding == Forwarding::kProxies, comm), comm);
     maybeDieForTest(comm.rank());
     // A missing image module ends every rank now, not after the render.
     comm.collectively([&] {

@@ -14,6 +14,7 @@ struct DataParallelRenderRequest {
   std::filesystem::path scene, output;
   std::string estimator;  // "exact" or "roulette"
   int spp = 16;
+  double seconds = 0;  // --time: refused (passes are exchanged in rounds of a fixed count)
   RenderFlags render;
   DataParallelFlags data_parallel;
   CommonOptions common;

@@ -38,11 +38,22 @@ void addDataParallelFlags(CLI::App& app, DataParallelFlags& flags, bool list) {
       ->group(group);
 }
 
-DistributedSceneOptions distributedSceneOptions(const RenderFlags& flags, bool proxies) {
-  const RenderSceneOptions render = flags.sceneOptions(true);
+DistributedSceneOptions distributedSceneOptions(const RenderFlags& flags, bool proxies,
+                                                const MpiComm& comm) {
+  comm.collectively([&] {
+    if (flags.probes_given)
+      throw Error("", "--probes is not available with --data-parallel",
+                  "its estimators, exact and roulette forwarding, trace no probe rays",
+                  "leave --probes out");
+    if (flags.roulette_costs != "measured")
+      throw Error("", "--roulette-costs is not available with --data-parallel",
+                  "roulette forwarding weighs a forward against a segment's local work",
+                  "use --forward-cost-us and --local-cost-us");
+  });
   DistributedSceneOptions options;
-  options.instance_build = render.instance_build;
-  options.memory_budget_bytes = render.memory_budget_bytes;
+  // What the single-process renderer would load for the same flags (quiet: the ranks' warnings
+  // would repeat one another).
+  options.scene = flags.sceneOptions(true);
   options.proxies = proxies;
   return options;
 }

@@ -26,9 +26,13 @@ struct DataParallelFlags {
 // `list`: --forwarding takes a comma-separated list (render-compare).
 void addDataParallelFlags(CLI::App& app, DataParallelFlags& flags, bool list);
 
-// The scene options of a data-parallel run: the same BVH build choice as the single-process
-// renderer's flags make (--build, --memory-budget), and proxy forwarding when `proxies`.
-DistributedSceneOptions distributedSceneOptions(const RenderFlags& flags, bool proxies);
+// The scene options of a data-parallel run: the single-process renderer's scene options for the
+// same flags (--proxy-kind, --build, --memory-budget act alike in both), and proxy forwarding when
+// `proxies`. Collective: a flag the two renderers share that cannot act here is refused (Error on
+// rank 0, ReportedOnAnotherRank elsewhere) rather than ignored: --probes, --roulette-costs other
+// than measured; DistributedScene::load refuses a --proxy-kind it cannot forward by.
+DistributedSceneOptions distributedSceneOptions(const RenderFlags& flags, bool proxies,
+                                                const MpiComm& comm);
 
 // One rank's share, for the report (gathered on rank 0).
 struct RankFacts {

@@ -13,16 +13,12 @@
 #include <limits>
 
 #include "distributed/roulette_forwarding.h"
-#include "render/internal/integrator.h"
+#include "render/integrator_steps.h"
 #include "util/progress.h"
 #include "util/rng.h"
 #include "util/stopwatch.h"
 
 namespace proxyvis {
-
-using detail::PreparedSample;
-using detail::ShadingPoint;
-using detail::Tiling;
 
 namespace {
 
@@ -147,7 +143,7 @@ class RankRender {
     tbb::parallel_for(0, tiling_.count(), [&](int t) {
       tiling_.forEachPixel(t, [&](int x, int y, uint32_t pixel) {
         pixel_tile_[pixel] = uint32_t(t);
-        rays[pixel] = detail::primaryRay(scene_.camera(), x, y, pixel);
+        rays[pixel] = primaryRay(scene_.camera(), x, y, pixel);
         hits[pixel] = scene_.intersectLocal(rays[pixel]);
         MpiComm::ValueKey& b = best[pixel];
         if (!hits[pixel].hit) {
@@ -165,8 +161,8 @@ class RankRender {
       const Hit& h = hits[p];
       owned_.push_back(p);
       points_.push_back(
-          detail::shadingPointOf(rays[p], h, scene_.epsilon(),
-                                 scene_.desc().meshes[scene_.objects()[h.user_id].mesh].albedo));
+          shadingPointOf(rays[p], h, scene_.epsilon(),
+                         scene_.desc().meshes[scene_.objects()[h.user_id].mesh].albedo));
     }
   }
 
@@ -206,7 +202,7 @@ class RankRender {
     RoundEntries& r = round_;
     const uint32_t pixel = owned_[i];
     PreparedSample& ps = r.samples[e];
-    detail::prepareSamples(scene_.lights(), points_[i], settings_.seed, pixel, pass, 1, &ps);
+    prepareSamples(scene_.lights(), points_[i], settings_.seed, pixel, pass, 1, &ps);
     if (!(ps.weight.x > 0 || ps.weight.y > 0 || ps.weight.z > 0)) return;
     r.region[e] = pixel_tile_[pixel] * uint32_t(num_lights_) + ps.light;
     r.state[e] = kDecided;

@@ -11,8 +11,9 @@
 #include "distributed/domain_partition.h"
 #include "mesh/io/mesh_io.h"
 #include "scene/transform.h"
+#include "proxies/check/class_trust.h"
+#include "render/scene_assembly.h"
 #include "util/error.h"
-#include "util/sha256.h"
 
 namespace proxyvis {
 
@@ -24,16 +25,13 @@ int proxyOfKind(const SceneMeshDesc& mesh, const std::string& kind) {
   return -1;
 }
 
-// The recorded class must be the kind's class, for this very file.
-void requireProvedClass(const SceneMeshDesc& mesh, const ProxyRef& ref, ProxyClass expected) {
+// Forwarding decides rays by the proxy's class, so the class must be the kind's, trusted by the
+// decision the single-process renderer makes too (decideProxyTrust). Where that renderer would
+// re-verify the class with the exact check, this one refuses: the check needs the original,
+// which only its owner holds, and every rank must trust the same proxies.
+void requireTrustedClass(const SceneMeshDesc& mesh, const ProxyRef& ref, ProxyClass expected) {
   const std::string file = ref.file.string();
-  if (ref.verified_class != expected)
-    throw Error(file,
-                fmt::format("{} proxy of mesh '{}' has no proved {} class in the scene", ref.kind,
-                            mesh.name, proxyClassName(expected)),
-                "--forwarding proxies decides rays by it",
-                "generate it with proxy-gen, or prove it with proxy-check SCENE --write-scene OUT");
-  if (ref.sha256.empty() || ref.sha256 != sha256OfFile(ref.file))
+  const ClassTrust trust = decideProxyTrust(ref, [&]() -> ContainmentResult {
     throw Error(file,
                 fmt::format("the {} class of mesh '{}''s proxy was not proved for this file",
                             proxyClassName(expected), mesh.name),
@@ -41,6 +39,28 @@ void requireProvedClass(const SceneMeshDesc& mesh, const ProxyRef& ref, ProxyCla
                                    : "the file's sha256 differs from the one recorded",
                 "prove it again: proxy-check SCENE --write-scene OUT");
 }
+  });
+  if (trust.trusted != expected)
+    throw Error(file,
+                fmt::format("{} proxy of mesh '{}' has no proved {} class in the scene", ref.kind,
+                            mesh.name, proxyClassName(expected)),
+                "--forwarding proxies decides rays by it",
+                "generate it with proxy-gen, or prove it with proxy-check SCENE --write-scene OUT");
+}
+
+// The proxy kinds forwarding may rely on under --proxy-kind (DistributedSceneOptions::scene).
+void checkForwardingKind(const std::string& kind, bool proxies) {
+  if (kind.empty()) return;
+  if (!proxies)
+    throw Error("", "--proxy-kind " + kind + " does not act without --forwarding proxies",
+                "the box policies decide no ray by a proxy",
+                "add --forwarding proxies, or leave --proxy-kind out");
+  if (kind != "outside")
+    throw Error("", "--proxy-kind " + kind + " is not available with --data-parallel",
+                "forwarding asks the owners of the outside proxies a ray crosses; inside proxies "
+                "only add to them, and a general one proves nothing",
+                "use --proxy-kind outside (outside proxies alone), or leave it out (outside and "
+                "inside)");
 
 }  // namespace
 
@@ -97,34 +117,44 @@ class DistributedSceneLoader {
   }
 
  private:
-  // Objects in the single-process renderer's order, with the proxy it would choose.
+  // Objects in the single-process renderer's order, with the proxy it would request under the
+  // same options (narrowed in decideBuild once the triangles are known); the outside and inside
+  // proxies forwarding may rely on.
   void chooseObjects() {
-    chosen_.resize(num_meshes_);
-    outside_.resize(num_meshes_);
-    inside_.resize(num_meshes_);
-    used_.assign(num_meshes_, false);
+    const std::string& kind = options_.scene.proxy_kind;
+    outside_.assign(num_meshes_, -1);
+    inside_.assign(num_meshes_, -1);
     for (size_t m = 0; m < num_meshes_; ++m) {
-      chosen_[m] = chooseProxy(desc_.meshes[m], RenderSceneOptions{});
       outside_[m] = proxyOfKind(desc_.meshes[m], "outside");
-      inside_[m] = proxyOfKind(desc_.meshes[m], "inside");
+      if (kind.empty() && options_.proxies) inside_[m] = proxyOfKind(desc_.meshes[m], "inside");
     }
-    comm_.collectively([&] { ds_.objects_ = renderObjects(desc_, chosen_); });
-    for (const RenderObject& o : ds_.objects_) used_[o.mesh] = true;
+    comm_.collectively([&] {
+      checkForwardingKind(kind, options_.proxies);
+      assembly_ = assembleScene(desc_, options_.scene);
+    });
+    ds_.objects_ = assembly_.objects;
+    used_ = assembly_.used;
   }
 
-  // Every proxy of every used mesh, on every rank; the classes forwarding relies on, proved.
+  // The proxies of every used mesh that some step needs, on every rank: the outside one (objects
+  // are placed by it), the inside one forwarding relies on, the one the single-process renderer
+  // would trace (its triangles decide the build); the classes forwarding relies on, proved.
   void loadProxies() {
     proxies_.resize(num_meshes_);
     comm_.collectively([&] {
       for (size_t m = 0; m < num_meshes_; ++m) {
         if (!used_[m]) continue;
         const SceneMeshDesc& mesh = desc_.meshes[m];
-        for (const ProxyRef& ref : mesh.proxies) proxies_[m].push_back(loadMesh(ref.file));
+        for (size_t i = 0; i < mesh.proxies.size(); ++i) {
+          const int p = int(i);
+          const bool needed = p == assembly_.proxy[m] || p == outside_[m] || p == inside_[m];
+          proxies_[m].push_back(needed ? loadMesh(mesh.proxies[i].file) : TriMesh{});
+        }
         if (!options_.proxies) continue;
         if (outside_[m] >= 0)
-          requireProvedClass(mesh, mesh.proxies[size_t(outside_[m])], ProxyClass::kOutside);
+          requireTrustedClass(mesh, mesh.proxies[size_t(outside_[m])], ProxyClass::kOutside);
         if (inside_[m] >= 0)
-          requireProvedClass(mesh, mesh.proxies[size_t(inside_[m])], ProxyClass::kInside);
+          requireTrustedClass(mesh, mesh.proxies[size_t(inside_[m])], ProxyClass::kInside);
       }
     });
   }
@@ -191,25 +221,20 @@ class DistributedSceneLoader {
     comm_.max(triangles_);
   }
 
-  // The single-process build decision, from the triangle counts and the proxies it would use.
+  // The single-process renderer's proxy choice and build decision, from every rank's triangle
+  // counts (each proxy is on every rank, each original on some).
   void decideBuild() {
-    std::vector<int> render_proxy = chosen_;
-    for (size_t m = 0; m < num_meshes_; ++m)
-      if (render_proxy[m] >= 0 &&
-          proxies_[m][size_t(render_proxy[m])].numTriangles() >= triangles_[m])
-        render_proxy[m] = -1;  // loadRenderScene skips a proxy that is not cheaper
-    bool any_proxy = false;
-    for (const RenderObject& o : ds_.objects_) any_proxy |= render_proxy[o.mesh] >= 0;
-    uint64_t flat_triangles = 0;
-    for (const RenderObject& o : ds_.objects_)
-      flat_triangles +=
-          triangles_[o.mesh] +
-          (any_proxy ? (render_proxy[o.mesh] >= 0
-                            ? proxies_[o.mesh][size_t(render_proxy[o.mesh])].numTriangles()
-                            : triangles_[o.mesh])
-                     : 0);
-    ds_.build_ = chooseBuild(options_.instance_build, !desc_.instances.empty(), flat_triangles,
-                             options_.memory_budget_bytes);
+    std::vector<uint64_t> proxy_triangles(num_meshes_, 0);
+    for (size_t m = 0; m < num_meshes_; ++m) {
+      if (!used_[m]) continue;
+      const ProxyChoice choice =
+          chooseProxy(desc_.meshes[m], options_.scene, triangles_[m],
+                      [&](size_t proxy) { return uint64_t(proxies_[m][proxy].numTriangles()); });
+      assembly_.setProxy(m, choice.proxy);
+      if (choice.proxy >= 0) proxy_triangles[m] = proxies_[m][size_t(choice.proxy)].numTriangles();
+    }
+    ds_.objects_ = assembly_.objects;
+    ds_.build_ = chooseSceneBuild(assembly_, desc_, options_.scene, triangles_, proxy_triangles);
     uint8_t flat = ds_.build_.flat ? 1 : 0;  // rank 0's decision: budgets may differ between nodes
     comm_.broadcast(std::span<uint8_t>(&flat, 1), 0);
     ds_.build_.flat = flat != 0;
@@ -348,10 +373,12 @@ class DistributedSceneLoader {
   const DistributedSceneOptions& options_;
   const MpiComm& comm_;
   const size_t num_meshes_;
-  // Per mesh: the proxy the single-process renderer would choose, the outside and inside proxy
-  // (indices into the mesh's proxies, -1: none), whether an object uses it, whether this rank
-  // loads it, the loaded proxies and originals, the triangle counts.
-  std::vector<int> chosen_, outside_, inside_;
+  // The objects and, per mesh, the proxy the single-process renderer would trace.
+  SceneAssembly assembly_;
+  // Per mesh: the outside and inside proxy forwarding relies on (indices into the mesh's
+  // proxies, -1: none), whether an object uses it, whether this rank loads it, the loaded
+  // proxies and originals, the triangle counts.
+  std::vector<int> outside_, inside_;
   std::vector<bool> used_, load_;
   std::vector<std::vector<TriMesh>> proxies_;
   std::vector<TriMesh> originals_;

@@ -5,7 +5,8 @@
 //     and only its owner opens its original file;
 //   - replicated objects: meshes without an outside proxy (a ground quad, a terrain), loaded by
 //     every rank;
-//   - every proxy of every mesh, on every rank, with its proved class;
+//   - the proxies of every mesh that forwarding, the partition and the build decision use, on
+//     every rank, with their proved classes;
 //   - replicated instance boxes (each distributed object's world box, measured by its owner on
 //     its original and shared once) and domain boxes (the union of a rank's instance boxes).
 // Object ids are the single-process renderer's (RenderScene: placed meshes, then instances, in
@@ -39,11 +40,16 @@ const char* forwardingName(Forwarding f);  // "domain-bounds", "instance-boxes",
 Forwarding parseForwarding(const std::string& name);
 
 struct DistributedSceneOptions {
-  InstanceBuild instance_build = InstanceBuild::kAuto;  // as the single-process render's --build
-  double memory_budget_bytes = -1;
+  // The single-process renderer's options for the same flags: the proxy each mesh would trace
+  // and the BVH build follow from them (scene_assembly.h), as in loadRenderScene, so that both
+  // renderers build the same Embree scenes. proxy_kind also names the proxies forwarding relies
+  // on: empty for the outside and inside ones, "outside" for the outside ones alone; any other
+  // kind is refused (an inside proxy alone cannot say which rank to ask, a general one proves
+  // nothing).
+  RenderSceneOptions scene;
   // Build what Forwarding::kProxies needs: the outside and inside proxies in Embree, each one's
   // class proved for its file (recorded sha256 equal to the file's) and the lights outside them.
-  // The box policies only use proxies to place objects.
+  // The box policies only use proxies to place objects; with them a proxy_kind is refused.
   bool proxies = true;
 };
 
@@ -57,7 +63,8 @@ class DistributedScene {
  public:
   // Collective: every rank calls it. Throws Error (on rank 0 with "rank R: " and the first
   // failing rank's message; ReportedOnAnotherRank elsewhere) for a file a rank cannot read,
-  // a proxy whose class does not hold, a light inside a proxy's bounds.
+  // a proxy whose class does not hold, a light inside a proxy's bounds, a proxy kind it cannot
+  // forward by.
   static std::unique_ptr<DistributedScene> load(const SceneDesc& desc,
                                                 const DistributedSceneOptions& options,
                                                 const MpiComm& comm);
@@ -94,7 +101,7 @@ class DistributedScene {
   struct Facts {
     uint64_t own_objects = 0, replicated_objects = 0, distributed_objects = 0;
     uint64_t own_triangles = 0, replicated_triangles = 0;  // this rank's originals
-    uint64_t proxy_triangles = 0;                          // every proxy held
+    uint64_t proxy_triangles = 0;                          // every proxy this rank loaded
     std::vector<std::filesystem::path> originals_opened;   // by this rank
   };
   const Facts& facts() const { return facts_; }

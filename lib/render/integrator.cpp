@@ -1,3 +1,5 @@
+#include "render/integrator_steps.h"
+
 #include "render/internal/integrator.h"
 
 #include <tbb/parallel_for.h>
@@ -7,7 +9,7 @@
 
 #include "util/rng.h"
 
-namespace proxyvis::detail {
+namespace proxyvis {
 
 namespace {
 // Primary-ray jitter is keyed on the pixel only, never on the seed: every estimator, seed and the
@@ -39,21 +41,6 @@ ShadingPoint shadingPointOf(const Segment& ray, const Hit& hit, float epsilon,
   sp.albedo = albedo;
   sp.valid = true;
   return sp;
-}
-
-std::vector<ShadingPoint> shadingPoints(const RenderScene& scene, const Tiling& tiling) {
-  std::vector<ShadingPoint> points(size_t(tiling.width) * tiling.height);
-  const float eps = scene.epsilon();
-  tbb::parallel_for(0, tiling.count(), [&](int t) {
-    tiling.forEachPixel(t, [&](int x, int y, uint32_t pixel) {
-      const Segment ray = primaryRay(scene.camera(), x, y, pixel);
-      const Hit hit = scene.originals().intersect(ray);
-      if (!hit.hit) return;
-      points[pixel] = shadingPointOf(ray, hit, eps,
-                                     scene.desc().meshes[scene.objects()[hit.user_id].mesh].albedo);
-    });
-  });
-  return points;
 }
 
 bool makeSegment(const ShadingPoint& sp, const Vec3f& light_point, Segment& out) {
@@ -101,4 +88,23 @@ void prepareSamples(const LightSampler& lights, const ShadingPoint& sp, uint64_t
   }
 }
 
-}  // namespace proxyvis::detail
+namespace detail {
+
+std::vector<ShadingPoint> shadingPoints(const RenderScene& scene, const Tiling& tiling) {
+  std::vector<ShadingPoint> points(size_t(tiling.width) * tiling.height);
+  const float eps = scene.epsilon();
+  tbb::parallel_for(0, tiling.count(), [&](int t) {
+    tiling.forEachPixel(t, [&](int x, int y, uint32_t pixel) {
+      const Segment ray = primaryRay(scene.camera(), x, y, pixel);
+      const Hit hit = scene.originals().intersect(ray);
+      if (!hit.hit) return;
+      points[pixel] = shadingPointOf(ray, hit, eps,
+                                     scene.desc().meshes[scene.objects()[hit.user_id].mesh].albedo);
+    });
+  });
+  return points;
+}
+
+}  // namespace detail
+
+}  // namespace proxyvis

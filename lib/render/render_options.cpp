@@ -31,6 +31,7 @@ void addRenderFlags(CLI::App& app, RenderFlags& f) {
       ->capture_default_str();
   app.add_option("--probes", f.probes, "Probe rays per shading point (paper-optimal, paper-cost)")
       ->check(integerIn(1, kMaxProbes))
+      ->each([&f](const std::string&) { f.probes_given = true; })
       ->capture_default_str();
   app.add_option("--build", f.build,
                  "Instances as Embree instances, flattened into one BVH, or auto (flat when the "

@@ -25,6 +25,8 @@ struct RenderFlags {
   std::string proxy_kind;     // which proxy of each mesh ("outside", "inside", "general")
   double q_min = 0.05;
   int probes = 16;
+  bool probes_given = false;  // --probes was on the command line (the data-parallel renderer,
+                              // which has no probes, refuses it rather than ignore it)
   // Roulette's cost model: "measured" (per region, from timed rays and queries: its choices then
   // depend on timing and are not bit-reproducible, the estimate stays unbiased) or five numbers
   // in ns "c_p0,c_p1,c_o0,c_o1,c_s" (fixed: the same seed gives the same image at any thread

@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "mesh/io/mesh_io.h"
+#include "render/scene_assembly.h"
 #include "scene/transform.h"
 #include "util/error.h"
 
@@ -123,13 +124,6 @@ float rayEpsilon(const Bounds3f& originals_bounds) {
   return std::max(kMinRayEpsilon, kRayEpsilonOfDiagonal * originals_bounds.diagonal());
 }
 
-int chooseProxy(const SceneMeshDesc& mesh, const RenderSceneOptions& options) {
-  if (!options.use_proxies) return -1;
-  for (size_t i = 0; i < mesh.proxies.size(); ++i)
-    if (options.proxy_kind.empty() || mesh.proxies[i].kind == options.proxy_kind) return int(i);
-  return -1;
-}
-
 RenderScene::RenderScene(SceneDesc desc)
     : desc_(std::move(desc)), camera_(desc_.camera), lights_(desc_.lights) {}
 
@@ -152,50 +146,37 @@ std::unique_ptr<RenderScene> loadRenderScene(const SceneDesc& desc,
   std::unique_ptr<RenderScene> scene(new RenderScene(desc));
   const size_t num_meshes = desc.meshes.size();
 
-  std::vector<int> chosen(num_meshes);
-  for (size_t m = 0; m < num_meshes; ++m) chosen[m] = chooseProxy(desc.meshes[m], options);
-  scene->objects_ = renderObjects(desc, chosen);
-  std::vector<RenderObject>& objects = scene->objects_;
-  std::vector<bool> used(num_meshes, false);
-  for (const RenderObject& o : objects) used[o.mesh] = true;
+  SceneAssembly assembly = assembleScene(desc, options);
 
   // Meshes and proxies, loaded once each.
   std::vector<TriMesh> originals(num_meshes), proxies(num_meshes);
   std::vector<const TriMesh*> original_ptrs(num_meshes), proxy_ptrs(num_meshes);
+  std::vector<uint64_t> original_triangles(num_meshes, 0), proxy_triangles(num_meshes, 0);
   for (size_t m = 0; m < num_meshes; ++m) {
-    if (!used[m]) continue;
+    if (!assembly.used[m]) continue;
     originals[m] = loadSceneMesh(desc.meshes[m]);
     original_ptrs[m] = &originals[m];
-    proxy_ptrs[m] = &originals[m];
-    if (chosen[m] >= 0) {
-      const ProxyRef& ref = desc.meshes[m].proxies[size_t(chosen[m])];
-      proxies[m] = loadMesh(ref.file);
-      if (!options.keep_larger_proxies &&
-          proxies[m].numTriangles() >= originals[m].numTriangles()) {
-        scene->warnings_.push_back(fmt::format(
-            "mesh '{}': proxy {} has {} triangles, the original {}: not cheaper, the original "
-            "is used in its place",
-            desc.meshes[m].name, ref.file.filename().string(), proxies[m].numTriangles(),
-            originals[m].numTriangles()));
-        chosen[m] = -1;
-        proxies[m] = TriMesh{};
-        continue;
-      }
-      proxy_ptrs[m] = &proxies[m];
-    }
+    original_triangles[m] = originals[m].numTriangles();
+    const ProxyChoice choice =
+        chooseProxy(desc.meshes[m], options, original_triangles[m], [&](size_t proxy) {
+          proxies[m] = loadMesh(desc.meshes[m].proxies[proxy].file);
+          return uint64_t(proxies[m].numTriangles());
+        });
+    assembly.setProxy(m, choice.proxy);
+    if (!choice.dropped.empty()) scene->warnings_.push_back(choice.dropped);
+    if (choice.proxy < 0) proxies[m] = TriMesh{};  // a dropped proxy's memory back at once
+    proxy_ptrs[m] = choice.proxy >= 0 ? &proxies[m] : &originals[m];
+    proxy_triangles[m] = proxy_ptrs[m]->numTriangles();
   }
-  for (RenderObject& o : objects) o.proxy = chosen[o.mesh];
+  scene->build_ = chooseSceneBuild(assembly, desc, options, original_triangles, proxy_triangles);
+  const bool any_proxy = assembly.anyProxy();
+  scene->objects_ = std::move(assembly.objects);
+  const std::vector<RenderObject>& objects = scene->objects_;
+  const std::vector<int>& chosen = assembly.proxy;
+  const std::vector<bool>& used = assembly.used;
 
   scene->device_ = std::make_unique<TraceDevice>();
   TraceSceneBuilder builder(*scene->device_, options.trace);
-  bool any_proxy = false;
-  for (const RenderObject& o : objects) any_proxy |= o.proxy >= 0;
-  uint64_t flat_triangles = 0;
-  for (const RenderObject& o : objects)
-    flat_triangles += original_ptrs[o.mesh]->numTriangles() +
-                      (any_proxy ? proxy_ptrs[o.mesh]->numTriangles() : 0);
-  scene->build_ = chooseBuild(options.instance_build, !desc.instances.empty(), flat_triangles,
-                              options.memory_budget_bytes);
   const bool flatten = scene->build_.flat;
   addRenderObjects(builder, objects, original_ptrs, flatten);
   scene->originals_ = builder.build();

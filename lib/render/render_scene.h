@@ -28,9 +28,8 @@ struct RenderSceneOptions {
   // empty: the first proxy listed. Meshes without a matching proxy use their original.
   std::string proxy_kind;
   bool use_proxies = true;  // false: proxies() holds the originals (no proxy anywhere)
-  // A proxy with at least as many triangles as its original cannot make a ray cheaper, while
-  // the self-shadowing rule makes every ray from that object pay for two traversals: such a
-  // proxy is skipped (the original is its own exact proxy), with a warning. True keeps it.
+  // False skips a proxy not cheaper than its original, with a warning (chooseProxy in
+  // scene_assembly.h says why); true keeps it.
   bool keep_larger_proxies = false;
   // How instances are traced (render_scene_build.h): Embree instances of one BVH per mesh,
   // copied into one flattened BVH (originals and proxies alike; faster to trace at the memory of
@@ -41,10 +40,6 @@ struct RenderSceneOptions {
   TraceSceneOptions trace;  // Embree build options for all scenes
   bool quiet = false;       // no warnings on stderr (they are still in warnings())
 };
-
-// The index of the proxy of `mesh` the renderer uses under `options` (-1 = none), before the
-// check that skips proxies not cheaper than their original.
-int chooseProxy(const SceneMeshDesc& mesh, const RenderSceneOptions& options);
 
 struct RenderObject {
   uint32_t mesh = 0;      // index into SceneDesc::meshes
@@ -114,7 +109,7 @@ class RenderScene {
 };
 
 // The objects of a scene: placed meshes first, then instances, in file order; an object's index
-// is its user id in every Embree scene. `chosen` is each mesh's proxy index (chooseProxy). Throws
+// is its user id in every Embree scene. `chosen` is each mesh's proxy index (-1: none). Throws
 // Error for a singular transform or a scene with nothing to render.
 std::vector<RenderObject> renderObjects(const SceneDesc& desc, const std::vector<int>& chosen);
 

@@ -304,7 +304,7 @@ int runDataParallelStudy(CompareOptions& o, const DataParallelFlags& flags, bool
     const bool proxies = std::find(plan.policies.begin(), plan.policies.end(),
                                    Forwarding::kProxies) != plan.policies.end();
     const auto scene =
-        DistributedScene::load(desc, distributedSceneOptions(o.render, proxies), comm);
+        DistributedScene::load(desc, distributedSceneOptions(o.render, proxies, comm), comm);
     const StudyRenders renders(o, flags, plan, *scene, comm);
     const int reference_spp = o.referenceSpp(o.spp_list.back());
     const DataParallelResult reference = renders.reference(reference_spp);

@@ -7,6 +7,7 @@
 
 #include "mesh/io/mesh_io.h"
 #include "render/render_scene.h"
+#include "render/scene_assembly.h"
 #include "scene/scene_desc.h"
 #include "util/sha256.h"
 
@@ -50,6 +51,13 @@ ClassTrust decideClassTrust(std::optional<ProxyClass> claimed, std::string_view 
                       containmentName(needed))};
 }
 
+ClassTrust decideProxyTrust(const ProxyRef& ref, const std::function<ContainmentResult()>& check) {
+  const bool claims_guarantee = ref.verified_class && *ref.verified_class != ProxyClass::kGeneral;
+  // Only a claim of a guarantee needs the file's hash (reading a large proxy is not free).
+  const std::string file_hash = claims_guarantee ? sha256OfFile(ref.file) : std::string();
+  return decideClassTrust(ref.verified_class, ref.sha256, file_hash, check);
+}
+
 std::vector<ProxyTrust> establishProxyClasses(SceneDesc& scene, const RenderSceneOptions& options) {
   std::vector<bool> used(scene.meshes.size(), false);
   for (size_t m = 0; m < scene.meshes.size(); ++m) used[m] = scene.meshes[m].place;
@@ -57,18 +65,14 @@ std::vector<ProxyTrust> establishProxyClasses(SceneDesc& scene, const RenderScen
   std::vector<ProxyTrust> out;
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     SceneMeshDesc& mesh = scene.meshes[m];
-    const int chosen = chooseProxy(mesh, options);
+    const int chosen = requestedProxy(mesh, options);
     if (!used[m] || chosen < 0) continue;
     ProxyRef& ref = mesh.proxies[size_t(chosen)];
     ProxyTrust t{mesh.name, ref.file, ref.verified_class, {}};
-    const bool claims_guarantee = ref.verified_class && *ref.verified_class != ProxyClass::kGeneral;
-    // Only a claim of a guarantee needs the file's hash (reading a large proxy is not free).
-    const std::string file_hash = claims_guarantee ? sha256OfFile(ref.file) : std::string();
     // The containment relation does not change under the instance transforms (affine and
     // invertible), so the check runs on the files as they are, in object space.
-    t.trust = decideClassTrust(ref.verified_class, ref.sha256, file_hash, [&] {
-      return checkContainment(loadSceneMesh(mesh), loadMesh(ref.file));
-    });
+    t.trust = decideProxyTrust(
+        ref, [&] { return checkContainment(loadSceneMesh(mesh), loadMesh(ref.file)); });
     if (ref.verified_class) ref.verified_class = t.trust.trusted;
     out.push_back(std::move(t));
   }

@@ -18,6 +18,7 @@
 namespace proxyvis {
 
 struct SceneDesc;
+struct ProxyRef;
 struct RenderSceneOptions;
 class RenderScene;
 
@@ -44,6 +45,15 @@ struct ClassTrust {
 ClassTrust decideClassTrust(std::optional<ProxyClass> claimed, std::string_view recorded_hash,
                             std::string_view file_hash,
                             const std::function<ContainmentResult()>& check);
+
+// The trust of a scene's proxy entry: decideClassTrust() with the claim and hash recorded in
+// `ref` and the file's own hash (read only for an outside or inside claim). Both renderers decide
+// by it; they differ in `check`. The single-process one passes the exact containment check of the
+// original and the proxy (establishProxyClasses), so a class the hash no longer vouches for is
+// re-verified or downgraded. The data-parallel one cannot run it: a rank holds only its own
+// originals and the decision must be the same on every rank; its check refuses the scene
+// (lib/distributed/distributed_scene.cpp), and proxy-check --write-scene records the hash again.
+ClassTrust decideProxyTrust(const ProxyRef& ref, const std::function<ContainmentResult()>& check);
 
 struct ProxyTrust {
   std::string mesh;             // the mesh's name

@@ -5,6 +5,9 @@
   faults     a rank that cannot read its original ends the job with exit 2 and one line naming the
              rank and the file; a rank killed mid-job fails the job; no output replaces a good one
   refuse     a proxy whose recorded class does not hold for its file is refused before rendering
+  flags      every flag render and render-compare share with the single-process renderer acts
+             on the data-parallel one (--proxy-kind, --build, --memory-budget, --width,
+             --height, --q-min) or is refused with exit 2 and one error line
   roulette   roulette is unbiased: over seeds, its image minus the same seed's exact image has
              mean zero (z-test); with fixed costs it is the same image at 1 and 2 threads
   readme     the mpirun commands of README.md's data-parallel section run as written, in a
@@ -199,6 +202,124 @@ elif case == "roulette":
     # D = mean(roulette image) - mean(exact image) has expectation 0 exactly.
     pairs = []
     for seed in range(12):
+elif case == "flags":
+    def dp_json(name, *flags):
+        out = os.path.join(work, name + ".exr")
+        dp(2, out, "--seed", "3", "--threads", "1", *flags, "--json", out + ".json")
+        return summary(out + ".json"), out
+
+    def single(name, scene_file, *flags):
+        out = os.path.join(work, name + ".exr")
+        run([render, scene_file, "--seed", "3", "--threads", "1", "-o", out, "--quiet",
+             "--json", out + ".json", *flags])
+        return summary(out + ".json"), out
+
+    def same_image(a, b, what):
+        same, text = rgb_equal(a, b, work)
+        if not same:
+            sys.exit(f"FAIL: {what}: the data-parallel image differs from render's\n{text}")
+
+    # --proxy-kind outside: forwarding relies on the outside proxies alone, so no segment is
+    # decided by an inside proxy and more are forwarded; the image stays render's own.
+    both, _ = dp_json("both", "--spp", "4")
+    outside, outside_exr = dp_json("outside", "--spp", "4", "--proxy-kind", "outside")
+    if both["blocked_by_inside_proxy"] == 0:
+        sys.exit("FAIL: no segment was decided by an inside proxy: the scene does not exercise it")
+    if outside["blocked_by_inside_proxy"] != 0 or outside["forwards"] <= both["forwards"]:
+        sys.exit(f"FAIL: --proxy-kind outside did not act: {outside['blocked_by_inside_proxy']} "
+                 f"blocked by inside proxies, {outside['forwards']} forwards against "
+                 f"{both['forwards']} with both kinds")
+    held = [sum(r["proxy_triangles"] for r in x["per_rank"]) for x in (both, outside)]
+    if not held[1] < held[0]:
+        sys.exit(f"FAIL: --proxy-kind outside: the ranks hold {held[1]} proxy triangles, with "
+                 f"both kinds {held[0]}: the inside proxies were loaded for nothing")
+    _, single_outside = single("single_outside", scene, "--spp", "4", "--proxy-kind", "outside")
+    same_image(single_outside, outside_exr, "--proxy-kind outside")
+
+    # --width and --height: the image's size.
+    small, _ = dp_json("small", "--spp", "1", "--width", "20", "--height", "10")
+    if (small["width"], small["height"]) != (20, 10):
+        sys.exit(f"FAIL: --width 20 --height 10 rendered {small['width']} x {small['height']}")
+
+    # --build and --memory-budget on an instanced copy of the scene: the data-parallel build is
+    # the single-process one for the same flags, and so is the image.
+    with open(scene) as f:
+        inst = json.load(f)
+    lines = []
+    for m in inst["meshes"][1:]:
+        m["place"] = False
+        t = m.pop("transform")
+        lines.append(" ".join([m["name"]] + [repr(float(v)) for v in t]))
+    with open(os.path.join(work, "inst.instances.txt"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+    inst["instances"] = {"file": "inst.instances.txt"}
+    for m in inst["meshes"]:
+        for p in m.get("proxies", []):
+            p["file"] = os.path.join(os.path.dirname(scene), p["file"])
+        if not os.path.isabs(m["file"]):
+            m["file"] = os.path.join(os.path.dirname(scene), m["file"])
+    inst_scene = os.path.join(work, "inst.json")
+    with open(inst_scene, "w") as f:
+        json.dump(inst, f)
+    for flags, expect in ((["--build", "flat"], "flat"), (["--build", "instanced"], "instanced"),
+                          (["--build", "auto", "--memory-budget", "0"], "instanced"),
+                          (["--build", "auto"], "flat")):
+        what = " ".join(flags)
+        out = os.path.join(work, f"inst_{'_'.join(flags)}.exr")
+        run(mpirun_cmd(2) + [render, inst_scene, "--data-parallel", "-o", out, "--quiet",
+                             "--spp", "2", "--seed", "3", "--threads", "1", "--json",
+                             out + ".json", *flags])
+        got = summary(out + ".json")["scene_build"]
+        ref, ref_exr = single(f"inst_single_{'_'.join(flags)}", inst_scene, "--spp", "2", *flags)
+        if got != expect or ref["scene_build"] != expect:
+            sys.exit(f"FAIL: {what}: data-parallel build {got}, render's {ref['scene_build']}, "
+                     f"expected {expect}")
+        same_image(ref_exr, out, what)
+
+    # --q-min 1 leaves roulette no choice: it forwards every undecided segment.
+    roulette = ["--estimator", "roulette", "--spp", "4", "--forward-cost-us", "200",
+                "--local-cost-us", "1", "--passes-per-round", "1"]
+    free, _ = dp_json("q_free", *roulette)
+    pinned, _ = dp_json("q_pinned", *roulette, "--q-min", "1")
+    if not free["mean_q"] < 1 or pinned["mean_q"] != 1:
+        sys.exit(f"FAIL: --q-min 1 did not act: mean q {pinned['mean_q']} (without it "
+                 f"{free['mean_q']})")
+
+    # Refused: exit 2, one error line naming the flag, no output.
+    compare = os.path.join(os.path.dirname(render), "render-compare")
+    refused = os.path.join(work, "refused.exr")
+    cases = [
+        (["--proxy-kind", "inside"], "--proxy-kind inside"),
+        (["--proxy-kind", "general"], "--proxy-kind general"),
+        (["--forwarding", "instance-boxes", "--proxy-kind", "outside"], "--proxy-kind outside"),
+        (["--probes", "8"], "--probes"),
+        (["--roulette-costs", "40,20,300,25,60"], "--roulette-costs"),
+        (["--time", "1"], "--time"),
+        (["--estimator", "culling"], "--estimator culling"),
+    ]
+    for flags, name in cases:
+        p = dp(2, refused, *flags, expect=2)
+        errors = [l for l in p.stderr.splitlines() if "error" in l]
+        if len(errors) != 1 or name not in errors[0] or os.path.exists(refused):
+            sys.exit(f"FAIL: {' '.join(flags)} was not refused with one line naming it:\n"
+                     f"{p.stderr}")
+    report = os.path.join(work, "rc_refused")
+    p = run(mpirun_cmd(2) + [compare, scene, "--data-parallel", "--spp", "1", "--seeds", "1",
+                             "--reference-spp", "16", "--quiet", "--out", report, "--probes",
+                             "8"], expect=2)
+    if len([l for l in p.stderr.splitlines() if "error" in l and "--probes" in l]) != 1:
+        sys.exit(f"FAIL: render-compare --data-parallel --probes was not refused:\n{p.stderr}")
+    # render-compare passes --proxy-kind on too.
+    report = os.path.join(work, "rc_outside")
+    run(mpirun_cmd(2) + [compare, scene, "--data-parallel", "--spp", "2", "--seeds", "1",
+                         "--reference-spp", "16", "--estimators", "exact", "--quiet", "--out",
+                         report, "--proxy-kind", "outside"])
+    rows = summary(os.path.join(report, "report.json"))["rows"]
+    if not rows or any(r["blocked_by_inside_proxy"] != 0 for r in rows):
+        sys.exit(f"FAIL: render-compare --proxy-kind outside did not act: {rows}")
+    print(f"ok: --proxy-kind, --width, --height, --build, --memory-budget and --q-min act on the "
+          f"data-parallel renderer; {len(cases) + 1} other uses are refused")
+
         ex = os.path.join(work, f"exact_{seed}.exr")
         ro = os.path.join(work, f"roulette_{seed}.exr")
         # The data-parallel exact render equals the single-process one (case identical): no

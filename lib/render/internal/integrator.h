@@ -1,66 +1,27 @@
 #pragma once
-// The steps of render() (RenderSession) shared with passSegments(): settings checks, shading
-// points from primary rays, and the light samples of one pass.
+// The steps of render() (RenderSession) that only the single-process renderer takes: settings
+// checks, every pixel's shading point from its own scene, learning regions and pass budgets. The
+// steps it shares with the data-parallel renderer are public: render/integrator_steps.h.
 #include <vector>
 
+#include "render/integrator_steps.h"
 #include "render/render_scene.h"
 #include "render/renderer.h"
 
 namespace proxyvis::detail {
 
-struct ShadingPoint {
-  Vec3f p;  // hit point, offset along the normal by RenderScene::epsilon()
-  Vec3f n;  // unit geometric normal facing the camera
-  Vec3f albedo;
-  uint32_t object = 0;
-  bool valid = false;  // false: the primary ray missed (black pixel)
-};
+// The shared steps under their former names here (benches and tests name them detail::).
+using proxyvis::makeSegment;
+using proxyvis::PreparedSample;
+using proxyvis::prepareSamples;
+using proxyvis::primaryRay;
+using proxyvis::ShadingPoint;
+using proxyvis::shadingPointOf;
+using proxyvis::Tiling;
 
-struct Tiling {
-  int width = 0, height = 0, tile = 16, tiles_x = 0, tiles_y = 0;
-  Tiling(int w, int h, int t) : width(w), height(h), tile(t) {
-    tiles_x = (w + t - 1) / t;
-    tiles_y = (h + t - 1) / t;
-  }
-  int count() const { return tiles_x * tiles_y; }
-  template <typename F>  // f(x, y, pixel)
-  void forEachPixel(int tile_index, F&& f) const {
-    const int x0 = (tile_index % tiles_x) * tile, y0 = (tile_index / tiles_x) * tile;
-    for (int y = y0; y < std::min(y0 + tile, height); ++y)
-      for (int x = x0; x < std::min(x0 + tile, width); ++x) f(x, y, uint32_t(y * width + x));
-  }
-};
-
-// One primary ray per pixel, jittered from a stream keyed on the pixel alone. Parallel over tiles.
+// One primary ray per pixel (primaryRay), traced against the scene's originals. Parallel over
+// tiles.
 std::vector<ShadingPoint> shadingPoints(const RenderScene& scene, const Tiling& tiling);
-
-// The primary ray of pixel (x, y) (index `pixel`), as shadingPoints() traces it.
-Segment primaryRay(const Camera& camera, int x, int y, uint32_t pixel);
-// The shading point of a primary hit (invalid for a miss or a degenerate normal): the hit point
-// offset by `epsilon` along the normal that faces the camera. The data-parallel renderer calls it
-// with the same hit on the rank that owns the geometry, so both renderers shade alike.
-ShadingPoint shadingPointOf(const Segment& ray, const Hit& hit, float epsilon, const Vec3f& albedo);
-
-// A light sample prepared for visibility estimation; weight == 0 means it needs no visibility
-// (back-facing, or the pixel has no shading point).
-struct PreparedSample {
-  Segment segment;
-  Vec3f weight;  // albedo/pi * L_e * cos_x * cos_y / dist^2 / pdf_area
-  uint32_t light = 0;
-};
-
-// Light samples [first, first + count) of `pass` for one shading point, from the stream keyed
-// on (seed, pixel, pass).
-void prepareSamples(const RenderScene& scene, const ShadingPoint& sp, uint64_t seed, uint32_t pixel,
-                    int pass, int count, PreparedSample* out);
-void prepareSamples(const LightSampler& lights, const ShadingPoint& sp, uint64_t seed,
-                    uint32_t pixel, int pass, int count, PreparedSample* out);
-
-// A segment from the shading point to a point on a light, or false when the geometry term is
-// zero (the light is behind the surface).
-bool makeSegment(const RenderScene& scene, const ShadingPoint& sp, const Vec3f& light_point,
-                 Segment& out);
-bool makeSegment(const ShadingPoint& sp, const Vec3f& light_point, Segment& out);
 
 // The learning region of a query: screen tile x light x whether the shading point's own object
 // uses a proxy. Points on such an object trace their own original in both V and V' (the

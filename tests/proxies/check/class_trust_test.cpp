@@ -209,5 +209,40 @@ TEST_F(ClassTrustScene, UnclaimedAndUnusedProxiesAreLeftAlone) {
   EXPECT_TRUE(establishProxyClasses(desc, {}).empty());
 }
 
+// decideProxyTrust is the one decision of both renderers; the data-parallel one passes a check that
+// refuses, so it must be reached exactly when the single-process renderer would re-verify: an
+// outside or inside claim whose recorded hash is missing or not the file's.
+TEST_F(ClassTrustScene, ProxyTrustRunsTheCheckOnlyWhereTheHashDoesNotVouch) {
+  const fs::path grown = dir_ / "grown.off";
+  saveMesh(kGrown, grown);  // the same bytes scene() writes
+  FakeCheck refuse{ContainmentVerdict::kUndecidable};
+  SceneDesc desc = scene(kGrown, "outside", sha256OfFile(grown));
+  ClassTrust t = decideProxyTrust(desc.meshes[0].proxies[0], refuse.fn());
+  EXPECT_EQ(t.status, ClassStatus::kVerifiedByHash);
+  EXPECT_EQ(t.trusted, ProxyClass::kOutside);
+  EXPECT_EQ(refuse.calls, 0);
+
+  for (const std::string& claim : {std::string(), std::string("general")}) {
+    desc = scene(kGrown, claim, "");
+    t = decideProxyTrust(desc.meshes[0].proxies[0], refuse.fn());
+    EXPECT_EQ(t.trusted, ProxyClass::kGeneral) << claim;
+    EXPECT_EQ(refuse.calls, 0) << claim;
+  }
+
+  for (const std::string& hash : {std::string(), kHashB}) {
+    desc = scene(kGrown, "outside", hash);
+    t = decideProxyTrust(desc.meshes[0].proxies[0], refuse.fn());
+    EXPECT_EQ(t.status, ClassStatus::kDowngraded);
+  }
+  EXPECT_EQ(refuse.calls, 2);
+
+  // The single-process check proves the same claim again.
+  FakeCheck proves{ContainmentVerdict::kContains};
+  t = decideProxyTrust(desc.meshes[0].proxies[0], proves.fn());
+  EXPECT_EQ(t.status, ClassStatus::kReVerified);
+  EXPECT_EQ(t.trusted, ProxyClass::kOutside);
+  EXPECT_EQ(proves.calls, 1);
+}
+
 }  // namespace
 }  // namespace proxyvis
