@@ -10,9 +10,9 @@
 
 #include "distributed/domain_partition.h"
 #include "mesh/io/mesh_io.h"
-#include "scene/transform.h"
 #include "proxies/check/class_trust.h"
 #include "render/scene_assembly.h"
+#include "scene/transform.h"
 #include "util/error.h"
 
 namespace proxyvis {
@@ -38,7 +38,6 @@ void requireTrustedClass(const SceneMeshDesc& mesh, const ProxyRef& ref, ProxyCl
                 ref.sha256.empty() ? "the scene records no sha256 for it"
                                    : "the file's sha256 differs from the one recorded",
                 "prove it again: proxy-check SCENE --write-scene OUT");
-}
   });
   if (trust.trusted != expected)
     throw Error(file,
@@ -61,6 +60,7 @@ void checkForwardingKind(const std::string& kind, bool proxies) {
                 "only add to them, and a general one proves nothing",
                 "use --proxy-kind outside (outside proxies alone), or leave it out (outside and "
                 "inside)");
+}
 
 }  // namespace
 
