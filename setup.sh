@@ -20,6 +20,9 @@
 #                       tests included, not_sanitized ones left out)
 #   ./setup.sh fuzz     install + clang-14 and libFuzzer, configure build-fuzz/ (ASan + UBSan +
 #                       coverage) and build the fuzz targets of fuzz/ (run them: fuzz/run.sh)
+#   ./setup.sh bench-deps
+#                       install + what the benches need beyond the build: the npm packages of
+#                       bench/vhacd_compare and python3-matplotlib (bench_break_even.py's plots)
 set -euo pipefail
 cd "$(dirname "$0")"
 BUILD_DIR=${PROXYVIS_BUILD_DIR:-build}
@@ -207,6 +210,6 @@ case "${1:-install}" in
   test-long) install_deps; install_js_deps; build; ctest_run -L long ;;
   fuzz) install_deps; install_pkgs "${FUZZ_PKGS[@]}"; fuzz_build ;;
   test-sanitize) install_deps; install_js_deps; build_sanitize ;;
-  bench-deps) install_deps; npm_ci bench/vhacd_compare ;;
+  bench-deps) install_deps; install_pkgs python3-matplotlib; npm_ci bench/vhacd_compare ;;
   *) echo "usage: $0 [install|build|demo|test|test-long|test-sanitize|fuzz|bench-deps]" >&2; exit 2 ;;
 esac
