@@ -247,6 +247,7 @@ int main(int argc, char** argv) {
                               "run the data-parallel study under mpirun or srun");
       return proxyvis::runDataParallelStudy(options, data_parallel, app.count("--estimators") > 0);
     }
+    proxyvis::refuseDataParallelFlagsAlone(app, data_parallel);
     return proxyvis::runCompare(options, app, plan_dir);
   });
 }

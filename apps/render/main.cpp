@@ -133,5 +133,8 @@ int main(int argc, char** argv) {
   proxyvis::RenderOptions options;
   proxyvis::addOptions(app, options);
   return proxyvis::runApp(app, argc, argv, options.common,
-                          [&] { return proxyvis::runRender(options); });
+                          [&] {
+                            proxyvis::refuseDataParallelFlagsAlone(app, options.data_parallel);
+                            return proxyvis::runRender(options);
+                          });
 }

@@ -88,6 +88,7 @@ int runDataParallelRender(DataParallelRenderRequest& o) {
     const auto scene = DistributedScene::load(
         desc, distributedSceneOptions(o.render, forwarding == Forwarding::kProxies, comm), comm);
     maybeDieForTest(comm.rank());
+    const JobNetwork network = resolveNetwork(o.data_parallel, comm);
     // A missing image module ends every rank now, not after the render.
     comm.collectively([&] {
       if (root) image_module.get();
@@ -103,6 +104,8 @@ int runDataParallelRender(DataParallelRenderRequest& o) {
     settings.q_min = o.render.q_min;
     settings.forward_cost_us = o.data_parallel.forward_cost_us;
     settings.local_cost_us = o.data_parallel.local_cost_us;
+    settings.network = network.fabric;
+    settings.emulate = network.emulate;
     settings.quiet = o.common.quiet;
     const DataParallelResult result = renderDataParallel(*scene, settings, comm);
     const std::vector<RankFacts> facts = gatherRankFacts(*scene, result.stats, comm);
@@ -142,12 +145,16 @@ int runDataParallelRender(DataParallelRenderRequest& o) {
         fmt::format("render: wrote {}: {} with --forwarding {} on {} rank{}, {} spp in {:.2f} s\n"
                     "  shadow segments {}: {:.4f} forwards each ({} forwards, {:.1f} MB in {} "
                     "messages over {} rounds); blocked here {}, by inside proxies {}, "
-                    "undecided {}\n{}",
+                    "undecided {}\n  network {}{}: modelled {:.3f} s (compute {:.3f} s, "
+                    "messages {:.3f} s, counts and reductions {:.3f} s)\n{}",
                     o.output.string(), o.estimator, forwardingName(forwarding), comm.size(),
                     comm.size() == 1 ? "" : "s", result.spp, s.seconds, s.shadow_segments,
                     s.forwardsPerSegment(), s.forwards, 1e-6 * double(s.forward_bytes),
                     s.forward_messages, s.rounds, s.blocked_locally, s.blocked_by_inside,
-                    s.undecided, rankFactsText(facts)));
+                    s.undecided, s.network.describe(),
+                    s.emulated ? ", emulated in the run" : "", s.modelled.seconds,
+                    s.modelled.compute_seconds, s.modelled.message_seconds,
+                    s.modelled.control_seconds, rankFactsText(facts)));
     return kExitOk;
   } catch (const ReportedOnAnotherRank&) {
     return kExitOk;  // rank 0 reports the job's error and exit code (see ReportedOnAnotherRank)

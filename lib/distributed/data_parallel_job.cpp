@@ -25,10 +25,9 @@ void addDataParallelFlags(CLI::App& app, DataParallelFlags& flags, bool list) {
       ->capture_default_str()
       ->group(group);
   app.add_option("--forward-cost-us", flags.forward_cost_us,
-                 list ? "Cost of one forwarded ray in microseconds: roulette's choice of q and the "
-                        "report's modelled efficiency (default 20)"
-                      : "Cost of one forwarded ray in microseconds: roulette's choice of q and the "
-                        "summary's modelled time (default: roulette measures it on this run)")
+                 "Roulette: the cost of one forwarded ray in microseconds (default: what --network "
+                 "charges for the last round's messages per ray, at their batch size, plus the "
+                 "measured remote trace)")
       ->check(numberIn(0, 1e6))
       ->group(group);
   app.add_option("--local-cost-us", flags.local_cost_us,
@@ -36,6 +35,59 @@ void addDataParallelFlags(CLI::App& app, DataParallelFlags& flags, bool list) {
                  "--forward-cost-us the render is bit-reproducible for a given rank count")
       ->check(numberIn(0, 1e6))
       ->group(group);
+  std::string presets;
+  for (const std::string& n : networkPresetNames()) presets += (presets.empty() ? "" : ", ") + n;
+  app.add_option("--network", flags.network,
+                 "The fabric the report's alpha-beta model prices (and --emulate-network "
+                 "emulates): " +
+                     presets +
+                     " (shm: this machine's shared memory, measured by a ping-pong at the start; "
+                     "unbatched-20us: a flat 20 us per forward, an upper bound for an unbatched "
+                     "design)")
+      ->capture_default_str()
+      ->group(group);
+  app.add_option("--network-alpha-us", flags.network_alpha_us,
+                 "A custom fabric's latency per message, in microseconds (replaces the preset's)")
+      ->check(numberIn(0, 1e6))
+      ->group(group);
+  app.add_option("--network-beta-gbps", flags.network_beta_gbps,
+                 "A custom fabric's bandwidth, in GB/s (replaces the preset's)")
+      ->check(numberIn(1e-6, 1e6))
+      ->group(group);
+  app.add_flag("--emulate-network", flags.emulate_network,
+               "Make the exchange take what --network charges (each message leaves no earlier "
+               "than alpha + bytes/beta after the previous one; the count exchange likewise), so "
+               "that the measured time is the time under that fabric (ranks on one host)")
+      ->group(group);
+}
+
+void refuseDataParallelFlagsAlone(const CLI::App& app, const DataParallelFlags& flags) {
+  if (flags.enabled) return;
+  for (const char* name :
+       {"--forwarding", "--passes-per-round", "--forward-cost-us", "--local-cost-us", "--network",
+        "--network-alpha-us", "--network-beta-gbps", "--emulate-network"})
+    if (app.count(name) > 0)
+      throw Error("", std::string(name) + " needs --data-parallel",
+                  "it only acts on the data-parallel renderer",
+                  "add --data-parallel (under mpirun)");
+}
+
+JobNetwork resolveNetwork(const DataParallelFlags& flags, const MpiComm& comm) {
+  JobNetwork job;
+  comm.collectively([&] {
+    job.fabric = networkFabric(flags.network, flags.network_alpha_us, flags.network_beta_gbps);
+  });
+  const bool one_host = comm.oneHost();
+  comm.collectively([&] {
+    if (flags.emulate_network && !one_host)
+      throw Error("", "--emulate-network needs every rank on one host",
+                  "the emulated fabric compares the ranks' clocks", "run the ranks on one node");
+  });
+  const auto [alpha_us, beta_gbps] = comm.measureFabric();
+  job.shm = withMeasured(networkFabric("shm", -1, -1), alpha_us, beta_gbps);
+  job.fabric = withMeasured(job.fabric, alpha_us, beta_gbps);
+  job.emulate = flags.emulate_network && !job.fabric.measured && comm.size() > 1;
+  return job;
 }
 
 DistributedSceneOptions distributedSceneOptions(const RenderFlags& flags, bool proxies,
@@ -116,14 +168,21 @@ nlohmann::json dataParallelRow(const std::string& estimator, Forwarding forwardi
                         {"forward_bytes_per_rank", double(s.forward_bytes) / s.ranks},
                         {"forward_messages_per_rank", double(s.forward_messages) / s.ranks},
                         {"max_rank_forward_bytes", s.max_rank_forward_bytes},
-                        {"max_rank_forward_messages", s.max_rank_forward_messages}};
-  if (forward_cost_us >= 0) {
-    row["forward_cost_us"] = forward_cost_us;
-    row["modelled_seconds"] = s.modelledSeconds(forward_cost_us);
-  } else {
-    row["forward_cost_us"] = nullptr;
-    row["modelled_seconds"] = nullptr;
-  }
+                        {"max_rank_forward_messages", s.max_rank_forward_messages},
+                        {"network", s.network.name},
+                        {"network_alpha_us", s.network.alpha_us},
+                        {"network_beta_gbps", s.network.beta_gbps},
+                        {"network_per_forward_us", s.network.per_item_us},
+                        {"network_upper_bound", s.network.upper_bound},
+                        {"network_description", s.network.describe()},
+                        {"emulated", s.emulated},
+                        {"emulated_wait_seconds", s.max_emulated_wait_seconds},
+                        {"modelled_seconds", s.modelled.seconds},
+                        {"modelled_compute_seconds", s.modelled.compute_seconds},
+                        {"modelled_message_seconds", s.modelled.message_seconds},
+                        {"modelled_control_seconds", s.modelled.control_seconds},
+                        {"modelled_rounds", s.modelled.rounds}};
+  row["forward_cost_us"] = forward_cost_us >= 0 ? nlohmann::json(forward_cost_us) : nullptr;
   return row;
 }
 

@@ -18,13 +18,32 @@ struct DataParallelFlags {
   bool enabled = false;                // --data-parallel
   std::string forwarding = "proxies";  // one policy (render) or a comma list (render-compare)
   int passes_per_round = 4;     // roulette learns between rounds: its first round forwards all
-  double forward_cost_us = -1;  // roulette's forward cost and the report's model; < 0: measured
+  double forward_cost_us = -1;  // roulette's forward cost; < 0: from the fabric and this run
   double local_cost_us = -1;
+  std::string network = "shm";                           // --network: a preset of network_fabric.h
+  double network_alpha_us = -1, network_beta_gbps = -1;  // < 0: the preset's
+  bool emulate_network = false;
 };
 
-// Adds --data-parallel, --forwarding, --passes-per-round, --forward-cost-us, --local-cost-us.
+// Adds --data-parallel, --forwarding, --passes-per-round, --forward-cost-us, --local-cost-us,
+// --network, --network-alpha-us, --network-beta-gbps, --emulate-network.
 // `list`: --forwarding takes a comma-separated list (render-compare).
 void addDataParallelFlags(CLI::App& app, DataParallelFlags& flags, bool list);
+
+// Throws Error (exit 2) when a data-parallel flag is given without --data-parallel: it would
+// not act.
+void refuseDataParallelFlagsAlone(const CLI::App& app, const DataParallelFlags& flags);
+
+// The fabric the flags name, with shared memory's alpha and beta measured on this job when it
+// is `shm` (collective; throws the collective Error of MpiComm::agree for a bad flag or an
+// emulation across hosts). `emulate` is set when --emulate-network asks for a fabric other
+// than this machine's own.
+struct JobNetwork {
+  NetworkFabric fabric;
+  NetworkFabric shm;  // this machine's, measured
+  bool emulate = false;
+};
+JobNetwork resolveNetwork(const DataParallelFlags& flags, const MpiComm& comm);
 
 // The scene options of a data-parallel run: the single-process renderer's scene options for the
 // same flags (--proxy-kind, --build, --memory-budget act alike in both), and proxy forwarding when
@@ -46,8 +65,9 @@ struct RankFacts {
 std::vector<RankFacts> gatherRankFacts(const DistributedScene& scene,
                                        const DataParallelStats& stats, const MpiComm& comm);
 
-// The row of one run: estimator, forwarding, ranks, the forward counts, memory, time, and the
-// modelled time and forward cost when forward_cost_us >= 0.
+// The row of one run: estimator, forwarding, ranks, the forward counts, memory, time, the
+// fabric (network, network_alpha_us, network_beta_gbps, emulated) and the alpha-beta model's
+// time with its per-round sums; forward_cost_us when roulette's was fixed (>= 0).
 nlohmann::json dataParallelRow(const std::string& estimator, Forwarding forwarding,
                                const DataParallelStats& stats, double forward_cost_us);
 nlohmann::json rankFactsJson(const std::vector<RankFacts>& facts);

@@ -111,9 +111,8 @@ class RankRender {
       prepareRound(start, count, q);
       forwardPending();
       addRound(count, q);
-      learner_.setMeasuredCosts(
-          my_segments_ ? 1e6 * computeCpu() / double(my_segments_) : 1.0,
-          my_forwards_ ? 1e6 * exchange_seconds_ / double(my_forwards_) : 1.0);
+      learner_.setMeasuredCosts(my_segments_ ? 1e6 * computeCpu() / double(my_segments_) : 1.0,
+                                forwardCostUs());
       progress.update();
     }
     progress.done();
@@ -125,14 +124,41 @@ class RankRender {
  private:
   // Compute time is the process CPU time outside MPI calls (Open MPI polls while it waits), so
   // that ranks sharing cores (more ranks than cores on a test machine) are not charged for the
-  // time another rank ran.
+  // time another rank ran. The model's compute is wall time outside MPI calls: what a round
+  // waits for on the machine that ran it.
   template <typename Call>
   void timed(Call&& call) {
-    const double c = processCpuSeconds();
+    const double c = processCpuSeconds(), w = clock_.seconds();
     call();
     mpi_cpu_ += processCpuSeconds() - c;
+    mpi_wall_ += clock_.seconds() - w;
   }
   double computeCpu() const { return processCpuSeconds() - cpu_start_ - mpi_cpu_; }
+  double computeWall() const { return clock_.seconds() - mpi_wall_; }
+
+  // A reduction of `bytes` bytes per rank: with an emulated fabric it ends no earlier than the
+  // fabric's tree of messages would (from this rank's entry).
+  template <typename Call>
+  void reduction(uint64_t bytes, Call&& call) {
+    const double entered = steadySeconds();
+    timed([&] {
+      call();
+      if (settings_.emulate && ranks_ > 1)
+        emulated_wait_ += waitUntilSteady(entered + settings_.network.reductionSeconds(ranks_, bytes));
+    });
+    reduction_seconds_ += ranks_ > 1 ? settings_.network.reductionSeconds(ranks_, bytes) : 0.0;
+  }
+
+  // Roulette's cost of a forward in microseconds: what the fabric charges for the last round's
+  // messages per forwarded segment (their alpha amortised over the round's batch size) plus this
+  // rank's measured cost of answering one (the remote trace, as another rank pays it).
+  double forwardCostUs() {
+    if (batch_.items == 0) return last_forward_us_;
+    const double network = settings_.network.sendSeconds(batch_.messages, batch_.bytes, batch_.items);
+    const double answer = answered_items_ ? answer_seconds_ / double(answered_items_) : 0.0;
+    last_forward_us_ = 1e6 * (network / double(batch_.items) + answer);
+    return last_forward_us_;
+  }
 
   // 1. Primary rays, composited by the closest hit over ranks: the pixels this rank shades.
   void shadePrimaryRays() {
@@ -155,7 +181,7 @@ class RankRender {
       });
     });
     const std::vector<MpiComm::ValueKey> mine = best;
-    timed([&] { comm_.minLoc(best); });
+    reduction(sizeof(MpiComm::ValueKey) * num_pixels_, [&] { comm_.minLoc(best); });
     for (uint32_t p = 0; p < num_pixels_; ++p) {
       if (best[p].key != rank_ || best[p].value != mine[p].value || mine[p].key != rank_) continue;
       const Hit& h = hits[p];
@@ -241,10 +267,8 @@ class RankRender {
     auto outbox = std::vector<std::vector<uint8_t>>(size_t(ranks_));
     std::vector<std::vector<uint8_t>> replies;
     auto sent = std::vector<std::vector<uint32_t>>(size_t(ranks_));
+    batch_ = {};
     for (;;) {
-      uint64_t open = pending.size();
-      timed([&] { comm_.sum(std::span<uint64_t>(&open, 1)); });
-      if (open == 0) break;
       for (auto& o : outbox) o.clear();
       for (auto& s : sent) s.clear();
       for (uint32_t e : pending) {
@@ -255,15 +279,28 @@ class RankRender {
       }
       MpiComm::RoundStats round;
       timed([&] {
-        round = comm_.exchange(outbox, sizeof(Segment), answerRequests,
-                               const_cast<DistributedScene*>(&scene_), replies);
+        round = comm_.exchange(outbox, sizeof(Segment), pending.size(), answerRequests,
+                               const_cast<DistributedScene*>(&scene_), replies,
+                               settings_.emulate ? &settings_.network : nullptr);
       });
       mpi_cpu_ -= round.answer_cpu_seconds;  // answering is compute
+      mpi_wall_ -= round.answer_seconds;
       exchange_seconds_ += round.seconds;
+      emulated_wait_ += round.emulated_wait_seconds;
       my_forwards_ += round.items_sent;
       counts_[kBytes] += round.bytes_sent;
       counts_[kMessages] += round.messages_sent;
+      answered_items_ += round.items_answered;
+      answer_seconds_ += round.answer_seconds;
+      const double wall = computeWall();
+      loads_.push_back({wall - last_round_wall_, round.messages_sent, round.bytes_sent,
+                        round.items_sent});
+      last_round_wall_ = wall;
+      batch_.messages += round.messages_sent;
+      batch_.bytes += round.bytes_sent;
+      batch_.items += round.items_sent;
       ++stats_.rounds;
+      if (round.open_total == 0) break;
       pending.clear();
       for (int to = 0; to < ranks_; ++to) {
         for (size_t k = 0; k < sent[size_t(to)].size(); ++k) {
@@ -335,12 +372,14 @@ class RankRender {
       owner.pixels[p] = float(rank_ + 1);
     }
     compute_seconds_ = computeCpu() / double(tbb::this_task_arena::max_concurrency());
-    timed([&] {
+    tail_wall_ = computeWall() - last_round_wall_;
+    reduction(sizeof(float) * 6 * num_pixels_, [&] {
       comm_.sum(radiance.pixels, true);
       comm_.sum(visibility.pixels, true);
       comm_.sum(forwards.pixels, true);
       comm_.sum(owner.pixels, true);
     });
+    render_seconds_ = clock_.seconds();
     if (rank_ == 0) {
       result.radiance = std::move(radiance);
       result.visibility = std::move(visibility);
@@ -379,7 +418,8 @@ class RankRender {
     stats.max_rank_forwards = busiest[0];
     stats.max_rank_forward_bytes = busiest[1];
     stats.max_rank_forward_messages = busiest[2];
-    std::vector<double> times = {compute_seconds_, exchange_seconds_, clock_.seconds()};
+    // The render ends with the image on rank 0; the statistics' reductions are not part of it.
+    std::vector<double> times = {compute_seconds_, exchange_seconds_, render_seconds_};
     comm_.max(times);
     stats.max_compute_seconds = times[0];
     stats.max_exchange_seconds = times[1];
@@ -387,7 +427,40 @@ class RankRender {
     std::vector<double> q_sums = {q_sum_, double(q_count_)};
     comm_.sum(q_sums);
     stats.mean_q = q_sums[1] > 0 ? q_sums[0] / q_sums[1] : 1.0;
+    modelRun(stats);
     return stats;
+  }
+
+  // Every rank's per-round loads, summed into one table (each rank fills its own rows), priced
+  // on the fabric; the emulated waits.
+  void modelRun(DataParallelStats& stats) {
+    constexpr size_t kFields = 4;
+    const size_t rounds = loads_.size();
+    std::vector<double> table(size_t(ranks_) * rounds * kFields + size_t(ranks_), 0.0);
+    for (size_t k = 0; k < rounds; ++k) {
+      double* row = &table[(size_t(rank_) * rounds + k) * kFields];
+      row[0] = loads_[k].compute_seconds;
+      row[1] = double(loads_[k].messages);
+      row[2] = double(loads_[k].bytes);
+      row[3] = double(loads_[k].items);
+    }
+    table[size_t(ranks_) * rounds * kFields + size_t(rank_)] = tail_wall_;
+    comm_.sum(table);
+    auto loads = std::vector<std::vector<RoundLoad>>(size_t(ranks_), std::vector<RoundLoad>(rounds));
+    double tail = 0;
+    for (size_t r = 0; r < size_t(ranks_); ++r) {
+      for (size_t k = 0; k < rounds; ++k) {
+        const double* row = &table[(r * rounds + k) * kFields];
+        loads[r][k] = {row[0], uint64_t(row[1]), uint64_t(row[2]), uint64_t(row[3])};
+      }
+      tail = std::max(tail, table[size_t(ranks_) * rounds * kFields + r]);
+    }
+    stats.network = settings_.network;
+    stats.modelled = modelTime(settings_.network, loads, tail, reduction_seconds_);
+    std::vector<double> wait = {emulated_wait_};
+    comm_.max(wait);
+    stats.max_emulated_wait_seconds = wait[0];
+    stats.emulated = settings_.emulate && wait[0] > 0;
   }
 
   const DistributedScene& scene_;
@@ -403,6 +476,15 @@ class RankRender {
   const Stopwatch clock_;
   const double cpu_start_;
   double mpi_cpu_ = 0, exchange_seconds_ = 0, compute_seconds_ = 0;
+  double mpi_wall_ = 0, emulated_wait_ = 0, reduction_seconds_ = 0;
+  // The model's per-round loads of this rank, and its work after the last round.
+  std::vector<RoundLoad> loads_;
+  double last_round_wall_ = 0, tail_wall_ = 0, render_seconds_ = 0;
+  // Roulette's forward cost: the current pass round's messages, answers given so far.
+  RoundLoad batch_;
+  uint64_t answered_items_ = 0;
+  double answer_seconds_ = 0;
+  double last_forward_us_ = 1;
 
   std::vector<uint32_t> pixel_tile_;  // per pixel: its screen tile
   std::vector<uint32_t> owned_;       // the pixels this rank shades, ascending
@@ -431,6 +513,9 @@ DataParallelResult renderDataParallel(const DistributedScene& scene,
     throw Error("", "tile size and passes per round must be at least 1");
   if (settings.forwarding == Forwarding::kProxies && !scene.hasProxyForwarding())
     throw Error("", "--forwarding proxies needs the scene loaded with its proxies");
+  if (settings.network.name == "shm" && settings.network.measured &&
+      !(settings.network.beta_gbps > 0) && comm.size() > 1)
+    throw Error("", "the shared-memory fabric was not measured before the render");
   static_assert(sizeof(Segment) == 32, "the request format is 8 floats");
   return RankRender(scene, settings, comm).run();
 }

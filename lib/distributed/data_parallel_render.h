@@ -22,6 +22,7 @@
 
 #include "distributed/distributed_scene.h"
 #include "distributed/mpi_comm.h"
+#include "distributed/network_fabric.h"
 #include "util/image.h"
 
 namespace proxyvis {
@@ -34,10 +35,16 @@ struct DataParallelSettings {
   int tile_size = 16;        // screen tiles: replicated hits are shaded by the tile's rank
   int passes_per_round = 8;  // light samples per pixel traced between two exchanges
   double q_min = 0.05;       // roulette's smallest forwarding probability
-  // Roulette's costs in microseconds: a forward, and a segment's local work. < 0: measured on
-  // this run (the choices then depend on timing; the estimate stays unbiased).
+  // Roulette's costs in microseconds: a forward, and a segment's local work. < 0: from this run
+  // (a forward: what `network` charges for the last round's messages per forwarded segment, at
+  // their actual batch size, plus the measured remote trace; the choices then depend on timing,
+  // the estimate stays unbiased).
   double forward_cost_us = -1;
   double local_cost_us = -1;
+  // The fabric the model prices and, with `emulate`, the exchange waits for. Its alpha and beta
+  // must be known (shm: measured by the caller, MpiComm::measureFabric()).
+  NetworkFabric network;
+  bool emulate = false;
   bool quiet = false;
 };
 
@@ -61,15 +68,16 @@ struct DataParallelStats {
   uint64_t rank_peak_rss_bytes = 0;      // the largest over ranks (load included)
   std::vector<uint64_t> rank_rss_bytes;  // per rank
   std::vector<uint64_t> rank_shaded_pixels;
-  double mean_q = 1;  // roulette: mean forwarding probability over undecided ones
+  double mean_q = 1;      // roulette: mean forwarding probability over undecided ones
+  NetworkFabric network;  // the fabric modelled (and emulated)
+  bool emulated = false;  // the exchange waited for the emulated fabric
+  double max_emulated_wait_seconds = 0;  // the most a rank held messages back
+  // The alpha-beta model of this run on `network`, from every rank's per-round loads (compute
+  // measured as wall time outside MPI calls): a model from measured counts, not a measurement.
+  ModelledTime modelled;
 
   double forwardsPerSegment() const {
     return shadow_segments ? double(forwards) / double(shadow_segments) : 0;
-  }
-  // The modelled time at `forward_cost_us` per forward: the slowest rank's compute time plus the
-  // busiest rank's forwards at that cost (a model from measured counts, not a measurement).
-  double modelledSeconds(double forward_cost_us) const {
-    return max_compute_seconds + 1e-6 * forward_cost_us * double(max_rank_forwards);
   }
 };
 

@@ -2,8 +2,11 @@
 
 #include <mpi.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstring>
+#include <deque>
 
 #include "util/stopwatch.h"
 
@@ -12,7 +15,7 @@ namespace proxyvis {
 namespace {
 
 double now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  return steadySeconds();
 }
 
 int checkedCount(size_t n) {
@@ -135,19 +138,95 @@ void MpiComm::agree(const std::optional<Error>& error) const {
                   header[1]);
 }
 
+bool MpiComm::oneHost() const {
+  MPI_Comm local;
+  MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &local);
+  int local_size = 0;
+  MPI_Comm_size(local, &local_size);
+  MPI_Comm_free(&local);
+  int all = local_size == size_ ? 1 : 0;
+  MPI_Allreduce(MPI_IN_PLACE, &all, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  return all == 1;
+}
+
+std::pair<double, double> MpiComm::measureFabric() const {
+  double result[2] = {0, 0};
+  if (size_ >= 2 && rank_ < 2) {
+    const int other = 1 - rank_;
+    // The median round trip of `trips` ping-pongs of `bytes` bytes (answered by 1 byte): the
+    // median, because ranks sharing a core (more ranks than cores) see a few round trips wait
+    // for a time slice.
+    auto roundTrip = [&](size_t bytes, int trips) {
+      std::vector<uint8_t> buffer(bytes, 0);
+      std::vector<double> times;
+      for (int i = 0; i < trips; ++i) {
+        const double t = now();
+        if (rank_ == 0) {
+          MPI_Send(buffer.data(), checkedCount(bytes), MPI_BYTE, other, kRequestTag,
+                   MPI_COMM_WORLD);
+          MPI_Recv(buffer.data(), 1, MPI_BYTE, other, kReplyTag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        } else {
+          MPI_Recv(buffer.data(), checkedCount(bytes), MPI_BYTE, other, kRequestTag, MPI_COMM_WORLD,
+                   MPI_STATUS_IGNORE);
+          MPI_Send(buffer.data(), 1, MPI_BYTE, other, kReplyTag, MPI_COMM_WORLD);
+        }
+        times.push_back(now() - t);
+      }
+      std::nth_element(times.begin(), times.begin() + long(times.size() / 2), times.end());
+      return times[times.size() / 2];
+    };
+    roundTrip(32, 20);  // warm-up: connections and buffers
+    const double small = roundTrip(32, 200);
+    const size_t big_bytes = size_t(1) << 20;
+    const double big = roundTrip(big_bytes, 20);
+    const double alpha = small / 2;  // one way; the 1-byte answer costs about alpha too
+    result[0] = 1e6 * alpha;
+    result[1] = double(big_bytes) / std::max(big - 2 * alpha, 1e-9) / 1e9;
+  }
+  MPI_Bcast(result, 2, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  return {result[0], result[1]};
+}
+
 MpiComm::RoundStats MpiComm::exchange(const std::vector<std::vector<uint8_t>>& outbox,
-                                      size_t bytes_per_item, Answer answer, void* context,
-                                      std::vector<std::vector<uint8_t>>& replies) const {
+                                      size_t bytes_per_item, uint64_t open, Answer answer,
+                                      void* context, std::vector<std::vector<uint8_t>>& replies,
+                                      const NetworkFabric* emulate) const {
   RoundStats stats;
   const double start = now();
   const size_t n = size_t(size_);
   PV_CHECK(outbox.size() == n);
+  // Per rank pair: the count of requests, the sender's open segments and the time it entered.
+  constexpr size_t kControl = 3;
+  std::vector<uint64_t> send_control(n * kControl), recv_control(n * kControl);
   std::vector<uint64_t> send_counts(n), recv_counts(n);
-  for (size_t r = 0; r < n; ++r) send_counts[r] = outbox[r].size() / bytes_per_item;
-  MPI_Alltoall(send_counts.data(), 1, MPI_UINT64_T, recv_counts.data(), 1, MPI_UINT64_T,
-               MPI_COMM_WORLD);
+  const auto entered = uint64_t(std::llround(1e9 * start));
+  for (size_t r = 0; r < n; ++r) {
+    send_counts[r] = outbox[r].size() / bytes_per_item;
+    send_control[r * kControl] = send_counts[r];
+    send_control[r * kControl + 1] = open;
+    send_control[r * kControl + 2] = entered;
+  }
+  MPI_Alltoall(send_control.data(), int(kControl), MPI_UINT64_T, recv_control.data(), int(kControl),
+               MPI_UINT64_T, MPI_COMM_WORLD);
+  uint64_t last_entered = 0;
+  for (size_t r = 0; r < n; ++r) {
+    recv_counts[r] = recv_control[r * kControl];
+    stats.open_total += recv_control[r * kControl + 1];
+    last_entered = std::max(last_entered, recv_control[r * kControl + 2]);
+  }
+  // This rank's link: free again at `link` (emulated fabric only).
+  double link = 0;
+  if (emulate) {
+    link = 1e-9 * double(last_entered) + emulate->collectiveSeconds(size_);
+    stats.emulated_wait_seconds += waitUntilSteady(link);
+  }
+  replies.assign(n, {});
+  if (stats.open_total == 0) {  // nothing pending anywhere: every count is 0
+    stats.seconds = now() - start;
+    return stats;
+  }
 
-  // Requests out, requests in.
+  // Requests in.
   std::vector<std::vector<uint8_t>> inbox(n);
   std::vector<MPI_Request> recv_req, send_req;
   std::vector<int> recv_from;
@@ -159,44 +238,83 @@ MpiComm::RoundStats MpiComm::exchange(const std::vector<std::vector<uint8_t>>& o
     MPI_Irecv(inbox[r].data(), checkedCount(inbox[r].size()), MPI_BYTE, int(r), kRequestTag,
               MPI_COMM_WORLD, &recv_req.back());
   }
-  replies.assign(n, {});
+
+  // Messages out leave in order, each once the (emulated) link has carried it.
+  struct Outgoing {
+    double release;
+    const std::vector<uint8_t>* data;
+    int to, tag;
+  };
+  std::deque<Outgoing> queue;
+  auto enqueue = [&](const std::vector<uint8_t>& data, int to, int tag, uint64_t items) {
+    double release = 0;
+    if (emulate) {
+      link = std::max(link, now()) + emulate->messageSeconds(data.size(), items);
+      release = link;
+    }
+    queue.push_back({release, &data, to, tag});
+    stats.bytes_sent += data.size();
+    stats.messages_sent += 1;
+  };
+  auto postDue = [&] {
+    while (!queue.empty() && queue.front().release <= now()) {
+      const Outgoing& o = queue.front();
+      send_req.emplace_back();
+      MPI_Isend(o.data->data(), checkedCount(o.data->size()), MPI_BYTE, o.to, o.tag, MPI_COMM_WORLD,
+                &send_req.back());
+      queue.pop_front();
+    }
+  };
   std::vector<MPI_Request> reply_recv;
   for (size_t r = 0; r < n; ++r) {
     if (send_counts[r] == 0) continue;
-    send_req.emplace_back();
-    MPI_Isend(outbox[r].data(), checkedCount(outbox[r].size()), MPI_BYTE, int(r), kRequestTag,
-              MPI_COMM_WORLD, &send_req.back());
+    enqueue(outbox[r], int(r), kRequestTag, send_counts[r]);
     stats.items_sent += send_counts[r];
-    stats.bytes_sent += outbox[r].size();
-    stats.messages_sent += 1;
     replies[r].resize(send_counts[r]);
     reply_recv.emplace_back();
     MPI_Irecv(replies[r].data(), checkedCount(replies[r].size()), MPI_BYTE, int(r), kReplyTag,
               MPI_COMM_WORLD, &reply_recv.back());
   }
 
-  // Answer each sender as its requests arrive, and send the answers back at once.
+  // Answer each sender as its requests arrive, and send the answers back.
   std::vector<std::vector<uint8_t>> answers(n);
-  std::vector<MPI_Request> answer_req;
-  answer_req.reserve(recv_req.size());
-  for (size_t done = 0; done < recv_req.size(); ++done) {
-    int index = MPI_UNDEFINED;
-    MPI_Waitany(int(recv_req.size()), recv_req.data(), &index, MPI_STATUS_IGNORE);
-    const size_t r = size_t(recv_from[size_t(index)]);
-    const double t0 = now(), c0 = processCpuSeconds();
-    answers[r].resize(recv_counts[r]);
-    answer(context, inbox[r].data(), recv_counts[r], answers[r].data());
-    stats.answer_seconds += now() - t0;
-    stats.answer_cpu_seconds += processCpuSeconds() - c0;
-    answer_req.emplace_back();
-    MPI_Isend(answers[r].data(), checkedCount(answers[r].size()), MPI_BYTE, int(r), kReplyTag,
-              MPI_COMM_WORLD, &answer_req.back());
-    stats.bytes_sent += answers[r].size();
-    stats.messages_sent += 1;
+  size_t answered = 0;
+  postDue();
+  while (answered < recv_req.size() || !queue.empty()) {
+    if (answered < recv_req.size()) {
+      int index = MPI_UNDEFINED, arrived = 0;
+      if (queue.empty()) {
+        MPI_Waitany(int(recv_req.size()), recv_req.data(), &index, MPI_STATUS_IGNORE);
+        arrived = index != MPI_UNDEFINED;
+      } else {
+        MPI_Testany(int(recv_req.size()), recv_req.data(), &index, &arrived, MPI_STATUS_IGNORE);
+        arrived = arrived && index != MPI_UNDEFINED;
+      }
+      if (arrived) {
+        const size_t r = size_t(recv_from[size_t(index)]);
+        const double t0 = now(), c0 = processCpuSeconds();
+        answers[r].resize(recv_counts[r]);
+        answer(context, inbox[r].data(), recv_counts[r], answers[r].data());
+        stats.answer_seconds += now() - t0;
+        stats.answer_cpu_seconds += processCpuSeconds() - c0;
+        stats.items_answered += recv_counts[r];
+        enqueue(answers[r], int(r), kReplyTag, 0);
+        ++answered;
+        postDue();
+        continue;
+      }
+    }
+    if (!queue.empty()) {
+      // Hold the next message back until its release, polling for requests meanwhile.
+      const double until = answered < recv_req.size()
+                               ? std::min(queue.front().release, now() + 50e-6)
+                               : queue.front().release;
+      stats.emulated_wait_seconds += waitUntilSteady(until);
+      postDue();
+    }
   }
   MPI_Waitall(int(send_req.size()), send_req.data(), MPI_STATUSES_IGNORE);
   MPI_Waitall(int(reply_recv.size()), reply_recv.data(), MPI_STATUSES_IGNORE);
-  MPI_Waitall(int(answer_req.size()), answer_req.data(), MPI_STATUSES_IGNORE);
   stats.seconds = now() - start - stats.answer_seconds;
   return stats;
 }

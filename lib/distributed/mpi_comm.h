@@ -6,8 +6,10 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "distributed/network_fabric.h"
 #include "util/error.h"
 
 namespace proxyvis {
@@ -74,20 +76,36 @@ class MpiComm {
     agree(error);
   }
 
+  // Whether every rank runs on this rank's host (the emulated fabric compares clocks).
+  bool oneHost() const;
+  // This machine's fabric between ranks 0 and 1, measured by ping-pong (the median round trip of
+  // 32-byte messages, and of 1 MiB ones): {alpha in us, beta in GB/s} on every rank; {0, 0} with
+  // one rank. Collective.
+  std::pair<double, double> measureFabric() const;
+
   // One round of ray forwarding: sends outbox[r] (segments as raw bytes, `bytes_per_item` each)
   // to rank r, receives every rank's requests, answers them with `answer` (one byte per request,
   // called once per sender as its requests arrive) and returns each outbox's answers in replies[r]
-  // in the same order. Non-blocking sends and receives; one message per non-empty pair and
-  // direction.
+  // in the same order. First one small collective (MPI_Alltoall) gives every rank the counts it
+  // will receive and every rank's `open` segments (their sum is how rounds end: 0 everywhere);
+  // then non-blocking sends and receives, one message per non-empty pair and direction.
+  // With `emulate`, the exchange takes at least what that fabric charges: the count exchange
+  // ends no earlier than ceil(log2 P) alpha after the last rank entered it, and this rank's
+  // messages leave its link one after another, each posted no earlier than alpha + bytes / beta
+  // after the previous one (or after it was ready). Needs every rank on one host (oneHost()).
   struct RoundStats {
     uint64_t items_sent = 0, bytes_sent = 0, messages_sent = 0;
-    double seconds = 0;  // wall time inside the round, answering excluded
+    uint64_t items_answered = 0;
+    uint64_t open_total = 0;  // sum of every rank's `open`
+    double seconds = 0;       // wall time inside the round, answering excluded
     double answer_seconds = 0, answer_cpu_seconds = 0;  // answering (process CPU: all threads)
+    double emulated_wait_seconds = 0;  // time spent holding messages back for the fabric
   };
   using Answer = void (*)(void* context, const uint8_t* requests, size_t count, uint8_t* answers);
   RoundStats exchange(const std::vector<std::vector<uint8_t>>& outbox, size_t bytes_per_item,
-                      Answer answer, void* context,
-                      std::vector<std::vector<uint8_t>>& replies) const;
+                      uint64_t open, Answer answer, void* context,
+                      std::vector<std::vector<uint8_t>>& replies,
+                      const NetworkFabric* emulate = nullptr) const;
 
   // Ends the whole job at once (a rank that cannot go on after the collective steps).
   [[noreturn]] void abort(int code) const;

@@ -21,22 +21,21 @@ namespace proxyvis {
 
 namespace {
 
-// Roulette's and the model's cost of a forward when --forward-cost-us is not given: the low end
-// of the 20-200 us range of cluster interconnects with a remote trace (docs/data_parallel.md).
-constexpr double kDefaultForwardCostUs = 20;
-
 struct Row {
   int spp = 0;
   std::string estimator;
   Forwarding forwarding{};
-  double mse = 0, seconds = 0, modelled_seconds = 0;
+  bool emulated = false;  // the run's exchange waited for the emulated fabric
+  double mse = 0, seconds = 0;
+  ModelledTime modelled;    // means over seeds
   DataParallelStats stats;  // of the first seed; counts summed over seeds below
   uint64_t segments = 0, forwards = 0, bytes = 0, messages = 0, peak_rss = 0;
   double efficiency = 0, modelled_efficiency = 0, relative = 0, modelled_relative = 0;
 };
 
 std::string imageName(const Row& r) {
-  return fmt::format("{}_{}_{}spp", r.estimator, forwardingName(r.forwarding), r.spp);
+  return fmt::format("{}_{}_{}spp{}", r.estimator, forwardingName(r.forwarding), r.spp,
+                     r.emulated ? "_emulated" : "");
 }
 
 void writePair(const Image& image, const std::filesystem::path& stem, float exposure) {
@@ -49,49 +48,53 @@ void writePair(const Image& image, const std::filesystem::path& stem, float expo
 }
 
 // The table's columns and each row's cells, shared by report.md and report.html.
-std::vector<std::string> tableHeader(double cost_us) {
+std::vector<std::string> tableHeader(const std::string& network) {
   return {"spp",
           "estimator",
           "forwarding",
+          "run on",
           "forwards / shadow segment",
           "forward MB",
           "messages",
           "rank peak RSS MiB",
-          "seconds",
+          "seconds (measured)",
+          fmt::format("seconds (modelled, {})", network),
           "MSE",
           "efficiency (measured)",
-          fmt::format("efficiency at {:g} us / forward (model)", cost_us)};
+          fmt::format("efficiency (modelled, {})", network)};
 }
 
 std::vector<std::string> tableCells(const Row& r) {
   return {std::to_string(r.spp),
           r.estimator,
           forwardingName(r.forwarding),
+          r.emulated ? "emulated " + r.stats.network.name : "shm (this machine)",
           fmt::format("{:.4f}", r.segments ? double(r.forwards) / double(r.segments) : 0.0),
           fmt::format("{:.2f}", 1e-6 * double(r.bytes)),
           std::to_string(r.messages),
           fmt::format("{:.0f}", double(r.peak_rss) / double(1 << 20)),
           fmt::format("{:.3f}", r.seconds),
+          fmt::format("{:.3f}", r.modelled.seconds),
           fmt::format("{:.3e}", r.mse),
           fmt::format("{:.2f}x", r.relative),
           fmt::format("{:.2f}x", r.modelled_relative)};
 }
 
-std::string markdownTable(const std::vector<Row>& rows, double cost_us) {
+std::string markdownTable(const std::vector<Row>& rows, const std::string& network) {
   auto line = [](const std::vector<std::string>& cells) {
     std::string t = "|";
     for (const std::string& c : cells) t += " " + c + " |";
     return t + "\n";
   };
-  std::string t =
-      line(tableHeader(cost_us)) + "|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  std::string t = line(tableHeader(network)) +
+                  "|---:|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const Row& r : rows) t += line(tableCells(r));
   return t;
 }
 
-std::string htmlTable(const std::vector<Row>& rows, double cost_us) {
+std::string htmlTable(const std::vector<Row>& rows, const std::string& network) {
   std::string t = "<table><tr>";
-  for (const std::string& h : tableHeader(cost_us)) t += "<th>" + h + "</th>";
+  for (const std::string& h : tableHeader(network)) t += "<th>" + h + "</th>";
   t += "</tr>";
   for (const Row& r : rows) {
     t += "<tr>";
@@ -106,7 +109,8 @@ struct DataParallelPlan {
   std::vector<Forwarding> policies;
   std::vector<std::string> estimators;
   SceneDesc desc;
-  double cost_us = kDefaultForwardCostUs;
+  double cost_us = -1;  // roulette's fixed forward cost, or < 0
+  JobNetwork network;
 };
 
 DataParallelPlan planStudy(CompareOptions& o, const DataParallelFlags& flags, bool estimators_given,
@@ -135,7 +139,8 @@ DataParallelPlan planStudy(CompareOptions& o, const DataParallelFlags& flags, bo
     plan.desc = loadSceneDesc(o.scene);
     o.render.applyTo(plan.desc);
   });
-  if (flags.forward_cost_us >= 0) plan.cost_us = flags.forward_cost_us;
+  plan.cost_us = flags.forward_cost_us;
+  plan.network = resolveNetwork(flags, comm);
   return plan;
 }
 
@@ -158,16 +163,25 @@ class StudyRenders {
     return renderDataParallel(scene_, settings, comm_);
   }
 
+  // Every cell; with an emulated fabric each cell twice, on this machine's shared memory and
+  // under the emulation, their seeds interleaved (the machine's load drifts).
   std::vector<Row> rows(const Image& reference, std::vector<Image>& first_images) const {
     std::vector<Row> rows;
+    const bool emulate = plan_.network.emulate;
     for (int spp : o_.spp_list)
       for (Forwarding f : plan_.policies)
         for (const std::string& estimator : plan_.estimators) {
-          rows.push_back(cell(spp, f, estimator, reference, first_images));
-          const Row& row = rows.back();
-          if (comm_.rank() == 0 && !o_.common.quiet)
-            std::fprintf(stderr, "render-compare: %s, --forwarding %s, %d spp: MSE %.3e, %.3f s\n",
-                         estimator.c_str(), forwardingName(f), spp, row.mse, row.seconds);
+          std::vector<Row> pair = cells(spp, f, estimator, emulate, reference, first_images);
+          for (Row& row : pair) {
+            if (comm_.rank() == 0 && !o_.common.quiet)
+              std::fprintf(stderr,
+                           "render-compare: %s, --forwarding %s, %d spp%s: MSE %.3e, %.3f s "
+                           "(modelled on %s: %.3f s)\n",
+                           estimator.c_str(), forwardingName(f), spp,
+                           row.emulated ? ", emulated" : "", row.mse, row.seconds,
+                           plan_.network.fabric.name.c_str(), row.modelled.seconds);
+            rows.push_back(std::move(row));
+          }
         }
     return rows;
   }
@@ -184,38 +198,60 @@ class StudyRenders {
     s.q_min = o_.render.q_min;
     s.forward_cost_us = plan_.cost_us;
     s.local_cost_us = flags_.local_cost_us;
+    s.network = plan_.network.fabric;
     s.quiet = true;
     return s;
   }
 
-  Row cell(int spp, Forwarding f, const std::string& estimator, const Image& reference,
-           std::vector<Image>& first_images) const {
+  // One cell on shared memory, and with `emulate` once more under the emulated fabric.
+  std::vector<Row> cells(int spp, Forwarding f, const std::string& estimator, bool emulate,
+                         const Image& reference, std::vector<Image>& first_images) const {
     const bool root = comm_.rank() == 0;
-    Row row;
-    row.spp = spp;
-    row.estimator = estimator;
-    row.forwarding = f;
-    for (int seed = 0; seed < o_.seeds; ++seed) {
-      const DataParallelResult r = renderDataParallel(
-          scene_, settingsFor(estimator, f, spp, hashKeys(o_.common.seed, uint64_t(seed))), comm_);
-      const DataParallelStats& s = r.stats;
-      if (seed == 0) {
-        row.stats = s;
-        if (root) first_images.push_back(r.radiance);
-      }
-      if (root) row.mse += meanSquaredError(r.radiance.pixels, reference.pixels);
-      row.seconds += s.seconds;
-      row.modelled_seconds += s.modelledSeconds(plan_.cost_us);
-      row.segments += s.shadow_segments;
-      row.forwards += s.forwards;
-      row.bytes += s.forward_bytes;
-      row.messages += s.forward_messages;
-      row.peak_rss = std::max(row.peak_rss, s.rank_peak_rss_bytes);
+    std::vector<Row> rows(emulate ? 2 : 1);
+    for (size_t k = 0; k < rows.size(); ++k) {
+      rows[k].spp = spp;
+      rows[k].estimator = estimator;
+      rows[k].forwarding = f;
     }
-    row.mse /= o_.seeds;
-    row.seconds /= o_.seeds;
-    row.modelled_seconds /= o_.seeds;
-    return row;
+    std::vector<Image> firsts(rows.size());
+    for (int seed = 0; seed < o_.seeds; ++seed)
+      for (size_t k = 0; k < rows.size(); ++k) {
+        Row& row = rows[k];
+        DataParallelSettings settings =
+            settingsFor(estimator, f, spp, hashKeys(o_.common.seed, uint64_t(seed)));
+        settings.emulate = k == 1;
+        const DataParallelResult r = renderDataParallel(scene_, settings, comm_);
+        const DataParallelStats& s = r.stats;
+        if (seed == 0) {
+          row.stats = s;
+          if (root) firsts[k] = r.radiance;
+        }
+        row.emulated = row.emulated || s.emulated;
+        if (root) row.mse += meanSquaredError(r.radiance.pixels, reference.pixels);
+        row.seconds += s.seconds;
+        row.modelled.seconds += s.modelled.seconds;
+        row.modelled.compute_seconds += s.modelled.compute_seconds;
+        row.modelled.message_seconds += s.modelled.message_seconds;
+        row.modelled.control_seconds += s.modelled.control_seconds;
+        row.modelled.rounds += s.modelled.rounds;
+        row.segments += s.shadow_segments;
+        row.forwards += s.forwards;
+        row.bytes += s.forward_bytes;
+        row.messages += s.forward_messages;
+        row.peak_rss = std::max(row.peak_rss, s.rank_peak_rss_bytes);
+      }
+    for (size_t k = 0; k < rows.size(); ++k) {
+      Row& row = rows[k];
+      row.mse /= o_.seeds;
+      row.seconds /= o_.seeds;
+      row.modelled.seconds /= o_.seeds;
+      row.modelled.compute_seconds /= o_.seeds;
+      row.modelled.message_seconds /= o_.seeds;
+      row.modelled.control_seconds /= o_.seeds;
+      row.modelled.rounds /= uint64_t(o_.seeds);
+      if (root) first_images.push_back(std::move(firsts[k]));
+    }
+    return rows;
   }
 
   const CompareOptions& o_;
@@ -226,17 +262,18 @@ class StudyRenders {
 };
 
 // Efficiency 1/(MSE x time), relative to exact with replicated instance boxes at the same spp
-// (the fair baseline), else the first exact row.
+// and on the same fabric (shared memory, or emulated) (the fair baseline), else the first exact
+// row.
 void scoreRows(std::vector<Row>& rows) {
   for (Row& r : rows) {
     r.efficiency = r.mse > 0 && r.seconds > 0 ? 1 / (r.mse * r.seconds) : 0;
     r.modelled_efficiency =
-        r.mse > 0 && r.modelled_seconds > 0 ? 1 / (r.mse * r.modelled_seconds) : 0;
+        r.mse > 0 && r.modelled.seconds > 0 ? 1 / (r.mse * r.modelled.seconds) : 0;
   }
   for (Row& r : rows) {
     const Row* base = nullptr;
     for (const Row& b : rows)
-      if (b.spp == r.spp && b.estimator == "exact" &&
+      if (b.spp == r.spp && b.estimator == "exact" && b.emulated == r.emulated &&
           (!base || b.forwarding == Forwarding::kInstanceBoxes))
         base = &b;
     if (!base) base = &rows.front();
@@ -261,7 +298,12 @@ nlohmann::json rowsJson(const std::vector<Row>& rows, int seeds, double cost_us)
     j["forward_messages"] = r.messages / uint64_t(seeds);
     j["rank_peak_rss_bytes"] = r.peak_rss;
     j["seconds"] = r.seconds;
-    j["modelled_seconds"] = r.modelled_seconds;
+    j["emulated"] = r.emulated;
+    j["modelled_seconds"] = r.modelled.seconds;
+    j["modelled_compute_seconds"] = r.modelled.compute_seconds;
+    j["modelled_message_seconds"] = r.modelled.message_seconds;
+    j["modelled_control_seconds"] = r.modelled.control_seconds;
+    j["modelled_rounds"] = r.modelled.rounds;
     j["mse"] = r.mse;
     j["efficiency"] = r.efficiency;
     j["relative_efficiency"] = r.relative;
@@ -273,15 +315,43 @@ nlohmann::json rowsJson(const std::vector<Row>& rows, int seeds, double cost_us)
   return json_rows;
 }
 
+// Why each row that forwards fewer rays than its baseline still loses to it in measured time:
+// where its time went, against the baseline's.
+std::vector<std::string> losingNotes(const std::vector<Row>& rows) {
+  std::vector<std::string> notes;
+  for (const Row& r : rows) {
+    if (r.relative >= 1 || r.forwarding != Forwarding::kProxies) continue;
+    const Row* base = nullptr;
+    for (const Row& b : rows)
+      if (b.spp == r.spp && b.estimator == "exact" && b.emulated == r.emulated &&
+          b.forwarding == Forwarding::kInstanceBoxes)
+        base = &b;
+    if (!base) continue;
+    notes.push_back(fmt::format(
+        "{} with proxies at {} spp{} measured {:.2f}x instance boxes: the slowest rank's compute "
+        "{:.3f} s against {:.3f} s (traces of proxies and answers), its time in exchanges {:.3f} "
+        "s against {:.3f} s, for {:.4f} forwards per segment against {:.4f}{}.",
+        r.estimator, r.spp, r.emulated ? " (emulated " + r.stats.network.name + ")" : "",
+        r.relative, r.stats.max_compute_seconds, base->stats.max_compute_seconds,
+        r.stats.max_exchange_seconds, base->stats.max_exchange_seconds,
+        r.segments ? double(r.forwards) / double(r.segments) : 0.0,
+        base->segments ? double(base->forwards) / double(base->segments) : 0.0,
+        r.mse > base->mse * 1.0001
+            ? fmt::format(", and an MSE {:.3g}x the baseline's", r.mse / base->mse)
+            : ""));
+  }
+  return notes;
+}
+
 std::string studyHtml(const std::string& title, int ranks, const std::string& model_note,
-                      const std::vector<Row>& rows, double cost_us) {
+                      const std::vector<Row>& rows, const std::string& network) {
   std::string html =
       "<!doctype html><html><head><meta charset=\"utf-8\"><title>render-compare "
       "(data-parallel)</title><style>body{font-family:sans-serif}table{border-"
       "collapse:collapse}td,th{border:1px solid #ccc;padding:3px 6px}img{image-"
       "rendering:pixelated;width:320px}</style></head><body>";
   html += fmt::format("<h1>{} (data-parallel, {} ranks)</h1><p>{}</p>{}", title, ranks, model_note,
-                      htmlTable(rows, cost_us));
+                      htmlTable(rows, network));
   html +=
       "<h2>Images</h2><p><figure style=\"display:inline-block\"><img "
       "src=\"images/reference.png\"><figcaption>reference</figcaption></figure>";
@@ -301,6 +371,7 @@ int runDataParallelStudy(CompareOptions& o, const DataParallelFlags& flags, bool
     const DataParallelPlan plan = planStudy(o, flags, estimators_given, comm);
     const SceneDesc& desc = plan.desc;
     const double cost_us = plan.cost_us;
+    const NetworkFabric& fabric = plan.network.fabric;
     const bool proxies = std::find(plan.policies.begin(), plan.policies.end(),
                                    Forwarding::kProxies) != plan.policies.end();
     const auto scene =
@@ -314,31 +385,46 @@ int runDataParallelStudy(CompareOptions& o, const DataParallelFlags& flags, bool
     if (comm.rank() != 0) return kExitOk;
 
     scoreRows(rows);
-    const std::string model_note = fmt::format(
-        "Modelled efficiency: a model from the measured counts, not a measurement: time = the "
-        "slowest rank's compute time (MPI waits excluded) + the busiest rank's forwards x {:g} "
-        "us per forward. Measured efficiency uses the wall time on this machine, where a forward "
-        "costs what shared-memory MPI costs (a few us).",
-        cost_us);
+    std::string model_note = fmt::format(
+        "Measured: wall time on this machine, whose ranks talk through shared memory ({}){}. "
+        "Modelled: an alpha-beta model of {} from the measured per-round counts, not a "
+        "measurement: the sum over exchange rounds of the slowest rank's (compute, as wall time "
+        "outside MPI calls, + its messages x alpha + its bytes / beta), plus each round's count "
+        "exchange (ceil(log2 P) alpha) and the hit and image reductions.",
+        plan.network.shm.describe(),
+        plan.network.emulate ? fmt::format("; rows run on 'emulated {}' waited in the run for "
+                                           "what that fabric charges",
+                                           fabric.name)
+                             : "",
+        fabric.describe());
+    for (const std::string& why : losingNotes(rows)) model_note += " " + why;
     const std::string resolution = fmt::format("{}x{}", desc.camera.width, desc.camera.height);
-    const nlohmann::json report = {{"program", "render-compare"},
-                                   {"mode", "data-parallel"},
-                                   {"scene", desc.path.string()},
-                                   {"scene_name", desc.displayName()},
-                                   {"ranks", comm.size()},
-                                   {"resolution", resolution},
-                                   {"seeds", o.seeds},
-                                   {"seed", o.common.seed},
-                                   {"reference_spp", reference_spp},
-                                   {"reference_seconds", reference.stats.seconds},
-                                   {"forward_cost_us", cost_us},
-                                   {"scene_build", scene->buildChoice().name()},
-                                   {"notes", {model_note}},
-                                   {"per_rank", rankFactsJson(facts)},
-                                   {"rows", rowsJson(rows, o.seeds, cost_us)},
-                                   {"build", buildText()},
-                                   {"version", versionText()}};
-    const std::string table = markdownTable(rows, cost_us);
+    const nlohmann::json report = {
+        {"program", "render-compare"},
+        {"mode", "data-parallel"},
+        {"scene", desc.path.string()},
+        {"scene_name", desc.displayName()},
+        {"ranks", comm.size()},
+        {"resolution", resolution},
+        {"seeds", o.seeds},
+        {"seed", o.common.seed},
+        {"reference_spp", reference_spp},
+        {"reference_seconds", reference.stats.seconds},
+        {"forward_cost_us", cost_us >= 0 ? nlohmann::json(cost_us) : nlohmann::json(nullptr)},
+        {"network", fabric.name},
+        {"network_alpha_us", fabric.alpha_us},
+        {"network_beta_gbps", fabric.beta_gbps},
+        {"network_description", fabric.describe()},
+        {"shm_alpha_us", plan.network.shm.alpha_us},
+        {"shm_beta_gbps", plan.network.shm.beta_gbps},
+        {"emulated", plan.network.emulate},
+        {"scene_build", scene->buildChoice().name()},
+        {"notes", {model_note}},
+        {"per_rank", rankFactsJson(facts)},
+        {"rows", rowsJson(rows, o.seeds, cost_us)},
+        {"build", buildText()},
+        {"version", versionText()}};
+    const std::string table = markdownTable(rows, fabric.name);
     const std::string md = fmt::format(
         "# render-compare (data-parallel): {}\n\n{} ranks, {}, reference exact {} spp; {} "
         "seed(s) per cell; efficiency = 1/(MSE x time) relative to exact with instance-box "
@@ -356,7 +442,7 @@ int runDataParallelStudy(CompareOptions& o, const DataParallelFlags& flags, bool
     writeTextAtomically(dir / "report.json", report.dump(2) + "\n");
     writeTextAtomically(dir / "report.md", md);
     writeTextAtomically(dir / "report.html",
-                        studyHtml(desc.displayName(), comm.size(), model_note, rows, cost_us));
+                        studyHtml(desc.displayName(), comm.size(), model_note, rows, fabric.name));
     folder.commit();
     printHumanReport(o.common, table + "\n" + model_note + "\n" +
                                    "report: " + (folder.target() / "report.html").string() + "\n");

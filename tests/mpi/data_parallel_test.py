@@ -10,6 +10,11 @@
              --height, --q-min) or is refused with exit 2 and one error line
   roulette   roulette is unbiased: over seeds, its image minus the same seed's exact image has
              mean zero (z-test); with fixed costs it is the same image at 1 and 2 threads
+  network    the alpha-beta fabric: emulated exact renders equal the single-process render at 2 and
+             4 ranks, 1 and 2 threads; an emulated fabric of 20 ms per message makes the run wait
+             at least its rounds' count exchanges; every row carries the fabric and the model;
+             render-compare --emulate-network gives shared-memory and emulated rows side by side;
+             unknown presets, bad figures and network flags without --data-parallel exit 2
   readme     the mpirun commands of README.md's data-parallel section run as written, in a
              folder laid out like a new clone, and the exact render equals `render`'s
   make_proxies  the test scene's proxies, made once into WORK_DIR/../proxies for the other cases
@@ -353,6 +358,93 @@ elif case == "roulette":
     if not same:
         sys.exit(f"FAIL: roulette with fixed costs differs between 1 and 2 threads\n{text}")
     print("ok: roulette is unbiased against exact (z-test)")
+elif case == "network":
+    single = os.path.join(work, "single.exr")
+    run([render, scene, "--estimator", "exact", "--spp", "4", "--seed", "3", "-o", single,
+         "--quiet", "--threads", "1"])
+    outs = []
+    for ranks, threads, net in ((2, 1, "ib-hdr"), (4, 2, "10gbe-tcp"), (2, 2, "unbatched-20us")):
+        out = os.path.join(work, f"emulated_{ranks}_{threads}_{net}.exr")
+        dp(ranks, out, "--forwarding", "proxies", "--spp", "4", "--seed", "3", "--threads",
+           str(threads), "--network", net, "--emulate-network", "--json", out + ".json",
+           "--passes-per-round", "2")
+        s = summary(out + ".json")
+        what = f"{ranks} ranks x {threads} threads on emulated {net}"
+        for key in ("network", "network_alpha_us", "network_beta_gbps", "emulated",
+                    "modelled_seconds", "modelled_compute_seconds", "modelled_message_seconds",
+                    "modelled_control_seconds", "seconds"):
+            if key not in s:
+                sys.exit(f"FAIL: {what}: the summary has no '{key}'")
+        if s["network"] != net or not s["emulated"] or s["forwards"] == 0:
+            sys.exit(f"FAIL: {what}: network {s['network']}, emulated {s['emulated']}, "
+                     f"{s['forwards']} forwards")
+        if net == "unbatched-20us":
+            # The flat cost charges 20 us per forward: its messages cost at least that much.
+            if s["modelled_message_seconds"] < 20e-6 * s["max_rank_forwards"] * 0.999:
+                sys.exit(f"FAIL: {what}: {s['modelled_message_seconds']} s of messages for "
+                         f"{s['max_rank_forwards']} forwards of the busiest rank")
+            if not s["network_upper_bound"]:
+                sys.exit(f"FAIL: {what}: the flat cost is not labelled an upper bound")
+        outs.append((out, what))
+    for out, what in outs:
+        same, text = rgb_equal(single, out, work)
+        if not same:
+            sys.exit(f"FAIL: {what}: differs from the single-process exact render\n{text}")
+    # A slow fabric: 20 ms per message. Every round's count exchange over 4 ranks waits 2 alpha
+    # (ceil(log2 4)), so the emulated run takes at least rounds x 40 ms; the same run on shared
+    # memory does not wait.
+    slow = os.path.join(work, "slow.exr")
+    dp(4, slow, "--forwarding", "instance-boxes", "--spp", "2", "--seed", "3", "--threads", "1",
+       "--network", "roce", "--network-alpha-us", "20000", "--emulate-network", "--json",
+       slow + ".json")
+    s = summary(slow + ".json")
+    floor = s["forward_rounds"] * 2 * 0.020
+    if s["network"] != "custom" or s["network_alpha_us"] != 20000 or s["network_beta_gbps"] != 11:
+        sys.exit(f"FAIL: --network-alpha-us on roce gave {s['network']}, "
+                 f"{s['network_alpha_us']} us, {s['network_beta_gbps']} GB/s")
+    if s["seconds"] < floor or s["modelled_control_seconds"] < floor:
+        sys.exit(f"FAIL: {s['forward_rounds']} rounds at 20 ms per message took {s['seconds']} s "
+                 f"(modelled counts {s['modelled_control_seconds']} s), under {floor} s")
+    fast = os.path.join(work, "fast.exr")
+    dp(4, fast, "--forwarding", "instance-boxes", "--spp", "2", "--seed", "3", "--threads", "1",
+       "--json", fast + ".json")
+    f = summary(fast + ".json")
+    if f["emulated"] or f["network"] != "shm" or not f["network_beta_gbps"] > 0:
+        sys.exit(f"FAIL: the default run is not on measured shared memory: {f['network']}, "
+                 f"emulated {f['emulated']}, beta {f['network_beta_gbps']}")
+    # render-compare: shared memory and emulated rows side by side, each with its baseline.
+    compare = os.path.join(os.path.dirname(render), "render-compare")
+    report = os.path.join(work, "rc")
+    run(mpirun_cmd(2) + [compare, scene, "--data-parallel", "--forwarding",
+                         "instance-boxes,proxies", "--estimators", "exact", "--spp", "2",
+                         "--seeds", "1", "--reference-spp", "2", "--threads", "1", "--quiet",
+                         "--network", "ib-hdr", "--emulate-network", "--out", report])
+    rows = summary(os.path.join(report, "report.json"))["rows"]
+    kinds = sorted((r["forwarding"], r["emulated"]) for r in rows)
+    if kinds != [("instance-boxes", False), ("instance-boxes", True), ("proxies", False),
+                 ("proxies", True)]:
+        sys.exit(f"FAIL: render-compare --emulate-network rows: {kinds}")
+    for r in rows:
+        if r["network"] != "ib-hdr" or "modelled_relative_efficiency" not in r:
+            sys.exit(f"FAIL: a row without its fabric or model: {r}")
+        if r["forwarding"] == "instance-boxes" and abs(r["relative_efficiency"] - 1) > 1e-9:
+            sys.exit(f"FAIL: the baseline's relative efficiency is {r['relative_efficiency']}")
+    # Bad flags: one line, exit 2, before anything is rendered.
+    bad = os.path.join(work, "bad.exr")
+    for flags, words in ((["--network", "infiniband"], "not a known fabric"),
+                         (["--network-alpha-us", "-3"], "--network-alpha-us"),
+                         (["--network-beta-gbps", "fast"], "--network-beta-gbps"),
+                         (["--network", "unbatched-20us", "--network-alpha-us", "2"],
+                          "no alpha or beta")):
+        p = dp(2, bad, *flags, expect=2)
+        lines = [l for l in p.stderr.splitlines() if l.strip()]
+        if len(lines) != 1 or words not in lines[0] or os.path.exists(bad):
+            sys.exit(f"FAIL: {flags}: expected one line with '{words}':\n{p.stderr}")
+    p = run([render, scene, "--network", "ib-hdr", "-o", bad, "--quiet"], expect=2)
+    if "needs --data-parallel" not in p.stderr or os.path.exists(bad):
+        sys.exit(f"FAIL: --network without --data-parallel:\n{p.stderr}")
+    print(f"ok: {len(outs)} emulated renders equal the single-process render; 20 ms messages "
+          f"took {s['seconds']:.2f} s for {s['forward_rounds']} rounds; bad flags exit 2")
 elif case == "make_proxies":
     print(f"ok: the test scene's proxies are in {os.path.join(os.path.dirname(work), 'proxies')}")
 elif case == "readme":
