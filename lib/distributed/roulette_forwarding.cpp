@@ -1,7 +1,8 @@
 #include "distributed/roulette_forwarding.h"
 
 #include <algorithm>
-#include <cmath>
+
+#include "estimate/roulette.h"
 
 namespace proxyvis {
 
@@ -40,11 +41,10 @@ std::vector<double> RouletteForwarding::probabilities(double forward_cost_us,
     // weighs 1/q_min.
     const double p_mh = p_undecided * ((s.visible + 1) / (s.forwarded + 2));
     const double v = s.estimate_sum / s.segments;
+    // Var = A + P(MH') / q with A = V(1-V) - P(MH'); cost = c_local + c_forward P(undecided) k q.
     const double a = v * (1 - v) - p_mh;
-    if (a <= 0) continue;
     const double k = s.forwards / s.forwarded;
-    const double d = c_forward * p_undecided * k;
-    q[i] = std::clamp(std::sqrt(p_mh * c_local / (a * d)), q_min_, 1.0);
+    q[i] = efficiencyOptimalQ(a, p_mh, c_local, c_forward * p_undecided * k, q_min_);
   }
   return q;
 }

@@ -8,7 +8,8 @@
 // tile x light) q minimises variance x cost, the cost per segment being c_local + c_forward * q *
 // P(undecided) * (ranks asked per forwarded segment):
 //     q = sqrt( P(MH') c_local / (A * c_forward * P(undecided) * k) ),  A = V(1-V) - P(MH'),
-// clamped to [q_min, 1]; q = 1 where A <= 0 (the proxies' errors dominate) or nothing has been
+// clamped to [q_min, 1] (efficiencyOptimalQ of estimate/roulette.h, the single-process
+// roulette's own optimum); q = 1 where A <= 0 (the proxies' errors dominate) or nothing has been
 // learned yet. P(MH') = P(undecided) x (visible + 1) / (forwarded + 2) (Laplace's rule: a few
 // forwards all blocked do not send q to q_min). q for a round uses only earlier rounds, so every
 // estimate stays unbiased.

@@ -9,6 +9,8 @@
 #include <tbb/task_arena.h>
 
 #include <cstdio>
+#include <cstdlib>
+#include <optional>
 #include <exception>
 #include <limits>
 #include <new>
@@ -125,6 +127,18 @@ CLI::Validator nonNegativeNumber() {
   return numberCheck(true);
 }
 
+namespace {
+
+// This process's rank when a launcher (mpirun, srun) started it among others, else 0.
+int launcherRank() {
+  for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK", "SLURM_PROCID"})
+    if (const char* value = std::getenv(name))
+      if (const std::optional<double> rank = parseNumber(value); rank && *rank >= 1) return 1;
+  return 0;
+}
+
+}  // namespace
+
 int runApp(CLI::App& app, int argc, char** argv, const CommonOptions& options,
            const std::function<int()>& body) {
   try {
@@ -136,7 +150,9 @@ int runApp(CLI::App& app, int argc, char** argv, const CommonOptions& options,
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    // One line, like every other error: program, what is wrong, what to do.
+    // One line, like every other error: program, what is wrong, what to do. Under an MPI or
+    // Slurm launcher every task parses the same command line, so only the first says it.
+    if (launcherRank() > 0) return kExitBadInput;
     std::fprintf(stderr, "%s: error: %s (run %s --help for usage)\n", app.get_name().c_str(),
                  printableText(e.what()).c_str(), app.get_name().c_str());
     return kExitBadInput;
