@@ -245,7 +245,10 @@ int main(int argc, char** argv) {
       if (!plan_dir.empty())
         throw proxyvis::Error("", "--plan is not available with --data-parallel", {},
                               "run the data-parallel study under mpirun or srun");
-      return proxyvis::runDataParallelStudy(options, data_parallel, app.count("--estimators") > 0);
+      return proxyvis::runDataParallelStudy(
+          options, data_parallel,
+          {app.count("--estimators") > 0, app.count("--equal-time") > 0,
+           app.count("--repeats") > 0});
     }
     proxyvis::refuseDataParallelFlagsAlone(app, data_parallel);
     return proxyvis::runCompare(options, app, plan_dir);

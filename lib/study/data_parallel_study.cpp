@@ -113,12 +113,18 @@ struct DataParallelPlan {
   JobNetwork network;
 };
 
-DataParallelPlan planStudy(CompareOptions& o, const DataParallelFlags& flags, bool estimators_given,
-                           const MpiComm& comm) {
+DataParallelPlan planStudy(CompareOptions& o, const DataParallelFlags& flags,
+                           const StudyFlagsGiven& given, const MpiComm& comm) {
   DataParallelPlan plan;
   comm.collectively([&] {
     if (o.out.empty()) throw Error("", "--out is required", {}, "name the report's folder");
-    if (!estimators_given) o.estimators = "exact,roulette";
+    for (const auto& [flag, name] :
+         {std::pair{given.equal_time, "--equal-time"}, std::pair{given.repeats, "--repeats"}})
+      if (flag)
+        throw Error("", std::string(name) + " is not available with --data-parallel",
+                    "the data-parallel study compares at equal samples",
+                    "drop it; its rows give measured and modelled time at each --spp");
+    if (!given.estimators) o.estimators = "exact,roulette";
     o.resolve();
     for (EstimatorKind k : o.estimator_list) {
       const std::string name = estimatorName(k);
@@ -365,10 +371,11 @@ std::string studyHtml(const std::string& title, int ranks, const std::string& mo
 
 }  // namespace
 
-int runDataParallelStudy(CompareOptions& o, const DataParallelFlags& flags, bool estimators_given) {
+int runDataParallelStudy(CompareOptions& o, const DataParallelFlags& flags,
+                         const StudyFlagsGiven& given) {
   MpiComm comm(nullptr, nullptr);
   try {
-    const DataParallelPlan plan = planStudy(o, flags, estimators_given, comm);
+    const DataParallelPlan plan = planStudy(o, flags, given, comm);
     const SceneDesc& desc = plan.desc;
     const double cost_us = plan.cost_us;
     const NetworkFabric& fabric = plan.network.fabric;

@@ -2,15 +2,21 @@
 // `render-compare SCENE --data-parallel --forwarding LIST`: every forwarding policy x estimator
 // (exact, roulette) x --spp, over --seeds, rendered data-parallel by the MPI job and scored
 // against a data-parallel exact reference; the report (report.json, report.md, report.html and
-// the images) has the forward counts, bytes, messages, per-rank peak memory, measured time, MSE,
-// and efficiency measured and modelled at --forward-cost-us (docs/data_parallel.md).
+// the images) has the forward counts, bytes, messages, per-rank peak memory, measured time (on
+// shared memory, and with --emulate-network under the emulated fabric), MSE, and efficiency
+// measured and modelled on --network (docs/data_parallel.md).
 #include "distributed/data_parallel_job.h"
 #include "study/compare_options.h"
 
 namespace proxyvis {
 
-// `estimators_given`: --estimators was on the command line (else exact,roulette).
+// Which of render-compare's own flags were on the command line: --estimators (else
+// exact,roulette); --equal-time and --repeats, which the study does not do (it compares at equal
+// samples) and refuses.
+struct StudyFlagsGiven {
+  bool estimators = false, equal_time = false, repeats = false;
+};
 int runDataParallelStudy(CompareOptions& options, const DataParallelFlags& flags,
-                         bool estimators_given);
+                         const StudyFlagsGiven& given);
 
 }  // namespace proxyvis

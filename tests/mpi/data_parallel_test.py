@@ -14,7 +14,8 @@
              4 ranks, 1 and 2 threads; an emulated fabric of 20 ms per message makes the run wait
              at least its rounds' count exchanges; every row carries the fabric and the model;
              render-compare --emulate-network gives shared-memory and emulated rows side by side;
-             unknown presets, bad figures and network flags without --data-parallel exit 2
+             unknown presets, bad figures and network flags without --data-parallel exit 2, and
+             so do render-compare's --equal-time and --repeats, which the study does not do
   readme     the mpirun commands of README.md's data-parallel section run as written, in a
              folder laid out like a new clone, and the exact render equals `render`'s
   make_proxies  the test scene's proxies, made once into WORK_DIR/../proxies for the other cases
@@ -440,6 +441,13 @@ elif case == "network":
         lines = [l for l in p.stderr.splitlines() if l.strip()]
         if len(lines) != 1 or words not in lines[0] or os.path.exists(bad):
             sys.exit(f"FAIL: {flags}: expected one line with '{words}':\n{p.stderr}")
+    for flag in (["--equal-time", "2"], ["--repeats", "2"]):
+        p = run(mpirun_cmd(2) + [compare, scene, "--data-parallel", "--spp", "2", "--out",
+                                 os.path.join(work, "never"), *flag], expect=2)
+        lines = [l for l in p.stderr.splitlines() if l.strip()]
+        if len(lines) != 1 or "not available with --data-parallel" not in lines[0] or \
+                os.path.exists(os.path.join(work, "never")):
+            sys.exit(f"FAIL: render-compare --data-parallel {flag}: expected one line:\n{p.stderr}")
     p = run([render, scene, "--network", "ib-hdr", "-o", bad, "--quiet"], expect=2)
     if "needs --data-parallel" not in p.stderr or os.path.exists(bad):
         sys.exit(f"FAIL: --network without --data-parallel:\n{p.stderr}")
