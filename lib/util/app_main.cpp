@@ -10,10 +10,10 @@
 
 #include <cstdio>
 #include <cstdlib>
-#include <optional>
 #include <exception>
 #include <limits>
 #include <new>
+#include <optional>
 
 #include "util/error.h"
 #include "util/output_path.h"
