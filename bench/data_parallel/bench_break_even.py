@@ -285,8 +285,9 @@ def scene_table(label, alphas, by_alpha):
     lines = [f"### {label}", "",
              "| alpha µs | forwarding | estimator | rel. eff. measured (emulated) | "
              "rel. eff. modelled | rel. eff. measured (shm) | seconds emulated | seconds "
-             "modelled | emulated / modelled s | seconds shm | forwards / segment | MSE |",
-             "|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+             "modelled | emulated / modelled s | seconds shm | forwards / segment | mean q | "
+             "MSE |",
+             "|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for a in alphas:
         rows = by_alpha[a]
         for pol, est in [BASELINE] + SERIES:
@@ -301,7 +302,7 @@ def scene_table(label, alphas, by_alpha):
                 f"{fmt(s and s['relative_efficiency'], '.2f')} | {e['seconds']:.3f} | "
                 f"{e['modelled_seconds']:.3f} | {fmt(ratio, '.2f')} | "
                 f"{fmt(s and s['seconds'], '.3f')} | {e['forwards_per_shadow_segment']:.4f} | "
-                f"{e['mse']:.3e} |")
+                f"{e.get('mean_q', 1):.3f} | {e['mse']:.3e} |")
     return lines
 
 
@@ -363,7 +364,7 @@ def plot(label, alphas, by_alpha, bes, args, path):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    from matplotlib.ticker import FuncFormatter
+    from matplotlib.ticker import FixedLocator, FuncFormatter, NullLocator
 
     fig, ax = plt.subplots(figsize=(7.5, 4.8), dpi=110)
     colours = {("instance-boxes", "roulette"): "tab:orange", ("proxies", "exact"): "tab:blue",
@@ -388,28 +389,31 @@ def plot(label, alphas, by_alpha, bes, args, path):
         kind, a = bes[(pol, est)]["measured"]
         if kind == "at":
             ax.plot([a], [1.0], marker="*", ms=14, color=c, mec="black", mew=0.6, zorder=5)
-            ax.annotate(f"{a:.3g} µs", (a, 1.0), textcoords="offset points",
-                        xytext=(6, -14 - 11 * k),
-                        fontsize=8, color=c)
+            ax.annotate(f"{a:,.0f} µs" if a >= 100 else f"{a:.3g} µs", (a, 1.0),
+                        textcoords="offset points", xytext=(6, -14 - 11 * k), fontsize=8,
+                        color=c)
         elif kind == "always":
             ax.plot([a], [1.0], marker="<", ms=9, color=c, mec="black", mew=0.6, zorder=5)
     ax.axhline(1.0, color="black", lw=0.8)
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_ylim(lo / 1.3, hi * 1.3)
+    ax.set_ylim(lo / 1.15, hi * 1.15)
     fmt_fn = FuncFormatter(lambda v, _: f"{v:g}")
     ax.xaxis.set_major_formatter(fmt_fn)
+    ticks = [t for t in (0.1, 0.2, 0.3, 0.5, 0.6, 0.7, 0.8, 0.9, 1, 1.2, 1.5, 2, 3, 5, 10, 20, 50)
+             if lo / 1.15 <= t <= hi * 1.15]
+    ax.yaxis.set_major_locator(FixedLocator(ticks))
     ax.yaxis.set_major_formatter(fmt_fn)
-    ax.yaxis.set_minor_formatter(FuncFormatter(
-        lambda v, _: f"{v:g}" if hi / lo < 12 and round(v, 6) in (0.5, 2, 3, 5) else ""))
+    ax.yaxis.set_minor_locator(NullLocator())
     ax.set_xlabel("network latency alpha (µs per message), beta %g GB/s" % args.beta_gbps)
     ax.set_ylabel("efficiency relative to exact + instance boxes")
     ax.set_title(f"{label}: {args.ranks} ranks, {args.spp} spp x {args.seeds} seeds, "
                  f"emulated fabric on one shared 2-core host", fontsize=9)
     ax.grid(True, which="major", alpha=0.3)
     ax.legend(fontsize=7, loc="best")
-    fig.text(0.01, 0.01, "star: break-even alpha of the measured (emulated) curve; "
-             "dashed: alpha-beta model", fontsize=7, color="dimgray")
+    fig.text(0.01, 0.01, "star: break-even alpha of the measured (emulated) curve; dashed: "
+             "alpha-beta model; wall times on a shared machine: each point is noisy",
+             fontsize=7, color="dimgray")
     fig.tight_layout(rect=(0, 0.03, 1, 1))
     os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
     fig.savefig(path)
