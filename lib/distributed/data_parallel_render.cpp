@@ -144,7 +144,8 @@ class RankRender {
     timed([&] {
       call();
       if (settings_.emulate && ranks_ > 1)
-        emulated_wait_ += waitUntilSteady(entered + settings_.network.reductionSeconds(ranks_, bytes));
+        emulated_wait_ +=
+            waitUntilSteady(entered + settings_.network.reductionSeconds(ranks_, bytes));
     });
     reduction_seconds_ += ranks_ > 1 ? settings_.network.reductionSeconds(ranks_, bytes) : 0.0;
   }
@@ -154,7 +155,8 @@ class RankRender {
   // rank's measured cost of answering one (the remote trace, as another rank pays it).
   double forwardCostUs() {
     if (batch_.items == 0) return last_forward_us_;
-    const double network = settings_.network.sendSeconds(batch_.messages, batch_.bytes, batch_.items);
+    const double network =
+        settings_.network.sendSeconds(batch_.messages, batch_.bytes, batch_.items);
     const double answer = answered_items_ ? answer_seconds_ / double(answered_items_) : 0.0;
     last_forward_us_ = 1e6 * (network / double(batch_.items) + answer);
     return last_forward_us_;
@@ -293,8 +295,12 @@ class RankRender {
       answered_items_ += round.items_answered;
       answer_seconds_ += round.answer_seconds;
       const double wall = computeWall();
-      loads_.push_back({wall - last_round_wall_, round.messages_sent, round.bytes_sent,
-                        round.items_sent});
+      RoundLoad load;
+      load.request = {wall - last_round_wall_ - round.answer_seconds,
+                      round.messages_sent - round.answer_messages_sent,
+                      round.bytes_sent - round.answer_bytes_sent, round.items_sent};
+      load.answer = {round.answer_seconds, round.answer_messages_sent, round.answer_bytes_sent, 0};
+      loads_.push_back(load);
       last_round_wall_ = wall;
       batch_.messages += round.messages_sent;
       batch_.bytes += round.bytes_sent;
@@ -434,24 +440,28 @@ class RankRender {
   // Every rank's per-round loads, summed into one table (each rank fills its own rows), priced
   // on the fabric; the emulated waits.
   void modelRun(DataParallelStats& stats) {
-    constexpr size_t kFields = 4;
+    constexpr size_t kFields = 7;
     const size_t rounds = loads_.size();
     std::vector<double> table(size_t(ranks_) * rounds * kFields + size_t(ranks_), 0.0);
     for (size_t k = 0; k < rounds; ++k) {
       double* row = &table[(size_t(rank_) * rounds + k) * kFields];
-      row[0] = loads_[k].compute_seconds;
-      row[1] = double(loads_[k].messages);
-      row[2] = double(loads_[k].bytes);
-      row[3] = double(loads_[k].items);
+      const RoundLoad& l = loads_[k];
+      const double fields[kFields] = {l.request.compute_seconds, double(l.request.messages),
+                                      double(l.request.bytes),   double(l.request.items),
+                                      l.answer.compute_seconds,  double(l.answer.messages),
+                                      double(l.answer.bytes)};
+      std::copy(fields, fields + kFields, row);
     }
     table[size_t(ranks_) * rounds * kFields + size_t(rank_)] = tail_wall_;
     comm_.sum(table);
-    auto loads = std::vector<std::vector<RoundLoad>>(size_t(ranks_), std::vector<RoundLoad>(rounds));
+    auto loads =
+        std::vector<std::vector<RoundLoad>>(size_t(ranks_), std::vector<RoundLoad>(rounds));
     double tail = 0;
     for (size_t r = 0; r < size_t(ranks_); ++r) {
       for (size_t k = 0; k < rounds; ++k) {
         const double* row = &table[(r * rounds + k) * kFields];
-        loads[r][k] = {row[0], uint64_t(row[1]), uint64_t(row[2]), uint64_t(row[3])};
+        loads[r][k].request = {row[0], uint64_t(row[1]), uint64_t(row[2]), uint64_t(row[3])};
+        loads[r][k].answer = {row[4], uint64_t(row[5]), uint64_t(row[6]), 0};
       }
       tail = std::max(tail, table[size_t(ranks_) * rounds * kFields + r]);
     }
@@ -481,7 +491,7 @@ class RankRender {
   std::vector<RoundLoad> loads_;
   double last_round_wall_ = 0, tail_wall_ = 0, render_seconds_ = 0;
   // Roulette's forward cost: the current pass round's messages, answers given so far.
-  RoundLoad batch_;
+  PhaseLoad batch_;
   uint64_t answered_items_ = 0;
   double answer_seconds_ = 0;
   double last_forward_us_ = 1;

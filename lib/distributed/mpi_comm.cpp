@@ -299,6 +299,8 @@ MpiComm::RoundStats MpiComm::exchange(const std::vector<std::vector<uint8_t>>& o
         stats.answer_cpu_seconds += processCpuSeconds() - c0;
         stats.items_answered += recv_counts[r];
         enqueue(answers[r], int(r), kReplyTag, 0);
+        stats.answer_bytes_sent += answers[r].size();
+        stats.answer_messages_sent += 1;
         ++answered;
         postDue();
         continue;

@@ -94,8 +94,8 @@ class MpiComm {
   // messages leave its link one after another, each posted no earlier than alpha + bytes / beta
   // after the previous one (or after it was ready). Needs every rank on one host (oneHost()).
   struct RoundStats {
-    uint64_t items_sent = 0, bytes_sent = 0, messages_sent = 0;
-    uint64_t items_answered = 0;
+    uint64_t items_sent = 0, bytes_sent = 0, messages_sent = 0;  // requests and answers
+    uint64_t items_answered = 0, answer_bytes_sent = 0, answer_messages_sent = 0;
     uint64_t open_total = 0;  // sum of every rank's `open`
     double seconds = 0;       // wall time inside the round, answering excluded
     double answer_seconds = 0, answer_cpu_seconds = 0;  // answering (process CPU: all threads)

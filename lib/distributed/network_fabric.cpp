@@ -113,18 +113,21 @@ ModelledTime modelTime(const NetworkFabric& fabric,
   const size_t rounds = loads.empty() ? 0 : loads.front().size();
   for (const auto& rank : loads) PV_CHECK_MSG(rank.size() == rounds, "ranks disagree on rounds");
   for (size_t k = 0; k < rounds; ++k) {
-    double slowest = 0, compute = 0, messages = 0;
-    for (const auto& rank : loads) {
-      const RoundLoad& l = rank[k];
-      const double send = fabric.sendSeconds(l.messages, l.bytes, l.items);
-      slowest = std::max(slowest, l.compute_seconds + send);
-      compute = std::max(compute, l.compute_seconds);
-      messages = std::max(messages, send);
+    for (PhaseLoad RoundLoad::*phase : {&RoundLoad::request, &RoundLoad::answer}) {
+      double slowest = 0, compute = 0, messages = 0;
+      for (const auto& rank : loads) {
+        const PhaseLoad& l = rank[k].*phase;
+        const double send = fabric.sendSeconds(l.messages, l.bytes, l.items);
+        slowest = std::max(slowest, l.compute_seconds + send);
+        compute = std::max(compute, l.compute_seconds);
+        messages = std::max(messages, send);
+      }
+      t.seconds += slowest;
+      t.compute_seconds += compute;
+      t.message_seconds += messages;
     }
     const double control = fabric.collectiveSeconds(ranks);
-    t.seconds += slowest + control;
-    t.compute_seconds += compute;
-    t.message_seconds += messages;
+    t.seconds += control;
     t.control_seconds += control;
   }
   t.seconds += tail_seconds + reduction_seconds;

@@ -47,22 +47,29 @@ NetworkFabric networkFabric(const std::string& name, double alpha_us, double bet
 // `fabric` with this run's measured shared-memory figures, when it is `shm`.
 NetworkFabric withMeasured(NetworkFabric fabric, double alpha_us, double beta_gbps);
 
-// One rank's load in one exchange round: its wall time outside MPI calls since the previous
-// round (trace, route, answering), and what it sent (requests and answers).
-struct RoundLoad {
+// One rank's share of one phase of an exchange round: its wall time outside MPI calls, and the
+// messages it sent (bytes and forwarded segments in them).
+struct PhaseLoad {
   double compute_seconds = 0;
   uint64_t messages = 0, bytes = 0, items = 0;
 };
+// One rank's load in one exchange round, in its two phases: the requests (the local traces and
+// routing since the previous round, then its request messages) and the answers (the traces of
+// the requests it received, then its answer messages). An answer needs its request, so a round
+// waits for the slowest rank of each phase in turn.
+struct RoundLoad {
+  PhaseLoad request, answer;
+};
 
 // The modelled time of a run from every rank's per-round loads (loads[rank][round]; every rank
-// has the same rounds), as the sum over rounds of the slowest rank's (compute + its messages x
-// alpha + its bytes / beta), plus each round's count exchange (a collective), plus `tail`
-// (work after the last round, the slowest rank's) and `reductions` (the image and hit
+// has the same rounds): the sum over rounds and phases of the slowest rank's (compute + its
+// messages x alpha + its bytes / beta), plus each round's count exchange (a collective), plus
+// `tail` (work after the last round, the slowest rank's) and `reductions` (the hit and image
 // reductions, already priced).
 struct ModelledTime {
   double seconds = 0;
-  double compute_seconds = 0;  // sum over rounds of the slowest rank's compute
-  double message_seconds = 0;  // sum over rounds of the busiest sender's messages and bytes
+  double compute_seconds = 0;  // sum over rounds and phases of the slowest rank's compute
+  double message_seconds = 0;  // sum over rounds and phases of the busiest sender's messages
   double control_seconds = 0;  // the rounds' count exchanges and the reductions
   uint64_t rounds = 0;
 };

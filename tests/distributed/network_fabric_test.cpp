@@ -79,22 +79,28 @@ TEST(NetworkFabric, CustomFiguresAndErrors) {
   EXPECT_TRUE(fails("shm", 2, -1));  // shared memory's bandwidth is unknown until measured
 }
 
-TEST(NetworkFabric, ModelledTimeSumsTheSlowestRankPerRound) {
+TEST(NetworkFabric, ModelledTimeSumsTheSlowestRankPerRoundAndPhase) {
   NetworkFabric f;
   f.name = "test";
   f.alpha_us = 10;
   f.beta_gbps = 1;  // 1 byte per ns
-  // Two ranks, two rounds (loads[rank][round]). Round 1: rank 0 computes 1 ms and sends 2
-  // messages of 1000 bytes in all (1 + 0.02 + 0.001 ms), rank 1 computes 1.5 ms: rank 1 is the
-  // slowest. Round 2: rank 0 computes 0.1 ms and sends one message of 10^6 bytes (10 us + 1 ms),
-  // rank 1 computes 0.2 ms: rank 0 is the slowest.
-  std::vector<std::vector<RoundLoad>> loads = {{{1e-3, 2, 1000, 10}, {0.1e-3, 1, 1000000, 1}},
-                                               {{1.5e-3, 0, 0, 0}, {0.2e-3, 0, 0, 0}}};
+  // Two ranks, two rounds (loads[rank][round] = {request phase, answer phase}).
+  // Round 1, requests: rank 0 computes 1 ms and sends 2 messages of 1000 bytes in all (1 + 0.02 +
+  // 0.001 ms), rank 1 computes 1.5 ms and sends nothing: rank 1 is the slowest (1.5 ms).
+  // Round 1, answers: rank 1 answers in 0.4 ms with 2 messages of 10 bytes (0.4 + 0.02 + 0.00001
+  // ms), rank 0 answers nothing: 0.42001 ms.
+  // Round 2, requests: rank 0 computes 0.1 ms and sends one message of 10^6 bytes (10 us + 1 ms),
+  // rank 1 computes 0.2 ms: rank 0 is the slowest. No answers.
+  std::vector<std::vector<RoundLoad>> loads = {
+      {{{1e-3, 2, 1000, 10}, {}}, {{0.1e-3, 1, 1000000, 1}, {}}},
+      {{{1.5e-3, 0, 0, 0}, {0.4e-3, 2, 10, 0}}, {{0.2e-3, 0, 0, 0}, {}}}};
   const ModelledTime t = modelTime(f, loads, 0.3e-3, 5e-6);
-  const double round1 = 1.5e-3, round2 = 0.1e-3 + 10e-6 + 1e-3, control = 2 * 10e-6;
+  const double round1 = 1.5e-3 + (0.4e-3 + 20e-6 + 10e-9);
+  const double round2 = 0.1e-3 + 10e-6 + 1e-3;
+  const double control = 2 * 10e-6;
   EXPECT_NEAR(t.seconds, round1 + round2 + control + 0.3e-3 + 5e-6, 1e-12);
-  EXPECT_NEAR(t.compute_seconds, 1.5e-3 + 0.2e-3 + 0.3e-3, 1e-12);
-  EXPECT_NEAR(t.message_seconds, (20e-6 + 1e-6) + (10e-6 + 1e-3), 1e-12);
+  EXPECT_NEAR(t.compute_seconds, 1.5e-3 + 0.4e-3 + 0.2e-3 + 0.3e-3, 1e-12);
+  EXPECT_NEAR(t.message_seconds, (20e-6 + 1e-6) + (20e-6 + 10e-9) + (10e-6 + 1e-3), 1e-12);
   EXPECT_NEAR(t.control_seconds, control + 5e-6, 1e-12);
   EXPECT_EQ(t.rounds, 2u);
 }
