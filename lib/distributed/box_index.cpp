@@ -14,7 +14,8 @@ namespace {
 struct BoxContext {
   RTCIntersectContext base;  // first member: Embree's context pointer is cast back
   const LabelledBox* boxes;
-  std::vector<LabelEntry>* out;
+  std::vector<LabelEntry>* out;              // labelsAlong(): one entry per label
+  std::vector<BoxIndex::BoxEntry>* per_box;  // boxesAlong(): one entry per box (out unused)
   size_t first;
 };
 
@@ -52,6 +53,10 @@ void boxOccluded(const RTCOccludedFunctionNArguments* args) {
     t1 = std::min(t1, tb);
     if (t0 > t1) return;
   }
+  if (ctx->per_box) {
+    ctx->per_box->push_back({lb.id, lb.label, t0});
+    return;
+  }
   std::vector<LabelEntry>& out = *ctx->out;
   for (size_t k = ctx->first; k < out.size(); ++k)
     if (out[k].label == lb.label) {
@@ -62,6 +67,16 @@ void boxOccluded(const RTCOccludedFunctionNArguments* args) {
 }
 
 void boxIntersect(const RTCIntersectFunctionNArguments*) {}
+
+// Every box the segment meets gets the callback; none reports a hit.
+void traceBoxes(RTCScene scene, const Segment& s, RTCIntersectContext& ctx) {
+  RTCRay ray;
+  ray.org_x = s.org.x, ray.org_y = s.org.y, ray.org_z = s.org.z;
+  ray.dir_x = s.dir.x, ray.dir_y = s.dir.y, ray.dir_z = s.dir.z;
+  ray.tnear = s.tnear, ray.tfar = s.tfar;
+  ray.time = 0, ray.mask = ~0u, ray.id = 0, ray.flags = 0;
+  rtcOccluded1(scene, &ctx, &ray);
+}
 
 }  // namespace
 
@@ -96,13 +111,19 @@ void BoxIndex::labelsAlong(const Segment& s, std::vector<LabelEntry>& out) const
   rtcInitIntersectContext(&ctx.base);
   ctx.boxes = boxes_.data();
   ctx.out = &out;
+  ctx.per_box = nullptr;
   ctx.first = out.size();
-  RTCRay ray;
-  ray.org_x = s.org.x, ray.org_y = s.org.y, ray.org_z = s.org.z;
-  ray.dir_x = s.dir.x, ray.dir_y = s.dir.y, ray.dir_z = s.dir.z;
-  ray.tnear = s.tnear, ray.tfar = s.tfar;
-  ray.time = 0, ray.mask = ~0u, ray.id = 0, ray.flags = 0;
-  rtcOccluded1(scene_, &ctx.base, &ray);
+  traceBoxes(scene_, s, ctx.base);
+}
+
+void BoxIndex::boxesAlong(const Segment& s, std::vector<BoxEntry>& out) const {
+  BoxContext ctx;
+  rtcInitIntersectContext(&ctx.base);
+  ctx.boxes = boxes_.data();
+  ctx.out = nullptr;
+  ctx.per_box = &out;
+  ctx.first = 0;
+  traceBoxes(scene_, s, ctx.base);
 }
 
 }  // namespace proxyvis

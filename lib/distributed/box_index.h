@@ -14,6 +14,7 @@ namespace proxyvis {
 struct LabelledBox {
   Bounds3f box;
   uint32_t label = 0;
+  uint32_t id = 0;  // the caller's name for the box (an object id), reported by boxesAlong()
 };
 
 // A label with the smallest t at which the segment is inside one of its boxes.
@@ -34,6 +35,13 @@ class BoxIndex {
   // Appends one entry per label whose boxes the segment meets in [tnear, tfar] (entries appended
   // before the call are left alone). Thread-safe.
   void labelsAlong(const Segment& s, std::vector<LabelEntry>& out) const;
+  // Appends one entry per box the segment meets in [tnear, tfar], with the t at which it is
+  // first inside it, in no particular order. Thread-safe.
+  struct BoxEntry {
+    uint32_t id = 0, label = 0;
+    float t = 0;
+  };
+  void boxesAlong(const Segment& s, std::vector<BoxEntry>& out) const;
   size_t size() const { return boxes_.size(); }
 
  private:

@@ -93,7 +93,7 @@ class DistributedScene {
   // The closest hit among this rank's originals.
   Hit intersectLocal(const Segment& ray) const;
   // Remote ranks for a segment left unblocked by the local trace, under `policy` (kProxies only
-  // if hasProxyForwarding()). `scratch` and `hits` are reused.
+  // if hasProxyForwarding()). `scratch` is reused; `hits` is no longer used.
   void route(Forwarding policy, const Segment& s, std::vector<LabelEntry>& scratch,
              std::vector<TraceScene::UserHit>& hits, Route& out) const;
 
@@ -109,6 +109,8 @@ class DistributedScene {
  private:
   friend class DistributedSceneLoader;  // load()'s steps (distributed_scene.cpp)
   explicit DistributedScene(const SceneDesc& desc);
+  // route()'s kProxies part (distributed_scene.cpp says how).
+  bool routeByProxies(const Segment& s, std::vector<LabelEntry>& scratch, Route& out) const;
 
   SceneDesc desc_;
   Camera camera_;

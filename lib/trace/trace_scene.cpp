@@ -147,7 +147,60 @@ void collectFilter(const RTCFilterFunctionNArguments* args) {
   }
 }
 
+// crossedGroups(): marks the group of every candidate hit and rejects the hit, until stop_after
+// groups are found; then it accepts the hit, which ends the occlusion traversal.
+struct GroupContext {
+  RTCIntersectContext base;
+  const uint32_t* user_ids;
+  const TraceScene::Candidate* candidates;
+  size_t num_candidates;
+  uint8_t* found;
+  size_t num_found, stop_after;
+};
+
+void groupFilter(const RTCFilterFunctionNArguments* args) {
+  auto* ctx = reinterpret_cast<GroupContext*>(args->context);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    unsigned top = RTCHitN_instID(args->hit, args->N, i, 0);
+    if (top == RTC_INVALID_GEOMETRY_ID) top = RTCHitN_geomID(args->hit, args->N, i);
+    const uint32_t id = ctx->user_ids[top];
+    for (size_t k = 0; k < ctx->num_candidates; ++k) {
+      const TraceScene::Candidate& c = ctx->candidates[k];
+      if (c.user_id != id || ctx->found[c.group]) continue;
+      ctx->found[c.group] = 1;
+      ++ctx->num_found;
+    }
+    if (ctx->num_found < ctx->stop_after) args->valid[i] = 0;
+  }
+}
+
 }  // namespace
+
+size_t TraceScene::crossedGroups(const Segment& s, std::span<const Candidate> candidates,
+                                 std::span<uint8_t> found, size_t stop_after) const {
+  if (!isValid(s)) throwInvalid(s, "");
+  std::fill(found.begin(), found.end(), uint8_t(0));
+  uint32_t mask = 0;
+  for (const Candidate& c : candidates) {
+    PV_CHECK_MSG(c.group < found.size(), "crossedGroups(): a group outside found");
+    mask |= maskBit(c.user_id);
+  }
+  if (mask == 0 || stop_after == 0) return 0;
+  impl_->counters.local().add(1);
+  GroupContext ctx;
+  rtcInitIntersectContext(&ctx.base);
+  ctx.base.filter = groupFilter;
+  ctx.user_ids = impl_->user_ids.data();
+  ctx.candidates = candidates.data();
+  ctx.num_candidates = candidates.size();
+  ctx.found = found.data();
+  ctx.num_found = 0;
+  ctx.stop_after = stop_after;
+  RTCRay ray = toRtcRay(s, mask);
+  rtcOccluded1(impl_->scene, &ctx.base, &ray);
+  return ctx.num_found;
+}
 
 void TraceScene::hitsAlong(const Segment& s, std::vector<UserHit>& out) const {
   if (!isValid(s)) throwInvalid(s, "");

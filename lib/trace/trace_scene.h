@@ -162,6 +162,19 @@ class TraceScene {
     float t = 0;
   };
   void hitsAlong(const Segment& s, std::vector<UserHit>& out) const;
+  // Which groups of listed geometry the segment crosses in [tnear, tfar]: candidate i's user id
+  // belongs to group candidates[i].group (< found.size()); found[g] becomes 1 if the segment
+  // crosses geometry of a user id of group g, else 0 (as far as traced: see stop_after). Returns
+  // the number of groups found. Only geometry whose ray-mask bit a candidate shares is traversed
+  // (other geometry sharing the bit is traversed and its hits rejected), and the traversal stops
+  // as soon as stop_after groups are found, so with a few candidates this costs a small fraction
+  // of hitsAlong(). A group's crossing may be found at any of its crossings, not the nearest.
+  struct Candidate {
+    uint32_t user_id = 0;
+    uint32_t group = 0;
+  };
+  size_t crossedGroups(const Segment& s, std::span<const Candidate> candidates,
+                       std::span<uint8_t> found, size_t stop_after) const;
 
   // Box containing all geometry; for instances, the transformed corners of the prototype box.
   // Empty (Bounds3f::empty()) for an empty scene.

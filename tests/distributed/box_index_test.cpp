@@ -1,5 +1,6 @@
 // BoxIndex against a brute-force slab test in double: every label whose box a random segment
-// meets, with the entry t; segments that start or end inside a box count.
+// meets, with the entry t, and every such box (boxesAlong); segments that start or end inside a
+// box count.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -40,6 +41,7 @@ TEST(BoxIndex, AgreesWithBruteForceSlabs) {
     lb.box.extend(c - h);
     lb.box.extend(c + h);
     lb.label = uint32_t(i % 7);
+    lb.id = uint32_t(1000 + i);
     boxes.push_back(lb);
   }
   const BoxIndex index(device, boxes, 0.0f);
@@ -51,10 +53,11 @@ TEST(BoxIndex, AgreesWithBruteForceSlabs) {
         Vec3f(8 * rng.uniformFloat() - 4, 8 * rng.uniformFloat() - 4, 8 * rng.uniformFloat() - 4);
     s.tnear = 0;
     s.tfar = 1;
-    std::map<uint32_t, double> expected;
+    std::map<uint32_t, double> expected, expected_boxes;
     for (const LabelledBox& lb : boxes) {
       const double t = slab(s, lb.box);
       if (t < 0) continue;
+      expected_boxes[lb.id] = t;
       if (t == 0) ++inside_starts;
       auto it = expected.find(lb.label);
       if (it == expected.end() || t < it->second) expected[lb.label] = t;
@@ -69,6 +72,15 @@ TEST(BoxIndex, AgreesWithBruteForceSlabs) {
       ASSERT_TRUE(expected.count(e.label)) << "label " << e.label;
       EXPECT_NEAR(e.t, expected[e.label], 1e-4);
       ++compared;
+    }
+    // boxesAlong: every box once, with its label and entry t.
+    std::vector<BoxIndex::BoxEntry> per_box;
+    index.boxesAlong(s, per_box);
+    ASSERT_EQ(per_box.size(), expected_boxes.size()) << "segment " << k;
+    for (const BoxIndex::BoxEntry& e : per_box) {
+      ASSERT_TRUE(expected_boxes.count(e.id)) << "box " << e.id;
+      EXPECT_EQ(e.label, uint32_t((e.id - 1000) % 7));
+      EXPECT_NEAR(e.t, expected_boxes[e.id], 1e-4);
     }
   }
   EXPECT_GT(inside_starts, 10);  // segments starting inside boxes were exercised
