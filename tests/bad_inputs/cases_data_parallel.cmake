@@ -18,6 +18,12 @@ dp_flags(dp_estimator_not_available "--estimator culling" "--estimator culling i
 dp_flags(dp_time_budget "--time 1" "--time is not available with --data-parallel")
 dp_flags(dp_passes_per_round_zero "--passes-per-round 0" "--passes-per-round: must be in")
 dp_flags(dp_forward_cost_negative "--forward-cost-us -3" "--forward-cost-us")
+dp_flags(dp_network_unknown "--network infiniband" "--network infiniband is not a known fabric")
+dp_flags(dp_network_alpha_negative "--network-alpha-us -1" "--network-alpha-us")
+dp_flags(dp_network_beta_text "--network-beta-gbps fast" "--network-beta-gbps")
+dp_flags(dp_network_unbatched_alpha "--network unbatched-20us --network-alpha-us 2"
+  "has no alpha or beta to replace")
+dp_flags(dp_network_shm_alpha_alone "--network-alpha-us 2" "needs --network-beta-gbps too")
 dp_case(dp_garbage_mesh render
   "@CORPUS@/render_garbage_mesh.json --data-parallel -o @OUT@/x.exr --json @OUT@/x.json"
   REGEX "render_garbage\\.obj" INPUTS @CORPUS@/render_garbage_mesh.json @CORPUS@/render_garbage.obj
