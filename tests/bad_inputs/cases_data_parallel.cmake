@@ -30,6 +30,8 @@ dp_case(dp_garbage_mesh render
   OUTPUTS @OUT@/x.exr @OUT@/x.json TIMEOUT 30)
 dp_case(dp_output_is_scene render "${rs} --data-parallel -o ${rs}" REGEX "names the input"
   INPUTS ${rs} TIMEOUT 30)
+dp_case(dp_compare_equal_time render-compare "${rs} --data-parallel --equal-time 2 --out @OUT@/report"
+  REGEX "--equal-time is not available with --data-parallel" OUTPUTS @OUT@/report TIMEOUT 30)
 dp_case(dp_compare_estimator render-compare
   "${rs} --data-parallel --estimators exact,paper-equal --out @OUT@/report"
   REGEX "--estimators paper-equal is not available" OUTPUTS @OUT@/report TIMEOUT 30)
