@@ -18,6 +18,12 @@ dp_flags(dp_estimator_not_available "--estimator culling" "--estimator culling i
 dp_flags(dp_time_budget "--time 1" "--time is not available with --data-parallel")
 dp_flags(dp_passes_per_round_zero "--passes-per-round 0" "--passes-per-round: must be in")
 dp_flags(dp_forward_cost_negative "--forward-cost-us -3" "--forward-cost-us")
+dp_flags(dp_proxy_kind_inside "--proxy-kind inside" "--proxy-kind inside")
+dp_flags(dp_proxy_kind_general "--proxy-kind general" "--proxy-kind general")
+dp_flags(dp_proxy_kind_without_proxies "--forwarding instance-boxes --proxy-kind outside"
+  "--proxy-kind outside")
+dp_flags(dp_probes "--probes 8" "--probes")
+dp_flags(dp_roulette_costs "--roulette-costs 40,20,300,25,60" "--roulette-costs")
 dp_flags(dp_network_unknown "--network infiniband" "--network infiniband is not a known fabric")
 dp_flags(dp_network_alpha_negative "--network-alpha-us -1" "--network-alpha-us")
 dp_flags(dp_network_beta_text "--network-beta-gbps fast" "--network-beta-gbps")
