@@ -27,9 +27,11 @@ struct Row {
   Forwarding forwarding{};
   bool emulated = false;  // the run's exchange waited for the emulated fabric
   double mse = 0, seconds = 0;
-  ModelledTime modelled;    // means over seeds
-  DataParallelStats stats;  // of the first seed; counts summed over seeds below
-  uint64_t segments = 0, forwards = 0, bytes = 0, messages = 0, peak_rss = 0;
+  ModelledTime modelled;                // means over seeds
+  DataParallelStats stats;              // of the first seed; counts summed over seeds below
+  uint64_t segments = 0, forwards = 0;  // summed over seeds
+  uint64_t bytes = 0, messages = 0;     // per render (mean over seeds)
+  uint64_t peak_rss = 0;
   double efficiency = 0, modelled_efficiency = 0, relative = 0, modelled_relative = 0;
 };
 
@@ -255,6 +257,8 @@ class StudyRenders {
       row.modelled.message_seconds /= o_.seeds;
       row.modelled.control_seconds /= o_.seeds;
       row.modelled.rounds /= uint64_t(o_.seeds);
+      row.bytes /= uint64_t(o_.seeds);  // per render, as the table and report.json show them
+      row.messages /= uint64_t(o_.seeds);
       if (root) first_images.push_back(std::move(firsts[k]));
     }
     return rows;
@@ -300,8 +304,8 @@ nlohmann::json rowsJson(const std::vector<Row>& rows, int seeds, double cost_us)
     j["shadow_segments"] = r.segments;
     j["forwards"] = r.forwards;
     j["forwards_per_shadow_segment"] = r.segments ? double(r.forwards) / double(r.segments) : 0.0;
-    j["forward_bytes"] = r.bytes / uint64_t(seeds);
-    j["forward_messages"] = r.messages / uint64_t(seeds);
+    j["forward_bytes"] = r.bytes;
+    j["forward_messages"] = r.messages;
     j["rank_peak_rss_bytes"] = r.peak_rss;
     j["seconds"] = r.seconds;
     j["emulated"] = r.emulated;
