@@ -221,7 +221,6 @@ class RankRender {
 
   struct Scratch {
     std::vector<LabelEntry> labels;
-    std::vector<TraceScene::UserHit> user_hits;
     Route route;
   };
 
@@ -236,7 +235,7 @@ class RankRender {
     r.state[e] = kDecided;
     if (scene_.locallyOccluded(ps.segment)) return;  // V = 0
     Route& route = scratch.route;
-    scene_.route(settings_.forwarding, ps.segment, scratch.labels, scratch.user_hits, route);
+    scene_.route(settings_.forwarding, ps.segment, scratch.labels, route);
     if (route.blocked_by_inside) {  // V = 0, proved by an inside proxy
       r.outcome[e] = kBlockedByInside;
       return;

@@ -411,7 +411,7 @@ Hit DistributedScene::intersectLocal(const Segment& ray) const {
 }
 
 void DistributedScene::route(Forwarding policy, const Segment& s, std::vector<LabelEntry>& scratch,
-                             std::vector<TraceScene::UserHit>& /*hits*/, Route& out) const {
+                             Route& out) const {
   out.blocked_by_inside = false;
   out.ranks.clear();
   scratch.clear();

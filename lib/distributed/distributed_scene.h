@@ -93,9 +93,9 @@ class DistributedScene {
   // The closest hit among this rank's originals.
   Hit intersectLocal(const Segment& ray) const;
   // Remote ranks for a segment left unblocked by the local trace, under `policy` (kProxies only
-  // if hasProxyForwarding()). `scratch` is reused; `hits` is no longer used.
+  // if hasProxyForwarding()). `scratch` is reused.
   void route(Forwarding policy, const Segment& s, std::vector<LabelEntry>& scratch,
-             std::vector<TraceScene::UserHit>& hits, Route& out) const;
+             Route& out) const;
 
   // Facts for reports.
   struct Facts {
