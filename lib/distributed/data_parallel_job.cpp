@@ -176,14 +176,18 @@ nlohmann::json dataParallelRow(const std::string& estimator, Forwarding forwardi
                         {"network_upper_bound", s.network.upper_bound},
                         {"network_description", s.network.describe()},
                         {"emulated", s.emulated},
-                        {"emulated_wait_seconds", s.max_emulated_wait_seconds},
-                        {"modelled_seconds", s.modelled.seconds},
-                        {"modelled_compute_seconds", s.modelled.compute_seconds},
-                        {"modelled_message_seconds", s.modelled.message_seconds},
-                        {"modelled_control_seconds", s.modelled.control_seconds},
-                        {"modelled_rounds", s.modelled.rounds}};
+                        {"emulated_wait_seconds", s.max_emulated_wait_seconds}};
+  setModelledKeys(row, s.modelled);
   row["forward_cost_us"] = forward_cost_us >= 0 ? nlohmann::json(forward_cost_us) : nullptr;
   return row;
+}
+
+void setModelledKeys(nlohmann::json& row, const ModelledTime& modelled) {
+  row["modelled_seconds"] = modelled.seconds;
+  row["modelled_compute_seconds"] = modelled.compute_seconds;
+  row["modelled_message_seconds"] = modelled.message_seconds;
+  row["modelled_control_seconds"] = modelled.control_seconds;
+  row["modelled_rounds"] = modelled.rounds;
 }
 
 nlohmann::json rankFactsJson(const std::vector<RankFacts>& facts) {

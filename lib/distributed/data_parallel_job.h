@@ -71,6 +71,8 @@ std::vector<RankFacts> gatherRankFacts(const DistributedScene& scene,
 nlohmann::json dataParallelRow(const std::string& estimator, Forwarding forwarding,
                                const DataParallelStats& stats, double forward_cost_us);
 nlohmann::json rankFactsJson(const std::vector<RankFacts>& facts);
+// The model's keys of a row: modelled_seconds and its per-round sums.
+void setModelledKeys(nlohmann::json& row, const ModelledTime& modelled);
 
 // The ranks' peak RSS and their shares, one line each, for the human report.
 std::string rankFactsText(const std::vector<RankFacts>& facts);

@@ -105,6 +105,21 @@ NetworkFabric withMeasured(NetworkFabric fabric, double alpha_us, double beta_gb
   return fabric;
 }
 
+ModelledTime& ModelledTime::operator+=(const ModelledTime& other) {
+  seconds += other.seconds;
+  compute_seconds += other.compute_seconds;
+  message_seconds += other.message_seconds;
+  control_seconds += other.control_seconds;
+  rounds += other.rounds;
+  return *this;
+}
+
+ModelledTime ModelledTime::meanOver(int runs) const {
+  const double n = double(std::max(runs, 1));
+  return {seconds / n, compute_seconds / n, message_seconds / n, control_seconds / n,
+          rounds / uint64_t(std::max(runs, 1))};
+}
+
 ModelledTime modelTime(const NetworkFabric& fabric,
                        const std::vector<std::vector<RoundLoad>>& loads, double tail_seconds,
                        double reduction_seconds) {

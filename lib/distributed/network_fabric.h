@@ -72,6 +72,10 @@ struct ModelledTime {
   double message_seconds = 0;  // sum over rounds and phases of the busiest sender's messages
   double control_seconds = 0;  // the rounds' count exchanges and the reductions
   uint64_t rounds = 0;
+
+  // Sums and means over runs (render-compare's seeds).
+  ModelledTime& operator+=(const ModelledTime& other);
+  ModelledTime meanOver(int runs) const;
 };
 ModelledTime modelTime(const NetworkFabric& fabric,
                        const std::vector<std::vector<RoundLoad>>& loads, double tail_seconds,

@@ -237,11 +237,7 @@ class StudyRenders {
         row.emulated = row.emulated || s.emulated;
         if (root) row.mse += meanSquaredError(r.radiance.pixels, reference.pixels);
         row.seconds += s.seconds;
-        row.modelled.seconds += s.modelled.seconds;
-        row.modelled.compute_seconds += s.modelled.compute_seconds;
-        row.modelled.message_seconds += s.modelled.message_seconds;
-        row.modelled.control_seconds += s.modelled.control_seconds;
-        row.modelled.rounds += s.modelled.rounds;
+        row.modelled += s.modelled;
         row.segments += s.shadow_segments;
         row.forwards += s.forwards;
         row.bytes += s.forward_bytes;
@@ -252,11 +248,7 @@ class StudyRenders {
       Row& row = rows[k];
       row.mse /= o_.seeds;
       row.seconds /= o_.seeds;
-      row.modelled.seconds /= o_.seeds;
-      row.modelled.compute_seconds /= o_.seeds;
-      row.modelled.message_seconds /= o_.seeds;
-      row.modelled.control_seconds /= o_.seeds;
-      row.modelled.rounds /= uint64_t(o_.seeds);
+      row.modelled = row.modelled.meanOver(o_.seeds);
       row.bytes /= uint64_t(o_.seeds);  // per render, as the table and report.json show them
       row.messages /= uint64_t(o_.seeds);
       if (root) first_images.push_back(std::move(firsts[k]));
@@ -309,11 +301,7 @@ nlohmann::json rowsJson(const std::vector<Row>& rows, int seeds, double cost_us)
     j["rank_peak_rss_bytes"] = r.peak_rss;
     j["seconds"] = r.seconds;
     j["emulated"] = r.emulated;
-    j["modelled_seconds"] = r.modelled.seconds;
-    j["modelled_compute_seconds"] = r.modelled.compute_seconds;
-    j["modelled_message_seconds"] = r.modelled.message_seconds;
-    j["modelled_control_seconds"] = r.modelled.control_seconds;
-    j["modelled_rounds"] = r.modelled.rounds;
+    setModelledKeys(j, r.modelled);
     j["mse"] = r.mse;
     j["efficiency"] = r.efficiency;
     j["relative_efficiency"] = r.relative;

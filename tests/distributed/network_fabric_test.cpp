@@ -105,5 +105,17 @@ TEST(NetworkFabric, ModelledTimeSumsTheSlowestRankPerRoundAndPhase) {
   EXPECT_EQ(t.rounds, 2u);
 }
 
+TEST(NetworkFabric, ModelledTimesSumAndAverageOverRuns) {
+  ModelledTime sum;
+  sum += ModelledTime{1.0, 0.5, 0.25, 0.125, 4};
+  sum += ModelledTime{3.0, 1.5, 0.75, 0.375, 6};
+  const ModelledTime mean = sum.meanOver(2);
+  EXPECT_EQ(mean.seconds, 2.0);
+  EXPECT_EQ(mean.compute_seconds, 1.0);
+  EXPECT_EQ(mean.message_seconds, 0.5);
+  EXPECT_EQ(mean.control_seconds, 0.25);
+  EXPECT_EQ(mean.rounds, 5u);
+}
+
 }  // namespace
 }  // namespace proxyvis
