@@ -30,6 +30,10 @@ ProxyChoice chooseProxy(const SceneMeshDesc& mesh, const RenderSceneOptions& opt
 }
 
 void SceneAssembly::setProxy(size_t mesh, int proxy_index) {
+  // Both loaders call this for every mesh, and nearly always with the proxy assembleScene()
+  // requested: only a change needs the pass over the objects (10^6 instances x 10^3 meshes would
+  // otherwise cost 10^9 steps at load).
+  if (proxy[mesh] == proxy_index) return;
   proxy[mesh] = proxy_index;
   for (RenderObject& o : objects)
     if (o.mesh == mesh) o.proxy = proxy_index;
