@@ -43,7 +43,7 @@ PKGS=(
   strace  # the data-parallel tests check which files each rank opens
 )
 
-# Only for ./setup.sh fuzz: the compiler with libFuzzer and the sanitizer runtimes.
+# Only for ./setup.sh fuzz and test-sanitize: clang with libFuzzer and the sanitizer runtimes.
 FUZZ_PKGS=(clang-14 libclang-rt-14-dev)
 
 install_deps() {
@@ -92,11 +92,14 @@ build() {
   cmake --build "$BUILD_DIR" -j "$JOBS" "${targets[@]}"
 }
 
-# The sanitizer build: -O1 -g1 (line tables: readable stacks at tolerable speed, and CGAL's
-# translation units compile and link faster than with full -g; -O2 was tried: the suite ran at
-# most 8 % faster, the build from scratch took about 37 min instead of 17), NDEBUG like Release
-# so the same code is tested, benches off. Any UBSan finding aborts (no recovery), so a test
-# with one fails; ASan leak checking is on. Suppressions of third-party findings live in .ci/.
+# The sanitizer build: clang 14 (the fuzz build's compiler, so a second compiler checks the code
+# too): it compiles this tree under ASan + UBSan in about 20 min of two cores where GCC 12 took
+# about 28 (the heaviest CGAL unit 158 s against 200 s, a JSON-heavy test 18 s against 29 s;
+# scripts/build_times.py). -O1 -g1 (line tables: readable stacks at tolerable speed; -O2 was
+# tried with GCC: the suite ran at most 8 % faster, the build took twice as long), NDEBUG like
+# Release so the same code is tested, benches off. Any UBSan finding aborts (no recovery), so a
+# test with one fails; ASan leak checking is on. Suppressions of third-party findings live in
+# .ci/. PROXYVIS_ASAN_CXX=g++ PROXYVIS_ASAN_CC=gcc builds it with GCC instead.
 sanitize_env() {
   local supp="$PWD/.ci"
   export ASAN_OPTIONS="halt_on_error=1:abort_on_error=0:detect_leaks=1:detect_stack_use_after_return=0:check_initialization_order=1:suppressions=$supp/asan.supp"
@@ -109,12 +112,20 @@ sanitize_env() {
 
 build_sanitize() {
   local dir=${PROXYVIS_ASAN_BUILD_DIR:-build-asan}
+  local cxx=${PROXYVIS_ASAN_CXX:-clang++-14} cc=${PROXYVIS_ASAN_CC:-clang-14}
   local flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
   # GCC's -Wmaybe-uninitialized gives false positives on sanitizer-instrumented code (seen in
-  # OpenMesh's Property.hh); the Release build keeps the warning.
-  local warn="-Wno-maybe-uninitialized"
+  # OpenMesh's Property.hh); the Release build keeps the warning. Clang has no such option.
+  local warn=""
+  case "$cxx" in *g++*) warn="-Wno-maybe-uninitialized" ;; esac
+  # A tree configured with the other compiler starts afresh (CMake cannot switch compilers).
+  if [ -f "$dir/CMakeCache.txt" ] && ! grep -q "^CMAKE_CXX_COMPILER:[A-Z]*=.*/$cxx\$" "$dir/CMakeCache.txt"; then
+    echo "setup: $dir was configured with another compiler: removing it"
+    rm -rf "$dir"
+  fi
   sanitize_env  # the options the tests run under
   cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_C_COMPILER="$cc" \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
     -DCMAKE_CXX_FLAGS="$flags $warn" -DCMAKE_C_FLAGS="$flags $warn" \
     -DCMAKE_EXE_LINKER_FLAGS="$flags" -DCMAKE_SHARED_LINKER_FLAGS="$flags" \
@@ -209,7 +220,7 @@ case "${1:-install}" in
   test) install_deps; install_js_deps; build; run_tests "${2:-}" ;;
   test-long) install_deps; install_js_deps; build; ctest_run -L long ;;
   fuzz) install_deps; install_pkgs "${FUZZ_PKGS[@]}"; fuzz_build ;;
-  test-sanitize) install_deps; install_js_deps; build_sanitize ;;
+  test-sanitize) install_deps; install_pkgs "${FUZZ_PKGS[@]}"; install_js_deps; build_sanitize ;;
   bench-deps) install_deps; install_pkgs python3-matplotlib; npm_ci bench/vhacd_compare ;;
   *) echo "usage: $0 [install|build|demo|test|test-long|test-sanitize|fuzz|bench-deps]" >&2; exit 2 ;;
 esac

@@ -52,6 +52,64 @@ Image dataParallelExr(const DataParallelResult& r) {
   return out;
 }
 
+DataParallelSettings dataParallelSettings(const DataParallelRenderRequest& o, Forwarding forwarding,
+                                          const JobNetwork& network) {
+  DataParallelSettings settings;
+  settings.forwarding = forwarding;
+  settings.roulette = o.estimator == "roulette";
+  settings.spp = o.spp;
+  // Seed index 0 of --seed, as render and render-compare: the images agree.
+  settings.seed = hashKeys(o.common.seed, 0);
+  settings.passes_per_round = o.data_parallel.passes_per_round;
+  settings.q_min = o.render.q_min;
+  settings.forward_cost_us = o.data_parallel.forward_cost_us;
+  settings.local_cost_us = o.data_parallel.local_cost_us;
+  settings.network = network.fabric;
+  settings.emulate = network.emulate;
+  settings.quiet = o.common.quiet;
+  return settings;
+}
+
+// The --json summary: the data-parallel row with what this run rendered.
+nlohmann::json renderSummary(const DataParallelRenderRequest& o, const SceneDesc& desc,
+                             Forwarding forwarding, const DataParallelResult& result,
+                             const std::vector<RankFacts>& facts, const std::string& build) {
+  nlohmann::json summary =
+      dataParallelRow(o.estimator, forwarding, result.stats, o.data_parallel.forward_cost_us);
+  summary["program"] = "render";
+  summary["scene"] = desc.path.string();
+  summary["output"] = o.output.string();
+  summary["spp"] = result.spp;
+  summary["seed"] = o.common.seed;
+  summary["width"] = result.radiance.width;
+  summary["height"] = result.radiance.height;
+  summary["threads"] =
+      int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+  summary["scene_build"] = build;
+  summary["per_rank"] = rankFactsJson(facts);
+  summary["build"] = buildText();
+  summary["version"] = versionText();
+  return summary;
+}
+
+std::string renderReportText(const DataParallelRenderRequest& o, Forwarding forwarding,
+                             const DataParallelResult& result, const std::vector<RankFacts>& facts,
+                             int ranks) {
+  const DataParallelStats& s = result.stats;
+  return fmt::format(
+      "render: wrote {}: {} with --forwarding {} on {} rank{}, {} spp in {:.2f} s\n"
+      "  shadow segments {}: {:.4f} forwards each ({} forwards, {:.1f} MB in {} "
+      "messages over {} rounds); blocked here {}, by inside proxies {}, "
+      "undecided {}\n  network {}{}: modelled {:.3f} s (compute {:.3f} s, "
+      "messages {:.3f} s, counts and reductions {:.3f} s)\n{}",
+      o.output.string(), o.estimator, forwardingName(forwarding), ranks, ranks == 1 ? "" : "s",
+      result.spp, s.seconds, s.shadow_segments, s.forwardsPerSegment(), s.forwards,
+      1e-6 * double(s.forward_bytes), s.forward_messages, s.rounds, s.blocked_locally,
+      s.blocked_by_inside, s.undecided, s.network.describe(),
+      s.emulated ? ", emulated in the run" : "", s.modelled.seconds, s.modelled.compute_seconds,
+      s.modelled.message_seconds, s.modelled.control_seconds, rankFactsText(facts));
+}
+
 }  // namespace
 
 int runDataParallelRender(DataParallelRenderRequest& o) {
@@ -94,19 +152,7 @@ int runDataParallelRender(DataParallelRenderRequest& o) {
       if (root) image_module.get();
     });
 
-    DataParallelSettings settings;
-    settings.forwarding = forwarding;
-    settings.roulette = o.estimator == "roulette";
-    settings.spp = o.spp;
-    // Seed index 0 of --seed, as render and render-compare: the images agree.
-    settings.seed = hashKeys(o.common.seed, 0);
-    settings.passes_per_round = o.data_parallel.passes_per_round;
-    settings.q_min = o.render.q_min;
-    settings.forward_cost_us = o.data_parallel.forward_cost_us;
-    settings.local_cost_us = o.data_parallel.local_cost_us;
-    settings.network = network.fabric;
-    settings.emulate = network.emulate;
-    settings.quiet = o.common.quiet;
+    const DataParallelSettings settings = dataParallelSettings(o, forwarding, network);
     const DataParallelResult result = renderDataParallel(*scene, settings, comm);
     const std::vector<RankFacts> facts = gatherRankFacts(*scene, result.stats, comm);
     if (!root) return kExitOk;
@@ -117,44 +163,15 @@ int runDataParallelRender(DataParallelRenderRequest& o) {
     const RenderImageFile file = renderImageFile(
         format, result.radiance, [&] { return dataParallelExr(result); },
         {"R", "G", "B", "visibility.Y", "forwards.Y", "rank.Y"}, renderAttributes(desc, meta));
-    nlohmann::json summary =
-        dataParallelRow(o.estimator, forwarding, result.stats, o.data_parallel.forward_cost_us);
-    summary["program"] = "render";
-    summary["scene"] = desc.path.string();
-    summary["output"] = o.output.string();
-    summary["spp"] = result.spp;
-    summary["seed"] = o.common.seed;
-    summary["width"] = result.radiance.width;
-    summary["height"] = result.radiance.height;
-    summary["threads"] =
-        int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
-    summary["scene_build"] = scene->buildChoice().name();
-    summary["per_rank"] = rankFactsJson(facts);
-    summary["build"] = buildText();
-    summary["version"] = versionText();
-
+    const nlohmann::json summary =
+        renderSummary(o, desc, forwarding, result, facts, scene->buildChoice().name());
     OutputSet outputs(MissingFolders::kCreate);
     outputs.add(o.output,
                 [&](const std::filesystem::path& tmp) { writeImage(file.image, tmp, file.write); });
     if (!o.common.json_path.empty()) outputs.addText(o.common.json_path, summary.dump(2) + "\n");
     outputs.commit();
 
-    const DataParallelStats& s = result.stats;
-    printHumanReport(
-        o.common,
-        fmt::format("render: wrote {}: {} with --forwarding {} on {} rank{}, {} spp in {:.2f} s\n"
-                    "  shadow segments {}: {:.4f} forwards each ({} forwards, {:.1f} MB in {} "
-                    "messages over {} rounds); blocked here {}, by inside proxies {}, "
-                    "undecided {}\n  network {}{}: modelled {:.3f} s (compute {:.3f} s, "
-                    "messages {:.3f} s, counts and reductions {:.3f} s)\n{}",
-                    o.output.string(), o.estimator, forwardingName(forwarding), comm.size(),
-                    comm.size() == 1 ? "" : "s", result.spp, s.seconds, s.shadow_segments,
-                    s.forwardsPerSegment(), s.forwards, 1e-6 * double(s.forward_bytes),
-                    s.forward_messages, s.rounds, s.blocked_locally, s.blocked_by_inside,
-                    s.undecided, s.network.describe(),
-                    s.emulated ? ", emulated in the run" : "", s.modelled.seconds,
-                    s.modelled.compute_seconds, s.modelled.message_seconds,
-                    s.modelled.control_seconds, rankFactsText(facts)));
+    printHumanReport(o.common, renderReportText(o, forwarding, result, facts, comm.size()));
     return kExitOk;
   } catch (const ReportedOnAnotherRank&) {
     return kExitOk;  // rank 0 reports the job's error and exit code (see ReportedOnAnotherRank)

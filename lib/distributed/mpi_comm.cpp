@@ -187,6 +187,88 @@ std::pair<double, double> MpiComm::measureFabric() const {
   return {result[0], result[1]};
 }
 
+namespace {
+
+// One round's control message per rank pair: the count of requests, the sender's open segments
+// and the time it entered the round (all sent in one all-to-all).
+struct RoundControl {
+  std::vector<uint64_t> send_counts, recv_counts;
+  uint64_t open_total = 0;
+  uint64_t last_entered_ns = 0;
+};
+
+RoundControl exchangeControl(const std::vector<std::vector<uint8_t>>& outbox, size_t bytes_per_item,
+                             uint64_t open, double entered) {
+  constexpr size_t kControl = 3;
+  const size_t n = outbox.size();
+  std::vector<uint64_t> send(n * kControl), recv(n * kControl);
+  RoundControl c;
+  c.send_counts.resize(n);
+  c.recv_counts.resize(n);
+  for (size_t r = 0; r < n; ++r) {
+    c.send_counts[r] = outbox[r].size() / bytes_per_item;
+    send[r * kControl] = c.send_counts[r];
+    send[r * kControl + 1] = open;
+    send[r * kControl + 2] = uint64_t(std::llround(1e9 * entered));
+  }
+  MPI_Alltoall(send.data(), int(kControl), MPI_UINT64_T, recv.data(), int(kControl), MPI_UINT64_T,
+               MPI_COMM_WORLD);
+  for (size_t r = 0; r < n; ++r) {
+    c.recv_counts[r] = recv[r * kControl];
+    c.open_total += recv[r * kControl + 1];
+    c.last_entered_ns = std::max(c.last_entered_ns, recv[r * kControl + 2]);
+  }
+  return c;
+}
+
+// This rank's outgoing link: messages leave in order, each once the (emulated) link has carried
+// it; without emulation each leaves at once.
+class OutgoingLink {
+ public:
+  OutgoingLink(const NetworkFabric* emulate, double free_at, MpiComm::RoundStats& stats)
+      : emulate_(emulate), free_at_(free_at), stats_(stats) {}
+
+  void enqueue(const std::vector<uint8_t>& data, int to, int tag, uint64_t items) {
+    double release = 0;
+    if (emulate_) {
+      free_at_ = std::max(free_at_, now()) + emulate_->messageSeconds(data.size(), items);
+      release = free_at_;
+    }
+    queue_.push_back({release, &data, to, tag});
+    stats_.bytes_sent += data.size();
+    stats_.messages_sent += 1;
+  }
+
+  // Posts every message whose release time has come.
+  void postDue() {
+    while (!queue_.empty() && queue_.front().release <= now()) {
+      const Outgoing& o = queue_.front();
+      sends_.emplace_back();
+      MPI_Isend(o.data->data(), checkedCount(o.data->size()), MPI_BYTE, o.to, o.tag, MPI_COMM_WORLD,
+                &sends_.back());
+      queue_.pop_front();
+    }
+  }
+
+  bool holding() const { return !queue_.empty(); }
+  double nextRelease() const { return queue_.front().release; }
+  void waitSent() { MPI_Waitall(int(sends_.size()), sends_.data(), MPI_STATUSES_IGNORE); }
+
+ private:
+  struct Outgoing {
+    double release;
+    const std::vector<uint8_t>* data;
+    int to, tag;
+  };
+  const NetworkFabric* emulate_;
+  double free_at_;
+  MpiComm::RoundStats& stats_;
+  std::deque<Outgoing> queue_;
+  std::vector<MPI_Request> sends_;
+};
+
+}  // namespace
+
 MpiComm::RoundStats MpiComm::exchange(const std::vector<std::vector<uint8_t>>& outbox,
                                       size_t bytes_per_item, uint64_t open, Answer answer,
                                       void* context, std::vector<std::vector<uint8_t>>& replies,
@@ -195,30 +277,12 @@ MpiComm::RoundStats MpiComm::exchange(const std::vector<std::vector<uint8_t>>& o
   const double start = now();
   const size_t n = size_t(size_);
   PV_CHECK(outbox.size() == n);
-  // Per rank pair: the count of requests, the sender's open segments and the time it entered.
-  constexpr size_t kControl = 3;
-  std::vector<uint64_t> send_control(n * kControl), recv_control(n * kControl);
-  std::vector<uint64_t> send_counts(n), recv_counts(n);
-  const auto entered = uint64_t(std::llround(1e9 * start));
-  for (size_t r = 0; r < n; ++r) {
-    send_counts[r] = outbox[r].size() / bytes_per_item;
-    send_control[r * kControl] = send_counts[r];
-    send_control[r * kControl + 1] = open;
-    send_control[r * kControl + 2] = entered;
-  }
-  MPI_Alltoall(send_control.data(), int(kControl), MPI_UINT64_T, recv_control.data(), int(kControl),
-               MPI_UINT64_T, MPI_COMM_WORLD);
-  uint64_t last_entered = 0;
-  for (size_t r = 0; r < n; ++r) {
-    recv_counts[r] = recv_control[r * kControl];
-    stats.open_total += recv_control[r * kControl + 1];
-    last_entered = std::max(last_entered, recv_control[r * kControl + 2]);
-  }
-  // This rank's link: free again at `link` (emulated fabric only).
-  double link = 0;
+  const RoundControl control = exchangeControl(outbox, bytes_per_item, open, start);
+  stats.open_total = control.open_total;
+  double link_free = 0;
   if (emulate) {
-    link = 1e-9 * double(last_entered) + emulate->collectiveSeconds(size_);
-    stats.emulated_wait_seconds += waitUntilSteady(link);
+    link_free = 1e-9 * double(control.last_entered_ns) + emulate->collectiveSeconds(size_);
+    stats.emulated_wait_seconds += waitUntilSteady(link_free);
   }
   replies.assign(n, {});
   if (stats.open_total == 0) {  // nothing pending anywhere: every count is 0
@@ -228,49 +292,24 @@ MpiComm::RoundStats MpiComm::exchange(const std::vector<std::vector<uint8_t>>& o
 
   // Requests in.
   std::vector<std::vector<uint8_t>> inbox(n);
-  std::vector<MPI_Request> recv_req, send_req;
+  std::vector<MPI_Request> recv_req;
   std::vector<int> recv_from;
   for (size_t r = 0; r < n; ++r) {
-    if (recv_counts[r] == 0) continue;
-    inbox[r].resize(recv_counts[r] * bytes_per_item);
+    if (control.recv_counts[r] == 0) continue;
+    inbox[r].resize(control.recv_counts[r] * bytes_per_item);
     recv_req.emplace_back();
     recv_from.push_back(int(r));
     MPI_Irecv(inbox[r].data(), checkedCount(inbox[r].size()), MPI_BYTE, int(r), kRequestTag,
               MPI_COMM_WORLD, &recv_req.back());
   }
-
-  // Messages out leave in order, each once the (emulated) link has carried it.
-  struct Outgoing {
-    double release;
-    const std::vector<uint8_t>* data;
-    int to, tag;
-  };
-  std::deque<Outgoing> queue;
-  auto enqueue = [&](const std::vector<uint8_t>& data, int to, int tag, uint64_t items) {
-    double release = 0;
-    if (emulate) {
-      link = std::max(link, now()) + emulate->messageSeconds(data.size(), items);
-      release = link;
-    }
-    queue.push_back({release, &data, to, tag});
-    stats.bytes_sent += data.size();
-    stats.messages_sent += 1;
-  };
-  auto postDue = [&] {
-    while (!queue.empty() && queue.front().release <= now()) {
-      const Outgoing& o = queue.front();
-      send_req.emplace_back();
-      MPI_Isend(o.data->data(), checkedCount(o.data->size()), MPI_BYTE, o.to, o.tag, MPI_COMM_WORLD,
-                &send_req.back());
-      queue.pop_front();
-    }
-  };
+  // Requests out, and their answers in.
+  OutgoingLink link(emulate, link_free, stats);
   std::vector<MPI_Request> reply_recv;
   for (size_t r = 0; r < n; ++r) {
-    if (send_counts[r] == 0) continue;
-    enqueue(outbox[r], int(r), kRequestTag, send_counts[r]);
-    stats.items_sent += send_counts[r];
-    replies[r].resize(send_counts[r]);
+    if (control.send_counts[r] == 0) continue;
+    link.enqueue(outbox[r], int(r), kRequestTag, control.send_counts[r]);
+    stats.items_sent += control.send_counts[r];
+    replies[r].resize(control.send_counts[r]);
     reply_recv.emplace_back();
     MPI_Irecv(replies[r].data(), checkedCount(replies[r].size()), MPI_BYTE, int(r), kReplyTag,
               MPI_COMM_WORLD, &reply_recv.back());
@@ -278,12 +317,23 @@ MpiComm::RoundStats MpiComm::exchange(const std::vector<std::vector<uint8_t>>& o
 
   // Answer each sender as its requests arrive, and send the answers back.
   std::vector<std::vector<uint8_t>> answers(n);
+  auto answerFrom = [&](size_t r) {
+    const double t0 = now(), c0 = processCpuSeconds();
+    answers[r].resize(control.recv_counts[r]);
+    answer(context, inbox[r].data(), control.recv_counts[r], answers[r].data());
+    stats.answer_seconds += now() - t0;
+    stats.answer_cpu_seconds += processCpuSeconds() - c0;
+    stats.items_answered += control.recv_counts[r];
+    link.enqueue(answers[r], int(r), kReplyTag, 0);
+    stats.answer_bytes_sent += answers[r].size();
+    stats.answer_messages_sent += 1;
+  };
   size_t answered = 0;
-  postDue();
-  while (answered < recv_req.size() || !queue.empty()) {
+  link.postDue();
+  while (answered < recv_req.size() || link.holding()) {
     if (answered < recv_req.size()) {
       int index = MPI_UNDEFINED, arrived = 0;
-      if (queue.empty()) {
+      if (!link.holding()) {
         MPI_Waitany(int(recv_req.size()), recv_req.data(), &index, MPI_STATUS_IGNORE);
         arrived = index != MPI_UNDEFINED;
       } else {
@@ -291,31 +341,21 @@ MpiComm::RoundStats MpiComm::exchange(const std::vector<std::vector<uint8_t>>& o
         arrived = arrived && index != MPI_UNDEFINED;
       }
       if (arrived) {
-        const size_t r = size_t(recv_from[size_t(index)]);
-        const double t0 = now(), c0 = processCpuSeconds();
-        answers[r].resize(recv_counts[r]);
-        answer(context, inbox[r].data(), recv_counts[r], answers[r].data());
-        stats.answer_seconds += now() - t0;
-        stats.answer_cpu_seconds += processCpuSeconds() - c0;
-        stats.items_answered += recv_counts[r];
-        enqueue(answers[r], int(r), kReplyTag, 0);
-        stats.answer_bytes_sent += answers[r].size();
-        stats.answer_messages_sent += 1;
+        answerFrom(size_t(recv_from[size_t(index)]));
         ++answered;
-        postDue();
+        link.postDue();
         continue;
       }
     }
-    if (!queue.empty()) {
+    if (link.holding()) {
       // Hold the next message back until its release, polling for requests meanwhile.
-      const double until = answered < recv_req.size()
-                               ? std::min(queue.front().release, now() + 50e-6)
-                               : queue.front().release;
+      const double until = answered < recv_req.size() ? std::min(link.nextRelease(), now() + 50e-6)
+                                                      : link.nextRelease();
       stats.emulated_wait_seconds += waitUntilSteady(until);
-      postDue();
+      link.postDue();
     }
   }
-  MPI_Waitall(int(send_req.size()), send_req.data(), MPI_STATUSES_IGNORE);
+  link.waitSent();
   MPI_Waitall(int(reply_recv.size()), reply_recv.data(), MPI_STATUSES_IGNORE);
   stats.seconds = now() - start - stats.answer_seconds;
   return stats;

@@ -26,6 +26,10 @@ using Vector3 = Kernel::Vector_3;
 using SurfaceMesh = CGAL::Surface_mesh<Point3>;
 using SoupTriangle = std::array<std::size_t, 3>;
 
+inline Point3 toPoint(const Vec3d& v) {
+  return {v.x, v.y, v.z};
+}
+
 // A triangle soup in CGAL's types. Polygon is SoupTriangle, or std::vector<std::size_t> for
 // repair_polygon_soup (which misbehaves on std::array soups in CGAL 5.5).
 template <typename Polygon = SoupTriangle>

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "metrics/log_plot.h"
+#include "util/escape_html.h"
 
 namespace proxyvis {
 

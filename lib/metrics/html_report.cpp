@@ -8,6 +8,7 @@
 #include "metrics/efficiency_spread.h"
 #include "metrics/image_error.h"
 #include "metrics/report_labels.h"
+#include "util/escape_html.h"
 
 namespace proxyvis {
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include "util/escape_html.h"
 
 namespace proxyvis {
 
@@ -124,33 +125,6 @@ std::string markerSvg(MarkerShape shape, double x, double y, double r, const std
                                  y - r, x + r, y + r, x - r, y + r, x + r, y - r));
   }
   return {};
-}
-
-std::string escapeHtml(const std::string& text) {
-  std::string out;
-  out.reserve(text.size());
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&#39;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
 }
 
 namespace {

@@ -56,7 +56,4 @@ std::string markerSvg(MarkerShape shape, double x, double y, double r, const std
 // An <svg> element; a plot without any positive point shows a "no data" note.
 std::string logLogPlotSvg(const LogLogPlot& plot);
 
-// Escapes &, <, >, " and ' for HTML/SVG text and attributes.
-std::string escapeHtml(const std::string& text);
-
 }  // namespace proxyvis

@@ -16,16 +16,16 @@ namespace proxyvis {
 
 namespace fs = std::filesystem;
 // Ordered: keys are written in the order of scenes/FORMAT.md and the hand-written scenes.
-using json = nlohmann::ordered_json;
+using OrderedJson = nlohmann::ordered_json;  // keys in the order written
 
 namespace {
 
-json toJson(const Vec3f& v) {
-  return json::array({v.x, v.y, v.z});
+OrderedJson toJson(const Vec3f& v) {
+  return OrderedJson::array({v.x, v.y, v.z});
 }
 
-json toJson(const Affine3f& a) {
-  json m = json::array();
+OrderedJson toJson(const Affine3f& a) {
+  OrderedJson m = OrderedJson::array();
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 4; ++j) m.push_back(a.m[i][j]);
   for (float v : {0.f, 0.f, 0.f, 1.f}) m.push_back(v);
@@ -41,10 +41,10 @@ std::string relativePath(const fs::path& file, const fs::path& dir) {
 
 // Every light is written as a triangle list, which keeps the vertices bit-exact (a quad's
 // corner and edges cannot be recovered exactly from its float triangles).
-json lightToJson(const AreaLightDesc& l) {
-  json tris = json::array();
+OrderedJson lightToJson(const AreaLightDesc& l) {
+  OrderedJson tris = OrderedJson::array();
   for (const auto& t : l.triangles)
-    tris.push_back(json::array({toJson(t[0]), toJson(t[1]), toJson(t[2])}));
+    tris.push_back(OrderedJson::array({toJson(t[0]), toJson(t[1]), toJson(t[2])}));
   return {{"type", "triangles"}, {"triangles", tris}, {"radiance", toJson(l.radiance)}};
 }
 
@@ -59,8 +59,9 @@ std::string instanceLines(const SceneDesc& scene) {
   return out;
 }
 
-json sceneToJson(const SceneDesc& scene, const fs::path& dir, const fs::path& instances_file) {
-  json root;
+OrderedJson sceneToJson(const SceneDesc& scene, const fs::path& dir,
+                        const fs::path& instances_file) {
+  OrderedJson root;
   if (!scene.name.empty()) root["name"] = scene.name;
   if (!scene.description.empty()) root["description"] = scene.description;
   const CameraDesc& c = scene.camera;
@@ -69,20 +70,20 @@ json sceneToJson(const SceneDesc& scene, const fs::path& dir, const fs::path& in
                     {"up", toJson(c.up)},
                     {"fov_deg", c.fov_deg},
                     {"resolution", {c.width, c.height}}};
-  json lights = json::array();
+  OrderedJson lights = OrderedJson::array();
   for (const AreaLightDesc& l : scene.lights) lights.push_back(lightToJson(l));
   root["lights"] = lights;
-  json meshes = json::array();
+  OrderedJson meshes = OrderedJson::array();
   for (const SceneMeshDesc& m : scene.meshes) {
-    json jm = {{"name", m.name}, {"file", relativePath(m.file, dir)}};
+    OrderedJson jm = {{"name", m.name}, {"file", relativePath(m.file, dir)}};
     if (m.gltf_mesh >= 0) jm["gltf_mesh"] = m.gltf_mesh;
-    jm.update(
-        json{{"albedo", toJson(m.albedo)}, {"transform", toJson(m.transform)}, {"place", m.place}});
+    jm.update(OrderedJson{
+        {"albedo", toJson(m.albedo)}, {"transform", toJson(m.transform)}, {"place", m.place}});
     if (!m.make_proxy) jm["make_proxy"] = false;
     if (m.proxy_max_faces) jm["proxy_max_faces"] = *m.proxy_max_faces;
-    json proxies = json::array();
+    OrderedJson proxies = OrderedJson::array();
     for (const ProxyRef& p : m.proxies) {
-      json jp = {{"kind", p.kind}};
+      OrderedJson jp = {{"kind", p.kind}};
       if (!p.method.empty()) jp["method"] = p.method;
       jp["file"] = relativePath(p.file, dir);
       if (p.verified_class) jp["class"] = proxyClassName(*p.verified_class);
@@ -109,9 +110,9 @@ void saveSceneDesc(const SceneDesc& scene, const fs::path& path) {
     writeTextAtomically(instances_file, instanceLines(scene));
   }
   // A derived scene (proxy-gen's DIR/scene.json) keeps the title of the scene it came from.
-  json root = sceneToJson(scene, dir, instances_file);
+  OrderedJson root = sceneToJson(scene, dir, instances_file);
   if (scene.name.empty() && !scene.path.empty()) {
-    json named = {{"name", scene.displayName()}};
+    OrderedJson named = {{"name", scene.displayName()}};
     named.update(root);
     root = std::move(named);
   }
@@ -124,7 +125,7 @@ std::string sceneHash(const SceneDesc& scene) {
   // Hashed with sorted keys and full doubles, as before the file kept its key order, so that
   // cached references stay valid.
   // The name is only a title: renaming a scene keeps its cached references.
-  json canonical = sceneToJson(scene, scene.path.parent_path(), scene.instances_file);
+  OrderedJson canonical = sceneToJson(scene, scene.path.parent_path(), scene.instances_file);
   canonical.erase("name");
   fnv.add(nlohmann::json::parse(canonical.dump()).dump());
   std::vector<fs::path> files;

@@ -2,8 +2,13 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 
 namespace proxyvis {
+
+std::string systemError(int err) {
+  return err == 0 ? std::string("unknown error") : std::string(std::strerror(err));
+}
 
 std::string printableText(std::string_view text) {
   static const char* kHex = "0123456789abcdef";

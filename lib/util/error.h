@@ -14,6 +14,9 @@ enum ExitCode : int { kExitOk = 0, kExitCheckFailed = 1, kExitBadInput = 2, kExi
 // text whatever a file name or a corrupt file's bytes contain.
 std::string printableText(std::string_view text);
 
+// strerror(err) as a string, or "unknown error" for 0 (a failure that set no errno).
+std::string systemError(int err);
+
 // A bad-input error. The message reads "FILE: WHAT; WHY (TODO)" and is printed as one line; bytes
 // that are not printable ASCII (in file names, in text quoted from a file) appear as \xNN.
 // `file` may be empty for errors that are not about a file (e.g. a bad flag value).

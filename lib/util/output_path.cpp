@@ -33,10 +33,6 @@ std::optional<int> streamDescriptor(const std::string& p) {
   return std::nullopt;
 }
 
-std::string systemError(int err) {
-  return err == 0 ? std::string("unknown error") : std::string(std::strerror(err));
-}
-
 // The nearest folder of `dir` or its ancestors that exists (what a create_directories of `dir`
 // would create in).
 fs::path nearestExisting(fs::path dir) {

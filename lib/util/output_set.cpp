@@ -18,10 +18,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string systemError(int err) {
-  return err == 0 ? std::string("unknown error") : std::string(std::strerror(err));
-}
-
 // Writes all of `data` to `fd`, retrying short writes; returns 0 or the errno of the failure.
 int writeAll(int fd, const char* data, size_t size) {
   while (size > 0) {

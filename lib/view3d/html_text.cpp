@@ -32,24 +32,6 @@ std::string base64(const void* data, size_t bytes) {
   return out;
 }
 
-std::string escapeHtml(const std::string& text) {
-  std::string out;
-  out.reserve(text.size());
-  for (char c : text) {
-    const char* entity = c == '&'    ? "&amp;"
-                         : c == '<'  ? "&lt;"
-                         : c == '>'  ? "&gt;"
-                         : c == '"'  ? "&quot;"
-                         : c == '\'' ? "&#39;"
-                                     : nullptr;
-    if (entity)
-      out += entity;
-    else
-      out += c;
-  }
-  return out;
-}
-
 std::string jsonForScript(const nlohmann::json& json) {
   // Invalid UTF-8 (a file name) becomes U+FFFD instead of an exception.
   const std::string text = json.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cctype>
 
+#include "util/escape_html.h"
 #include "view3d/internal/html_text.h"
 
 namespace proxyvis::detail {

@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "util/error.h"
+#include "util/escape_html.h"
 #include "view3d/internal/html_text.h"
 #include "view3d/internal/summary_tables.h"
 #include "view3d/internal/view3d_assets.h"
@@ -22,7 +23,6 @@ static_assert(std::endian::native == std::endian::little,
 
 namespace {
 
-using detail::escapeHtml;
 using detail::withThousands;
 
 // An embedded file, checked to be one that can sit inside a <script> or <style> element.

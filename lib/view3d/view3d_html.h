@@ -53,8 +53,6 @@ std::string view3dHtml(const View3dPage& page, const View3dLimits& limits = {});
 // Helpers of the page writer, exposed for tests.
 namespace detail {
 std::string base64(const void* data, size_t bytes);
-// `text` with &, <, >, " and ' as character references.
-std::string escapeHtml(const std::string& text);
 // JSON text that is safe inside <script>: every '<' written as \u003c.
 std::string jsonForScript(const nlohmann::json& json);
 }  // namespace detail

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "mesh/tri_mesh.h"
+#include "util/proxy_class.h"
 
 namespace proxyvis {
 
@@ -23,6 +24,12 @@ enum class ContainmentVerdict {
 };
 
 const char* containmentName(ContainmentVerdict v);  // "contains", "contained", ...
+
+// The verdict that proves `kind` (outside or inside): contains, or contained.
+inline ContainmentVerdict expectedVerdict(ProxyClass kind) {
+  return kind == ProxyClass::kOutside ? ContainmentVerdict::kContains
+                                      : ContainmentVerdict::kContained;
+}
 
 struct ContainmentResult {
   ContainmentVerdict verdict = ContainmentVerdict::kUndecidable;

@@ -158,7 +158,11 @@ size_t QemDecimater::decimateToFaces(size_t faces, float mc_factor) {
     // MixedDecimaterT's split, in its own arithmetic (float).
     const size_t mesh_faces = mesh_.n_faces(), mesh_vertices = mesh_.n_vertices();
     const size_t vertices_mc = static_cast<size_t>(mesh_vertices - mc_factor * mesh_vertices);
-    const size_t faces_mc = static_cast<size_t>(mesh_faces - mc_factor * (mesh_faces - faces));
+    // A budget at or above the mesh's faces asks for no collapse (mesh_faces - faces would wrap
+    // around, and its float product overflow size_t: undefined).
+    const size_t faces_mc =
+        faces >= mesh_faces ? mesh_faces
+                            : static_cast<size_t>(mesh_faces - mc_factor * (mesh_faces - faces));
     collapses += multipleChoice(vertices_mc, faces_mc);
   }
   mesh_.garbage_collection();

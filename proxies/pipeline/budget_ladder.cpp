@@ -13,11 +13,6 @@
 namespace proxyvis {
 namespace {
 
-ContainmentVerdict expectedVerdict(ProxyClass kind) {
-  return kind == ProxyClass::kOutside ? ContainmentVerdict::kContains
-                                      : ContainmentVerdict::kContained;
-}
-
 bool withinBudget(const BudgetContext& ctx, const VerifiedCandidate& c) {
   return ctx.max_faces == 0 || c.faces() <= ctx.max_faces;
 }

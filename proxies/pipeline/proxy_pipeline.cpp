@@ -223,11 +223,6 @@ VerifiedCandidate chooseWithinBudget(BudgetContext& ctx, VerifiedCandidate chose
   return chosen;
 }
 
-ContainmentVerdict expectedVerdict(ProxyClass kind) {
-  return kind == ProxyClass::kOutside ? ContainmentVerdict::kContains
-                                      : ContainmentVerdict::kContained;
-}
-
 // The checks of the chosen proxy in the report; true when they all hold.
 bool recordChecks(ProxyReport& report, const VerifiedCandidate& chosen, ProxyClass kind) {
   const MeshReport& r = chosen.report;

@@ -360,9 +360,11 @@ TEST(GltfLoader, CorruptGlbContainersAreRefused) {
       {with(16, 0x004E4942), "GLB chunk 0 is not JSON"},
       {with(4, 1), "GLB version 1"},
       {"{\"asset\":{\"version\":\"2.0\"}}", "not a GLB file"}};
-  for (const auto& [bytes, expected] : cases)
-    EXPECT_NE(errorOf([&] { parseMeshBytes(bytes, "c.glb"); }).find(expected), std::string::npos)
-        << expected;
+  for (const auto& c : cases) {
+    const std::string& bytes = c.first;  // a lambda cannot capture a structured binding in clang 14
+    EXPECT_NE(errorOf([&] { parseMeshBytes(bytes, "c.glb"); }).find(c.second), std::string::npos)
+        << c.second;
+  }
 }
 
 TEST(GltfLoader, AccessorsAndIndicesOutsideTheirDataAreRefused) {

@@ -29,7 +29,7 @@ void PrintTo(const Topology& t, std::ostream* os) {
 }
 
 // MANIFEST "Topology details" and "Files" tables.
-const Topology kBundled[] = {
+const Topology kBundledTopology[] = {
     {"bunny.off", 1, 0, 0, 0, 0, 0, true, true, 0},
     {"bun_zipper.ply", 1, 1113, 223, 0, 0, 0, false, true, std::nullopt},
     {"dragon.drc", 1, 0, 0, 0, 0, 0, true, true, 1},  // must survive 16-bit quantization
@@ -65,7 +65,7 @@ TEST_P(BundledTopology, MatchesManifest) {
   EXPECT_FALSE(r.self_intersecting_pairs.has_value());
 }
 
-INSTANTIATE_TEST_SUITE_P(Data, BundledTopology, ::testing::ValuesIn(kBundled),
+INSTANTIATE_TEST_SUITE_P(Data, BundledTopology, ::testing::ValuesIn(kBundledTopology),
                          [](const ::testing::TestParamInfo<Topology>& info) {
                            std::string name = info.param.file;
                            for (char& c : name)

@@ -7,6 +7,7 @@
 
 #include "mesh/primitives.h"
 #include "util/error.h"
+#include "util/escape_html.h"
 
 namespace proxyvis {
 namespace {
@@ -98,7 +99,7 @@ TEST(View3dHtml, Base64) {
 }
 
 TEST(View3dHtml, EscapesTextAndScriptData) {
-  EXPECT_EQ(detail::escapeHtml("a<b>&\"'"), "a&lt;b&gt;&amp;&quot;&#39;");
+  EXPECT_EQ(escapeHtml("a<b>&\"'"), "a&lt;b&gt;&amp;&quot;&#39;");
   const nlohmann::json j = {{"file", "</script><!--x"}};
   const std::string text = detail::jsonForScript(j);
   EXPECT_EQ(text.find('<'), std::string::npos);

@@ -1,6 +1,6 @@
 #pragma once
-// Text helpers of the page writer (html_text.cpp). base64, escapeHtml and jsonForScript are
-// declared in view3d_html.h, where the tests reach them.
+// Text helpers of the page writer (html_text.cpp). base64 and jsonForScript are declared in
+// view3d_html.h, where the tests reach them; escapeHtml is util/escape_html.h.
 #include <cstdint>
 #include <string>
 

@@ -21,11 +21,7 @@ namespace {
 
 using Triangle3 = Kernel::Triangle_3;
 using Primitive = CGAL::AABB_triangle_primitive<Kernel, std::vector<Triangle3>::const_iterator>;
-using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
-
-Point3 toPoint(const Vec3d& v) {
-  return {v.x, v.y, v.z};
-}
+using TriangleTree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
 
 // Solid angle of triangle (a, b, c) seen from the origin (A. Van Oosterom, J. Strackee 1983).
 double solidAngle(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
@@ -111,7 +107,7 @@ struct Component {
 
 struct InputBound::Impl {
   std::vector<Triangle3> triangles;
-  Tree tree;
+  TriangleTree tree;
   std::vector<Component> components;  // sorted by box diagonal, smallest first
   std::vector<double> diagonals;
   TouchCache cache;  // touches() is const to its callers; the cache only remembers answers

@@ -27,10 +27,6 @@ Bounds3d boxOf(const Tri& t) {
   return {min(min(t[0], t[1]), t[2]), max(max(t[0], t[1]), t[2])};
 }
 
-Point3 toPoint(const Vec3d& v) {
-  return {v.x, v.y, v.z};
-}
-
 class Relaxer {
  public:
   Relaxer(TriMesh& mesh, const InputBound& bound) : mesh_(mesh), bound_(bound) {
