@@ -116,8 +116,8 @@ build_sanitize() {
   local flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
   # GCC's -Wmaybe-uninitialized gives false positives on sanitizer-instrumented code (seen in
   # OpenMesh's Property.hh); the Release build keeps the warning. Clang has no such option.
-  local warn=""
-  case "$cxx" in *g++*) warn="-Wno-maybe-uninitialized" ;; esac
+  local warn="-Wno-maybe-uninitialized"
+  case "$cxx" in *clang*) warn="" ;; esac
   # A tree configured with the other compiler starts afresh (CMake cannot switch compilers).
   if [ -f "$dir/CMakeCache.txt" ] && ! grep -q "^CMAKE_CXX_COMPILER:[A-Z]*=.*/$cxx\$" "$dir/CMakeCache.txt"; then
     echo "setup: $dir was configured with another compiler: removing it"

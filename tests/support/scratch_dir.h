@@ -11,6 +11,14 @@
 
 namespace proxyvis::test {
 
+// A fresh empty folder <temp>/proxyvis_tests/<name>, left in place after the test.
+inline std::filesystem::path freshDir(const std::string& name) {
+  std::filesystem::path d = std::filesystem::temp_directory_path() / "proxyvis_tests" / name;
+  std::filesystem::remove_all(d);
+  std::filesystem::create_directories(d);
+  return d;
+}
+
 class ScratchDir {
  public:
   // Named after the running test: one folder per test.

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 
+#include "tests/support/scratch_dir.h"
 #include "util/error.h"
 #include "util/input_file.h"
 
@@ -12,12 +13,7 @@ namespace proxyvis {
 namespace {
 namespace fs = std::filesystem;
 
-fs::path freshDir(const char* name) {
-  fs::path d = fs::temp_directory_path() / "proxyvis_tests" / name;
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+using test::freshDir;
 
 TEST(AtomicWrite, WritesAndLeavesNoTemporary) {
   fs::path d = freshDir("atomic_ok");

@@ -18,6 +18,7 @@
 #include <string>
 #include <thread>
 
+#include "tests/support/scratch_dir.h"
 #include "util/atomic_write.h"
 #include "util/error.h"
 #include "util/output_path.h"
@@ -30,12 +31,7 @@ namespace proxyvis {
 namespace {
 namespace fs = std::filesystem;
 
-fs::path freshDir(const std::string& name) {
-  fs::path d = fs::temp_directory_path() / "proxyvis_tests" / name;
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+using test::freshDir;
 
 std::string slurp(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
