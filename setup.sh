@@ -93,9 +93,9 @@ build() {
 }
 
 # The sanitizer build: clang 14 (the fuzz build's compiler, so a second compiler checks the code
-# too): it compiles this tree under ASan + UBSan in about 20 min of two cores where GCC 12 took
-# about 28 (the heaviest CGAL unit 158 s against 200 s, a JSON-heavy test 18 s against 29 s;
-# scripts/build_times.py). -O1 -g1 (line tables: readable stacks at tolerable speed; -O2 was
+# too): unit by unit it compiled this tree under ASan + UBSan in 20.8 min of two cores, where
+# GCC 12 needs about 28 by the per-unit ratios (the heaviest CGAL unit 158 s against 200 s, a
+# JSON-heavy test 18 s against 29 s). -O1 -g1 (line tables: readable stacks at tolerable speed; -O2 was
 # tried with GCC: the suite ran at most 8 % faster, the build took twice as long), NDEBUG like
 # Release so the same code is tested, benches off. Any UBSan finding aborts (no recovery), so a
 # test with one fails; ASan leak checking is on. Suppressions of third-party findings live in
