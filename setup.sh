@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # proxyvis setup: installs the Debian 12 dependencies, builds in Release and runs things.
 #   ./setup.sh          install the dependencies only (idempotent; under a second when present)
-#   ./setup.sh build    install + configure + build (build/)
+#   ./setup.sh build    install + configure + build everything (build/): programs, tests, benches
 #   ./setup.sh demo     install + build + the main job on the bundled dragon-plane scene:
 #                       proxy-gen -> proxy-check -> render-compare (MSE table + HTML report)
-#   ./setup.sh test     install (with the npm packages of tests/js) + build + the correctness
-#                       suite (ctest -LE long: every test but those labelled long)
+#   ./setup.sh test     install (with the npm packages of tests/js) + build the programs and
+#                       tests (not the benches) + the correctness suite (ctest -LE long: every
+#                       test but those labelled long)
 #   ./setup.sh test-long
 #                       install + build + only the tests labelled long: the local Slurm cluster
 #                       (label slurm_cluster) and headless Chromium (label browser); they check
@@ -83,8 +84,8 @@ npm_ci() {
 
 install_js_deps() { npm_ci tests/js; }
 
-# build [TARGET...]: configure, then build the targets given (default: everything, tests and
-# benches included). The demo builds only the programs it runs.
+# build [TARGET...]: configure, then build the targets given (default: the programs and the
+# tests; the target `benches` adds bench/). The demo builds only the programs it runs.
 build() {
   cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release
   local targets=()
@@ -132,8 +133,9 @@ build_sanitize() {
     -DCMAKE_MODULE_LINKER_FLAGS="$flags" \
     -DPROXYVIS_BUILD_BENCH=OFF -DPROXYVIS_PRELOAD_OIIO_MODULE=ON -DPROXYVIS_TESTS_PER_EXECUTABLE=ON
   cmake --build "$dir" -j "$JOBS"
-  # Tests labelled not_sanitized are too slow under ASan (see their definition for why).
-  ctest --test-dir "$dir" --output-on-failure -j "$JOBS" -LE not_sanitized
+  # Tests labelled not_sanitized are too slow under ASan (see their definition for why). One job
+  # more than there are cores, as in run_tests: the app tests wait on the processes they start.
+  ctest --test-dir "$dir" --output-on-failure -j "${PROXYVIS_TEST_JOBS:-$((JOBS + 1))}" -LE not_sanitized
 }
 
 # The fuzz build: clang, every library instrumented, no tests/benches, mesh-info (fuzz/run.sh
@@ -215,7 +217,7 @@ demo() {
 
 case "${1:-install}" in
   install) install_deps ;;
-  build) install_deps; build ;;
+  build) install_deps; build all benches ;;
   demo) install_deps; build proxy-gen proxy-check render-compare; demo ;;
   test) install_deps; install_js_deps; build; run_tests "${2:-}" ;;
   test-long) install_deps; install_js_deps; build; ctest_run -L long ;;

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "mesh/io/double_reading.h"
 #include "mesh/io/mesh_io.h"
 #include "proxies/check/check_report.h"
 #include "proxies/check/check_view3d.h"
@@ -43,6 +44,7 @@ struct Options {
   std::string dump_errors;
   std::string write_scene;
   std::string html;
+  std::string precision = "both";
 };
 
 // Error segments kept for --html alone (the page draws a few thousand of each class; keeping the
@@ -100,7 +102,15 @@ int runPair(const Options& o) {
                 "run proxy-check SCENE.json --write-scene OUT.json");
   const TriMesh original = loadMesh(o.inputs[0], o.original_pick);
   const TriMesh proxy = loadMesh(o.inputs[1], o.proxy_pick);
-  PairCheckReport r = checkPair(original, proxy, pairOptions(o));
+  PairCheckOptions options = pairOptions(o);
+  // The original's file read again in double (text formats; binary ones store the floats).
+  std::vector<Vec3d> in_double;
+  if (o.precision != "float") {
+    in_double = readDoublePositions(o.inputs[0], original);
+    options.original_double = &in_double;
+    options.double_only = o.precision == "double";
+  }
+  PairCheckReport r = checkPair(original, proxy, options);
   printHuman(o, formatHumanReport(r));
   printMismatch(r);
   const std::string html = o.html.empty() ? std::string() : checkReportHtml(original, proxy, r);
@@ -175,6 +185,13 @@ int main(int argc, char** argv) {
                  "Exit 1 if the evidence contradicts this class (outside: no HM' and exact "
                  "'contains'; inside: no MH' and exact 'contained'; general: never)")
       ->check(CLI::IsMember({"outside", "inside", "general"}));
+  app.add_option("--precision", o.precision,
+                 "Mesh pair: the readings of the original's file the exact check runs on: float "
+                 "(as proxyvis reads it), double (its decimals as the nearest doubles, as a CAD "
+                 "tool reads them), or both (default; the class holds only when both agree). "
+                 "Binary formats store floats: both readings are the same")
+      ->check(CLI::IsMember({"float", "double", "both"}))
+      ->capture_default_str();
   app.add_option("--dump-errors", o.dump_errors,
                  "Write the error segments as a PLY of edges (red HM', blue MH')");
   addGltfPickOptions(app, o.original_pick.mesh, o.original_pick.node);

@@ -33,7 +33,7 @@ namespace {
 
 struct Args {
   std::string input, output, out_dir, kind = "outside", method;
-  std::optional<double> alpha, offset, ratio, erosion, voxel;
+  std::optional<double> alpha, offset, ratio, erosion, voxel, clearance, clearance_ulps;
   std::optional<size_t> parts;
   std::string budget = "hard";
   size_t max_faces = 0, min_faces = 12;
@@ -66,6 +66,8 @@ ProxyGenOptions toOptions(const Args& a, const CommonOptions& common) {
   o.offset = a.offset;
   o.ratio = a.ratio;
   o.erosion = a.erosion;
+  o.clearance = a.clearance;
+  o.clearance_ulps = a.clearance_ulps;
   o.voxel = a.voxel;
   o.parts = a.parts;
   o.hard_budget = a.budget == "hard";
@@ -93,6 +95,9 @@ int runMesh(const Args& a, const CommonOptions& common) {
   const double load_seconds = load_clock.seconds();
   ProxyGenOptions options = toOptions(a, common);
   options.on_stage = [&](const std::string& stage) { progress.stage(stage); };
+  // The proof also holds for the input read in double (a text file's decimals; docs/clearance.md).
+  std::vector<Vec3d> input_double;
+  addDoubleReading(options, a.input, input, input_double);
   ProxyGenResult result = generateProxy(input, options);
   progress.done();
   addLoadSeconds(result.report, load_seconds);
@@ -238,6 +243,18 @@ void addProxyOptions(CLI::App& app, Args& a) {
                  "erode: voxel edge as a fraction of the diagonal (default 1/150; with a face "
                  "budget, coarser: about 100 voxel faces per budget face)")
       ->check(numberIn(kVoxelRange.lo, kVoxelRange.hi));
+  auto* clearance = app.add_option(
+      "--clearance", a.clearance,
+      "outside/inside: the least distance (scene units) the proxy keeps from the input, so its "
+      "class holds when the input is read in double or placed by a transform; default: "
+      "--clearance-ulps 8 (docs/clearance.md)");
+  clearance->check(numberIn(kClearanceRange.lo, kClearanceRange.hi));
+  app.add_option("--clearance-ulps", a.clearance_ulps,
+                 "outside/inside: the clearance in ulps of float at the input's largest "
+                 "coordinate (default 8: a float or double reading of a text file, and a "
+                 "placement that rounds each coordinate by a few ulps; 0 = none)")
+      ->check(numberIn(kClearanceUlpsRange.lo, kClearanceUlpsRange.hi))
+      ->excludes(clearance);
   app.add_flag(
       "--fill-holes", a.fill_holes,
       "inside: fill the holes of an open input first; the proxy is then written as class general "

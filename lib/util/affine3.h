@@ -24,6 +24,12 @@ struct Affine3f {
     for (int i = 0; i < 3; ++i) a.m[i][i] = v[i];
     return a;
   }
+  bool isIdentity() const {
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 4; ++j)
+        if (m[i][j] != (i == j ? 1.0f : 0.0f)) return false;
+    return true;
+  }
 };
 
 }  // namespace proxyvis

@@ -152,8 +152,20 @@ std::string formatHumanReport(const PairCheckReport& r) {
   if (auto b = missedClassBound(r))
     out += fmt::format("  (no {} seen; its rate is below {:.3g} at 95 %)", b->name, b->upper);
   out += "\n";
-  out += fmt::format("  exact          {}  ({:.2f} s): {}\n", containmentName(r.exact.verdict),
-                     r.exact_seconds, r.exact.detail);
+  out += fmt::format("  exact          {}  ({:.2f} s, {} reading{}): {}\n",
+                     containmentName(r.exact.verdict), r.exact_seconds,
+                     r.precision == "double" ? "double" : "float",
+                     r.precision == "float" ? " only" : "", r.exact.detail);
+  if (r.exact_double)
+    out += fmt::format("  exact, double  {}: {}\n", containmentName(r.exact_double->verdict),
+                       r.exact_double->detail);
+  if (r.precision_mismatch)
+    out += fmt::format("  !!! READINGS DISAGREE: {} !!!\n", *r.precision_mismatch);
+  if (r.exact_placed)
+    out += fmt::format("  exact, placed  {} (the placed float copies the renderer traces): {}\n",
+                       containmentName(r.exact_placed->verdict), r.exact_placed->detail);
+  if (r.placed_mismatch)
+    out += fmt::format("  !!! PLACED COPIES DISAGREE: {} !!!\n", *r.placed_mismatch);
   if (r.mismatch) out += fmt::format("  !!! MISMATCH: {} !!!\n", *r.mismatch);
   if (r.expected)
     out += fmt::format("  expected       {}: {}\n", proxyClassName(*r.expected),
@@ -195,6 +207,19 @@ nlohmann::json toJson(const PairCheckReport& r) {
   j["exact_detail"] = r.exact.detail;
   j["exact_seconds"] = r.exact_seconds;
   j["intersecting_face_pairs"] = r.exact.intersecting_face_pairs;
+  j["precision"] = r.precision;
+  if (r.exact_double) {
+    j["exact_double"] = containmentName(r.exact_double->verdict);
+    j["exact_double_detail"] = r.exact_double->detail;
+  }
+  j["precision_mismatch"] =
+      r.precision_mismatch ? nlohmann::json(*r.precision_mismatch) : nlohmann::json(nullptr);
+  if (r.exact_placed) {
+    j["exact_placed"] = containmentName(r.exact_placed->verdict);
+    j["exact_placed_detail"] = r.exact_placed->detail;
+    j["placed_mismatch"] =
+        r.placed_mismatch ? nlohmann::json(*r.placed_mismatch) : nlohmann::json(nullptr);
+  }
   j["mismatch"] = r.mismatch ? nlohmann::json(*r.mismatch) : nlohmann::json(nullptr);
   if (r.expected) {
     j["expect"] = proxyClassName(*r.expected);

@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "mesh/io/mesh_io.h"
+#include "proxies/check/scene_segments.h"
 #include "render/render_scene.h"
 #include "render/scene_assembly.h"
 #include "scene/scene_desc.h"
@@ -58,6 +59,30 @@ ClassTrust decideProxyTrust(const ProxyRef& ref, const std::function<Containment
   return decideClassTrust(ref.verified_class, ref.sha256, file_hash, check);
 }
 
+namespace {
+
+// A trusted outside/inside class of a mesh placed with a transform, checked again on the placed
+// float copies the renderer traces; downgraded when it does not hold there.
+void verifyPlaced(const SceneMeshDesc& mesh, const ProxyRef& ref, ProxyTrust& t) {
+  const ProxyClass claimed = t.trust.trusted;
+  // transformedMesh maps the vertices in float as the tracer's addMesh does.
+  const ContainmentResult r = checkContainment(transformedMesh(loadSceneMesh(mesh), mesh.transform),
+                                               transformedMesh(loadMesh(ref.file), mesh.transform));
+  t.verified_on = "placed float copies";
+  const std::string found = fmt::format("exact check on the placed float copies: {}, {}",
+                                        containmentName(r.verdict), r.detail);
+  if (r.verdict == expectedVerdict(claimed)) {
+    t.trust.reason += (t.trust.reason.empty() ? "" : "; ") + found;
+    return;
+  }
+  t.trust = {ClassStatus::kDowngraded, ProxyClass::kGeneral,
+             fmt::format("{} in object space, but {} (an {} proxy must give '{}')",
+                         classStatusName(t.trust.status), found, proxyClassName(claimed),
+                         containmentName(expectedVerdict(claimed)))};
+}
+
+}  // namespace
+
 std::vector<ProxyTrust> establishProxyClasses(SceneDesc& scene, const RenderSceneOptions& options) {
   std::vector<bool> used(scene.meshes.size(), false);
   for (size_t m = 0; m < scene.meshes.size(); ++m) used[m] = scene.meshes[m].place;
@@ -69,10 +94,14 @@ std::vector<ProxyTrust> establishProxyClasses(SceneDesc& scene, const RenderScen
     if (!used[m] || chosen < 0) continue;
     ProxyRef& ref = mesh.proxies[size_t(chosen)];
     ProxyTrust t{mesh.name, ref.file, ref.verified_class, {}};
-    // The containment relation does not change under the instance transforms (affine and
-    // invertible), so the check runs on the files as they are, in object space.
+    // Exactly, the containment relation does not change under an affine invertible transform,
+    // so the check runs on the files as they are, in object space. An instance is traced through
+    // its transform (the ray is mapped, not the mesh); a placed mesh is traced as float copies of
+    // its placed vertices, rounded again, so a class that stands is checked on those as well.
     t.trust = decideProxyTrust(
         ref, [&] { return checkContainment(loadSceneMesh(mesh), loadMesh(ref.file)); });
+    if (t.trust.trusted != ProxyClass::kGeneral && mesh.place && !mesh.transform.isIdentity())
+      verifyPlaced(mesh, ref, t);
     if (ref.verified_class) ref.verified_class = t.trust.trusted;
     out.push_back(std::move(t));
   }
@@ -85,6 +114,8 @@ std::string describeProxyTrust(const ProxyTrust& t) {
       t.claimed ? proxyClassName(*t.claimed) : "no class", classStatusName(t.trust.status));
   if (t.trust.status == ClassStatus::kDowngraded)
     return head + " to general (" + t.trust.reason + ")";
+  if (t.verified_on != "object space")
+    return head + ", on the " + t.verified_on + " (" + t.trust.reason + ")";
   return t.trust.reason.empty() || t.trust.status == ClassStatus::kUnverified
              ? head
              : head + " (" + t.trust.reason + ")";

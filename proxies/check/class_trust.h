@@ -60,6 +60,11 @@ struct ProxyTrust {
   std::filesystem::path proxy;  // the proxy file
   std::optional<ProxyClass> claimed;
   ClassTrust trust;
+  // Where the trusted class was verified: "object space" (the files as they are; an instance
+  // traced through its transform), or "placed float copies" (a mesh placed with a transform is
+  // traced as its vertices mapped to world space in float, which rounds both meshes again: the
+  // class is checked on exactly those copies).
+  std::string verified_on = "object space";
 };
 
 // For every proxy the renderer will use under `options` (one per mesh that is placed or

@@ -25,6 +25,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
 #include <optional>
 #include <vector>
@@ -52,12 +53,18 @@ struct ExactMesh {
   cgal::ParitySolid solid;  // the same triangles, for point location by ray parity
 };
 
-ExactMesh prepare(const TriMesh& mesh, const char* role) {
+// `positions`, when given, replaces the mesh's float vertices (another reading of its file).
+ExactMesh prepare(const TriMesh& mesh, const char* role,
+                  const std::vector<Vec3d>* positions = nullptr) {
   if (mesh.empty())
     throw Error(mesh.source, fmt::format("the {} has no triangles", role),
                 "containment needs two non-empty surfaces");
-  for (const Vec3f& v : mesh.vertices)
-    if (!isFinite(v))
+  if (positions && positions->size() != mesh.vertices.size())
+    throw Error(
+        mesh.source, fmt::format("the {}'s second reading has another vertex count", role),
+        fmt::format("{} positions for {} vertices", positions->size(), mesh.vertices.size()));
+  for (size_t i = 0; i < mesh.vertices.size(); ++i)
+    if (!isFinite(mesh.vertices[i]) || (positions && !isFinite((*positions)[i])))
       throw Error(mesh.source, fmt::format("the {} has a non-finite vertex", role),
                   "exact predicates need finite coordinates");
   for (const Triangle& t : mesh.triangles)
@@ -65,15 +72,20 @@ ExactMesh prepare(const TriMesh& mesh, const char* role) {
       if (i >= mesh.vertices.size())
         throw Error(mesh.source, fmt::format("the {} has a vertex index out of range", role));
   auto [points, polygons] = cgal::toSoup<std::vector<std::size_t>>(mesh);
+  if (positions)
+    for (size_t i = 0; i < points.size(); ++i) points[i] = cgal::toPoint((*positions)[i]);
+  // Closed = bounds a volume by ray parity. Built from the unrepaired triangles: duplicated faces
+  // count modulo 2 there, which repair_polygon_soup's merge would not respect.
+  std::vector<std::array<std::size_t, 3>> triangles;
+  triangles.reserve(polygons.size());
+  for (const auto& p : polygons) triangles.push_back({p[0], p[1], p[2]});
+  ExactMesh m;
+  m.solid = cgal::makeParitySolid(points, std::move(triangles));
   PMP::repair_polygon_soup(points, polygons);
   if (polygons.empty())
     throw Error(mesh.source, fmt::format("the {} has only degenerate triangles", role),
                 "containment needs a surface");
-  // Closed = bounds a volume by ray parity. Built from the unrepaired triangles: duplicated faces
-  // count modulo 2 there, which repair_polygon_soup's merge would not respect.
-  ExactMesh m;
   m.points = std::move(points);
-  m.solid = cgal::makeParitySolid(mesh);
   m.closed = m.solid.watertight();
   m.faces.reserve(polygons.size());
   for (const auto& p : polygons) m.faces.push_back({p[0], p[1], p[2]});
@@ -107,11 +119,60 @@ bool trianglesIntersect(const Triangle3& a, const Triangle3& b) {
   return false;
 }
 
-std::vector<Box> faceBoxes(const ExactMesh& m) {
+// Each face's box, grown by `margin` on every side.
+std::vector<Box> faceBoxes(const ExactMesh& m, double margin = 0) {
   std::vector<Box> boxes;
   boxes.reserve(m.faces.size());
-  for (std::size_t f = 0; f < m.faces.size(); ++f) boxes.emplace_back(triangleOf(m, f).bbox(), f);
+  const CGAL::Bbox_3 grow(-margin, -margin, -margin, margin, margin, margin);
+  for (std::size_t f = 0; f < m.faces.size(); ++f) {
+    CGAL::Bbox_3 b = triangleOf(m, f).bbox();
+    if (margin > 0)
+      b = CGAL::Bbox_3(b.xmin() + grow.xmin(), b.ymin() + grow.ymin(), b.zmin() + grow.zmin(),
+                       b.xmax() + grow.xmax(), b.ymax() + grow.ymax(), b.zmax() + grow.zmax());
+    boxes.emplace_back(b, f);
+  }
   return boxes;
+}
+
+// Squared distance between two triangles that do not intersect, either possibly degenerate (a
+// degenerate one is the union of its edges). Double arithmetic (CGAL's distance functions on
+// Epick): relative error of a few ulps of the coordinates, far below any clearance it is
+// compared with.
+double triangleDistance2(const Triangle3& a, const Triangle3& b) {
+  auto edges = [](const Triangle3& t) {
+    return std::array<Segment3, 3>{Segment3(t[0], t[1]), Segment3(t[1], t[2]),
+                                   Segment3(t[2], t[0])};
+  };
+  const bool da = a.is_degenerate(), db = b.is_degenerate();
+  if (!da && !db) return CGAL::to_double(CGAL::squared_distance(a, b));
+  double best = std::numeric_limits<double>::infinity();
+  if (da && db) {
+    for (const Segment3& s : edges(a))
+      for (const Segment3& r : edges(b))
+        best = std::min(best, CGAL::to_double(CGAL::squared_distance(s, r)));
+    return best;
+  }
+  const Triangle3& proper = da ? b : a;
+  for (const Segment3& s : edges(da ? a : b)) {
+    best = std::min(best, CGAL::to_double(CGAL::squared_distance(s.source(), proper)));
+    for (const Segment3& r : edges(proper))
+      best = std::min(best, CGAL::to_double(CGAL::squared_distance(s, r)));
+  }
+  return best;
+}
+
+// The least distance between two surfaces that do not intersect, or `cap` when no two faces
+// come closer than that: box_intersection_d pairs the faces whose boxes, grown by `cap`,
+// overlap, and only those pairs are measured.
+double surfaceSeparation(const ExactMesh& original, const ExactMesh& proxy, double cap) {
+  std::vector<Box> a = faceBoxes(original, cap), b = faceBoxes(proxy);
+  double best2 = cap * cap;
+  auto callback = [&](const Box& ba, const Box& bb) {
+    best2 = std::min(
+        best2, triangleDistance2(triangleOf(original, ba.info()), triangleOf(proxy, bb.info())));
+  };
+  CGAL::box_intersection_d(a.begin(), a.end(), b.begin(), b.end(), callback);
+  return std::sqrt(best2);
 }
 
 struct IntersectionSummary {
@@ -181,9 +242,10 @@ const char* containmentName(ContainmentVerdict v) {
   return "undecidable";
 }
 
-ContainmentResult checkContainment(const TriMesh& original, const TriMesh& proxy) {
+ContainmentResult checkContainment(const TriMesh& original, const TriMesh& proxy,
+                                   const ContainmentOptions& options) {
   ContainmentResult r;
-  ExactMesh o = prepare(original, "original");
+  ExactMesh o = prepare(original, "original", options.original_positions);
   ExactMesh p = prepare(proxy, "proxy");
   r.original_closed = o.closed;
   r.proxy_closed = p.closed;
@@ -207,6 +269,7 @@ ContainmentResult checkContainment(const TriMesh& original, const TriMesh& proxy
         s.pairs, str(CGAL::centroid(t)), str(CGAL::centroid(triangleOf(p, s.first_proxy))));
     return r;
   }
+  if (options.separation_cap > 0) r.separation = surfaceSeparation(o, p, options.separation_cap);
   const InsideCount o_in_p = countInside(o, p);
   const bool all_inside = o_in_p.inside == o_in_p.total;
   if (!o.closed) {

@@ -9,9 +9,11 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "mesh/tri_mesh.h"
 #include "util/proxy_class.h"
+#include "util/vec3.h"
 
 namespace proxyvis {
 
@@ -37,11 +39,25 @@ struct ContainmentResult {
   uint64_t intersecting_face_pairs = 0;  // 0 unless kIntersecting (may stop counting early)
   // The volume each closed mesh bounds by ray parity (proxies/shared/parity_solid.h).
   std::optional<double> original_volume, proxy_volume;
+  // The least distance between the two surfaces when they do not intersect, measured up to
+  // ContainmentOptions::separation_cap (equal to the cap: at least that far apart); empty when
+  // not asked for or when they intersect.
+  std::optional<double> separation;
   std::string detail;  // human-readable reason, e.g. where they intersect
+};
+
+struct ContainmentOptions {
+  // The original's vertex positions in another reading of its file (same order as
+  // original.vertices, e.g. its decimal text read in double): the check runs on these instead
+  // of the float vertices. Null: the float vertices, as the programs read them.
+  const std::vector<Vec3d>* original_positions = nullptr;
+  // > 0: also measure ContainmentResult::separation, up to this distance.
+  double separation_cap = 0;
 };
 
 // For an open original, "contains" means: no surface intersection and every original vertex
 // strictly inside the closed proxy.
-ContainmentResult checkContainment(const TriMesh& original, const TriMesh& proxy);
+ContainmentResult checkContainment(const TriMesh& original, const TriMesh& proxy,
+                                   const ContainmentOptions& options = {});
 
 }  // namespace proxyvis

@@ -1,5 +1,7 @@
 #include "proxies/check/pair_check.h"
 
+#include <utility>
+
 #include <fmt/core.h>
 
 #include <cmath>
@@ -35,6 +37,20 @@ void finishVerdicts(PairCheckReport& r) {
   r.stats = deriveStats(r.sampled.counts);
   r.sampled_class = sampledClass(r.sampled.counts);
   r.mismatch = sampledExactMismatch(r.sampled.counts, r.exact.verdict);
+  r.precision_mismatch.reset();
+  if (r.exact_double && r.exact_double->verdict != r.exact.verdict)
+    r.precision_mismatch = fmt::format(
+        "the exact check finds '{}' on the float reading of the original and '{}' on the double "
+        "reading ({})",
+        containmentName(r.exact.verdict), containmentName(r.exact_double->verdict),
+        r.exact_double->detail);
+  r.placed_mismatch.reset();
+  if (r.exact_placed && r.exact_placed->verdict != r.exact.verdict)
+    r.placed_mismatch = fmt::format(
+        "the exact check finds '{}' in object space and '{}' on the placed float copies the "
+        "renderer traces ({})",
+        containmentName(r.exact.verdict), containmentName(r.exact_placed->verdict),
+        r.exact_placed->detail);
   r.contradiction.reset();
   if (r.expected)
     r.contradiction = contradictsExpectation(*r.expected, r.sampled.counts, r.exact.verdict);
@@ -47,7 +63,18 @@ PairCheckReport checkPair(const TriMesh& original, const TriMesh& proxy,
   r.seed = options.seed;
   r.rays_requested = options.rays;
   r.expected = options.expect;
-  r.exact = checkContainment(original, proxy);
+  if (options.original_double) {
+    ContainmentOptions in_double;
+    in_double.original_positions = options.original_double;
+    r.exact_double = checkContainment(original, proxy, in_double);
+    r.precision = "both";
+  }
+  if (options.original_double && options.double_only) {
+    r.exact = *std::exchange(r.exact_double, std::nullopt);
+    r.precision = "double";
+  } else {
+    r.exact = checkContainment(original, proxy);
+  }
   r.exact_seconds = whole.seconds();
   r.original = summarizeMesh(original, r.exact.original_closed);
   r.proxy = summarizeMesh(proxy, r.exact.proxy_closed);
@@ -98,7 +125,7 @@ PairCheckReport checkPair(const TriMesh& original, const TriMesh& proxy,
 }
 
 ProxyClass provenClass(const PairCheckReport& r) {
-  if (r.mismatch) return ProxyClass::kGeneral;
+  if (r.mismatch || r.precision_mismatch || r.placed_mismatch) return ProxyClass::kGeneral;
   if (r.exact.verdict == ContainmentVerdict::kContains) return ProxyClass::kOutside;
   if (r.exact.verdict == ContainmentVerdict::kContained) return ProxyClass::kInside;
   return ProxyClass::kGeneral;

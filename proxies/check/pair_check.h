@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "proxies/check/class_stats.h"
 #include "proxies/check/containment.h"
@@ -35,6 +36,10 @@ struct PairCheckOptions {
   // as the sampled counts instead of sampling; distribution_name/note describe them.
   const Classification* classified = nullptr;
   std::string distribution_name, distribution_note;
+  // The original's vertices read in double (mesh/io/double_reading.h): the exact check then also
+  // runs on that reading (`exact_double`), or, with double_only, on that reading alone.
+  const std::vector<Vec3d>* original_double = nullptr;
+  bool double_only = false;
 };
 
 struct PairCheckReport {
@@ -42,8 +47,16 @@ struct PairCheckReport {
   MeshSummary original, proxy;
   double distance_original_to_proxy = 0, distance_proxy_to_original = 0;  // sampled one-sided
   double original_diagonal = 0;  // of the original's bounding box: the distances' yardstick
-  ContainmentResult exact;
+  ContainmentResult exact;       // on the float reading (the double one with double_only)
   double exact_seconds = 0;
+  std::string precision = "float";                // the readings checked: float, double, both
+  std::optional<ContainmentResult> exact_double;  // with "both": the double reading's verdict
+  // With "both": the two readings' verdicts differ (the class holds in one only). A failure.
+  std::optional<std::string> precision_mismatch;
+  // A scene's mesh placed with a transform: the exact check on the placed float copies the
+  // renderer traces, and the failure when its verdict differs from the object-space one.
+  std::optional<ContainmentResult> exact_placed;
+  std::optional<std::string> placed_mismatch;
   std::string distribution;  // "sphere" or "scene"
   std::string distribution_note;
   uint64_t seed = 0, rays_requested = 0;
@@ -58,7 +71,10 @@ struct PairCheckReport {
   std::optional<std::string> shortfall;
   double seconds = 0;  // everything, loading excluded
 
-  bool failed() const { return mismatch.has_value() || contradiction.has_value(); }
+  bool failed() const {
+    return mismatch.has_value() || contradiction.has_value() || precision_mismatch.has_value() ||
+           placed_mismatch.has_value();
+  }
 };
 
 MeshSummary summarizeMesh(const TriMesh& mesh, bool closed);
@@ -68,7 +84,8 @@ MeshSummary summarizeMesh(const TriMesh& mesh, bool closed);
 void finishVerdicts(PairCheckReport& report);
 
 // The class the exact check proved: outside for `contains`, inside for `contained`, otherwise
-// general; general also when the sampled verdict disagrees with it (a mismatch).
+// general; general also when the sampled verdict disagrees with it (a mismatch) or the two
+// readings disagree.
 ProxyClass provenClass(const PairCheckReport& report);
 
 // The exact check, the classification (sphere distribution unless options.generator is set: (both

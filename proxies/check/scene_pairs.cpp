@@ -75,6 +75,13 @@ void checkScenePair(PairCheckOptions po, const SceneDesc& scene, const Classific
   if (!po.expect && ref.verified_class) po.expect = ref.verified_class;
   c.report = checkPair(c.original, c.proxy_mesh, po);
   c.report.label = fmt::format("{} / {} ({})", mesh.name, ref.kind, ref.method);
+  // A placed mesh is traced as float copies of its placed vertices, rounded again: its class
+  // must hold on those too (docs/clearance.md).
+  if (mesh.place && !mesh.transform.isIdentity()) {
+    c.report.exact_placed = checkContainment(transformedMesh(c.original, mesh.transform),
+                                             transformedMesh(c.proxy_mesh, mesh.transform));
+    finishVerdicts(c.report);
+  }
 }
 
 }  // namespace

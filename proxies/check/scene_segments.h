@@ -79,7 +79,8 @@ SegmentGenerator instanceSceneSegments(const TraceScene& full, const SceneDesc& 
 // scene, user id = mesh index; meshes are loaded with loadMesh.
 std::unique_ptr<TraceScene> buildFullScene(TraceDevice& device, const SceneDesc& scene);
 
-// `mesh` with `transform` applied to its vertices.
+// `mesh` with `transform` applied to its vertices in float: what the tracer traces for a mesh
+// placed with a transform (TraceSceneBuilder::addMesh), so a placed class is checked on it.
 TriMesh transformedMesh(const TriMesh& mesh, const Affine3f& transform);
 
 }  // namespace proxyvis

@@ -1,5 +1,7 @@
 #include "proxies/pipeline/budget_ladder.h"
 
+#include "proxies/pipeline/clearance.h"
+
 #include <fmt/core.h>
 
 #include <algorithm>
@@ -76,7 +78,10 @@ size_t requestedFaces(const ProxyGenOptions& options, const TriMesh& input) {
   return 0;
 }
 
-VerifiedCandidate verifyCandidate(const BudgetContext& ctx, TriMesh mesh, std::string source) {
+namespace {
+
+// The checks of verifyCandidate, without the clearance's repair.
+VerifiedCandidate checkCandidate(const BudgetContext& ctx, TriMesh mesh, std::string source) {
   VerifiedCandidate c;
   c.source = std::move(source);
   c.mesh = std::move(mesh);
@@ -90,10 +95,41 @@ VerifiedCandidate verifyCandidate(const BudgetContext& ctx, TriMesh mesh, std::s
   ctx.budget.check("verifying the proxy");
   c.ok = c.report.closed && c.report.manifold && c.report.self_intersecting_pairs.value_or(1) == 0;
   if (ctx.options.kind != ProxyClass::kGeneral) {
+    ContainmentOptions options;
+    options.separation_cap = 2 * ctx.clearance;
     c.containment =
-        ctx.timer.run("verify", [&] { return checkContainment(ctx.reference, c.mesh); });
+        ctx.timer.run("verify", [&] { return checkContainment(ctx.reference, c.mesh, options); });
     c.ok = c.ok && c.containment->verdict == expectedVerdict(ctx.options.kind);
   }
+  return c;
+}
+
+bool keepsClearance(const BudgetContext& ctx, const VerifiedCandidate& c) {
+  return ctx.clearance <= 0 || (c.containment && c.containment->separation &&
+                                *c.containment->separation >= ctx.clearance);
+}
+
+}  // namespace
+
+VerifiedCandidate verifyCandidate(const BudgetContext& ctx, TriMesh mesh, std::string source) {
+  VerifiedCandidate c = checkCandidate(ctx, std::move(mesh), source);
+  if (!c.ok || keepsClearance(ctx, c)) return c;
+  // Closer than the clearance (relaxed vertices sit within an ulp of the input; a hull's are
+  // input vertices): moved away by what is missing, then by more, each time checked again.
+  const double missing = ctx.clearance - c.containment->separation.value_or(0);
+  for (const double factor : {1.0, 2.0, 4.0}) {
+    VerifiedCandidate pushed =
+        checkCandidate(ctx, pushedAway(c.mesh, ctx.options.kind, missing * factor), source);
+    if (pushed.ok && keepsClearance(ctx, pushed)) {
+      pushed.stats = c.stats;
+      return pushed;
+    }
+  }
+  c.ok = false;
+  c.containment->detail = fmt::format(
+      "{}; but the surfaces are only {:.3g} apart, less than the clearance {:.3g}, and moving the "
+      "proxy away did not keep its checks",
+      c.containment->detail, c.containment->separation.value_or(0), ctx.clearance);
   return c;
 }
 
@@ -117,6 +153,7 @@ VerifiedCandidate reduceAndVerify(const BudgetContext& ctx, const TriMesh& built
       s.max_move_edges = move;
       s.budget = &ctx.budget;
       s.bound = &ctx.reference;  // lets collapses move toward the input: tighter at small budgets
+      s.clearance = ctx.clearance;  // but no closer than the clearance
       proxy = ctx.timer.run("simplify", [&] { return simplifyBounded(built, s, &stats); });
     }
     VerifiedCandidate c = verifyCandidate(ctx, std::move(proxy), source);

@@ -23,7 +23,7 @@ struct VerifiedCandidate {
   std::string source;  // "wrap", "wrap alpha 0.04", "hull", "box", "tetrahedron", ...
   TriMesh mesh;
   MeshReport report;
-  std::optional<ContainmentResult> containment;  // outside/inside only
+  std::optional<ContainmentResult> containment;  // outside/inside only (with the separation)
   BoundedSimplifyStats stats;                    // of the bounded simplification, if any
   bool ok = false;  // closed, manifold, no self-intersection, and for outside/inside the
                     // expected containment
@@ -42,6 +42,8 @@ struct BudgetContext {
   ProxyReport& report;
   // Builds the proxy of `options.method` with other options (a coarser alpha or voxel).
   std::function<TriMesh(const ProxyGenOptions&)> rebuild;
+  // Outside/inside: the least distance a verified proxy keeps from the reference (clearance.h).
+  double clearance = 0;
 };
 
 // The face budget the caller gave for an outside/inside proxy, known before it is built:
@@ -49,7 +51,9 @@ struct BudgetContext {
 size_t requestedFaces(const ProxyGenOptions& options, const TriMesh& input);
 
 // Checks `mesh` as a proxy of the context's kind (validation with self-intersections; for
-// outside/inside the exact containment test against the reference).
+// outside/inside the exact containment test against the reference and the clearance: a proxy
+// closer to the reference than ctx.clearance is moved away from it (pushedAway) and checked
+// again, and fails when it still is).
 VerifiedCandidate verifyCandidate(const BudgetContext& ctx, TriMesh mesh, std::string source);
 
 // Reduces `built` to the budget with the containment-preserving collapse (outside/inside) and

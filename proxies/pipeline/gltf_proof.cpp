@@ -23,6 +23,8 @@ json gltfProofExtras(const ProxyReport& report, const std::string& source_sha256
                 {"hausdorff", r["hausdorff"]},
                 {"containment", checks.value("containment", json())},
                 {"containment_detail", checks.value("containment_detail", json())},
+                {"clearance", checks.value("clearance", json())},
+                {"separation", checks.value("separation", json())},
                 {"closed", report.checks.closed},
                 {"manifold", report.checks.manifold},
                 {"self_intersecting_pairs", report.checks.self_intersecting_pairs},

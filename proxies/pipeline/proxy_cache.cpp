@@ -1,5 +1,7 @@
 #include "proxies/pipeline/proxy_cache.h"
 
+#include <cstring>
+
 #include <fmt/core.h>
 
 #include <cstdlib>
@@ -81,6 +83,14 @@ nlohmann::json proxyCacheSettings(const ProxyGenOptions& o) {
                              {"seed", std::to_string(o.seed)},
                              {"hausdorff_samples", o.hausdorff_samples}};
   if (o.parts) settings["parts"] = *o.parts;
+  settings["clearance"] = optionalNumber(o.clearance);
+  settings["clearance_ulps"] = optionalNumber(o.clearance_ulps);
+  if (!o.placements.empty()) {
+    // The placements' exact floats, as a digest (a scene may have thousands of instances).
+    std::string bytes(o.placements.size() * sizeof(Affine3f), '\0');
+    std::memcpy(bytes.data(), o.placements.data(), bytes.size());
+    settings["placements"] = sha256Hex(bytes);
+  }
   return settings;
 }
 

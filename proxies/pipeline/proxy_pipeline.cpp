@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mesh/io/double_reading.h"
 #include "mesh/validation.h"
 #include "proxies/check/containment.h"
 #include "proxies/check/distance_report.h"
@@ -14,6 +15,7 @@
 #include "proxies/outside/outside_proxy.h"
 #include "proxies/pipeline/budget_ladder.h"
 #include "proxies/pipeline/budget_shapes.h"
+#include "proxies/pipeline/clearance.h"
 #include "proxies/pipeline/written_class.h"
 #include "proxies/shared/bounded_simplify.h"
 #include "proxies/shared/input_geometry.h"
@@ -58,6 +60,14 @@ void checkOptionRanges(const ProxyGenOptions& o) {
   if (o.max_faces > kMaxFacesLimit)
     throw Error("",
                 fmt::format("--max-faces must be at most {}, got {}", kMaxFacesLimit, o.max_faces));
+  if (o.clearance && !kClearanceRange.contains(*o.clearance))
+    throw Error(
+        "",
+        fmt::format("--clearance must be in [0, {:g}], got {:g}", kClearanceRange.hi, *o.clearance),
+        "it is a distance in scene units");
+  if (o.clearance_ulps && !kClearanceUlpsRange.contains(*o.clearance_ulps))
+    throw Error("", fmt::format("--clearance-ulps must be in [0, {:g}], got {:g}",
+                                kClearanceUlpsRange.hi, *o.clearance_ulps));
   if (o.max_seconds != 0 && !kMaxSecondsRange.contains(o.max_seconds))
     throw Error("", fmt::format("--max-seconds must be in [{:g}, {:g}], got {:g}",
                                 kMaxSecondsRange.lo, kMaxSecondsRange.hi, o.max_seconds));
@@ -227,15 +237,47 @@ VerifiedCandidate chooseWithinBudget(BudgetContext& ctx, VerifiedCandidate chose
 bool recordChecks(ProxyReport& report, const VerifiedCandidate& chosen, ProxyClass kind) {
   const MeshReport& r = chosen.report;
   const uint64_t si = r.self_intersecting_pairs.value_or(0);
-  report.checks = {r.closed, r.manifold, si, std::nullopt, std::nullopt, std::nullopt};
+  report.checks = ProxyChecks{r.closed, r.manifold, si, {}, {}, {}, {}, {}, {}};
   bool verified = r.closed && r.manifold && si == 0;
   if (chosen.containment) {
     report.checks.containment = containmentName(chosen.containment->verdict);
     report.checks.containment_detail = chosen.containment->detail;
+    report.checks.separation = chosen.containment->separation;
     verified = verified && chosen.containment->verdict == expectedVerdict(kind);
   }
   return verified;
 }
+
+// The chosen proxy proved again against the input's double reading; false (with the reason in
+// the checks' detail) when the verdict differs there.
+bool provedInDouble(ProxyReport& report, const VerifiedCandidate& chosen, const TriMesh& input,
+                    const std::vector<Vec3d>& input_double, const BudgetContext& ctx) {
+  ContainmentOptions o;
+  o.original_positions = &input_double;
+  const ContainmentResult d =
+      ctx.timer.run("verify", [&] { return checkContainment(input, chosen.mesh, o); });
+  report.checks.containment_double = containmentName(d.verdict);
+  if (d.verdict == chosen.containment->verdict) return true;
+  report.checks.containment_detail = fmt::format(
+      "{} in the float reading of the input, but {} in its double reading: {}",
+      containmentName(chosen.containment->verdict), containmentName(d.verdict), d.detail);
+  return false;
+}
+
+}  // namespace
+
+void addDoubleReading(ProxyGenOptions& options, const std::filesystem::path& file,
+                      const TriMesh& input, std::vector<Vec3d>& storage) {
+  if (options.kind == ProxyClass::kGeneral || !storesDecimals(file)) return;
+  try {
+    storage = readDoublePositions(file, input);
+    options.input_double = &storage;
+  } catch (const Error& e) {
+    options.input_double_missing = e.what();
+  }
+}
+
+namespace {
 
 // Volume ratio and sampled Hausdorff distances against the reference.
 void recordMetrics(ProxyReport& report, const TriMesh& proxy, const MeshReport& proxy_report,
@@ -348,15 +390,31 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
   params.budget = options.hard_budget ? "hard" : "soft";
 
   BudgetContext ctx{input, reference, options, method, max_faces, budget, timer, report, rebuild};
+  if (options.kind != ProxyClass::kGeneral) {
+    ctx.clearance = clearanceDistance(input, options.clearance, options.clearance_ulps);
+    if (!options.clearance)
+      for (const Affine3f& t : options.placements)
+        ctx.clearance = std::max(
+            ctx.clearance,
+            placementClearance(input, t, options.clearance_ulps.value_or(kDefaultClearanceUlps)));
+    params.clearance = options.clearance;
+    if (!options.clearance)
+      params.clearance_ulps = options.clearance_ulps.value_or(kDefaultClearanceUlps);
+  }
   VerifiedCandidate chosen =
       chooseWithinBudget(ctx, options.kind == ProxyClass::kGeneral
                                   ? verifyCandidate(ctx, std::move(built.mesh), method)
                                   : reduceAndVerify(ctx, built.mesh, method, true));
-  const bool verified = recordChecks(report, chosen, options.kind);
+  bool verified = recordChecks(report, chosen, options.kind);
+  if (verified && options.input_double && !stand_in && chosen.containment)
+    verified = provedInDouble(report, chosen, input, *options.input_double, ctx);
+  if (!options.input_double_missing.empty() && chosen.containment)
+    report.checks.containment_double = "not checked: " + options.input_double_missing;
   report.faces = chosen.mesh.numTriangles();
   report.verified = verified;
   setWrittenClass(report, options.kind, verified, stand_in);
   if (stand_in && chosen.containment) report.checks.containment_against = "the hole-filled input";
+  if (chosen.containment) report.checks.clearance = ctx.clearance;
   timer.run("metrics", [&] {
     recordMetrics(report, chosen.mesh, chosen.report, reference, in_report, stand_in.has_value(),
                   options);

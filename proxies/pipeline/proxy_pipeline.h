@@ -5,12 +5,15 @@
 // Hausdorff distances both ways, seconds per stage). Used by apps/proxy-gen, the tests and
 // bench/proxy_gen.
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "mesh/tri_mesh.h"
 #include "proxies/pipeline/proxy_report.h"
+#include "util/affine3.h"
 #include "util/proxy_class.h"
 
 namespace proxyvis {
@@ -29,6 +32,10 @@ inline constexpr ParameterRange kErosionRange{1e-3, 0.5};
 inline constexpr ParameterRange kVoxelRange{2e-3, 0.25};
 inline constexpr ParameterRange kRatioRange{1e-6, 1};
 inline constexpr ParameterRange kMaxSecondsRange{0.01, 7 * 24 * 3600};
+// --clearance-ulps (ulps of float at the input's largest coordinate) and --clearance (scene
+// units, up to the float limit; a clearance larger than the proxy fails its checks).
+inline constexpr ParameterRange kClearanceUlpsRange{0, 1 << 20};
+inline constexpr ParameterRange kClearanceRange{0, 3.4e38};
 
 struct ProxyGenOptions {
   ProxyClass kind = ProxyClass::kOutside;
@@ -45,6 +52,21 @@ struct ProxyGenOptions {
   std::optional<double> erosion;  // erode: fraction of the diagonal (default 1/75)
   std::optional<double> voxel;    // erode: voxel edge, fraction of the diagonal (default 1/150)
   bool fill_holes = false;        // inside: fill the holes of an open input first
+  // Outside/inside: the least distance the proxy keeps from the input (proxies/pipeline/
+  // clearance.h): `clearance` in scene units, else `clearance_ulps` ulps of float at the input's
+  // largest coordinate (default kDefaultClearanceUlps); a clearance of 0 keeps none.
+  std::optional<double> clearance, clearance_ulps;
+  // Outside/inside: the input's vertices read in double (mesh/io/double_reading.h); the chosen
+  // proxy is then proved against that reading too ("checks.containment_double"), and its class
+  // is written only when it holds in both. Null: the float reading alone.
+  const std::vector<Vec3d>* input_double = nullptr;
+  // Why there is no double reading of a text input (its second parser refused the file): the
+  // report says so, and the clearance alone covers that reading (docs/clearance.md).
+  std::string input_double_missing;
+  // Outside/inside without `clearance`: the transforms the proxy will be placed with (a scene's
+  // placement of the mesh and its instances). The clearance grows to what keeps the class on
+  // each placed float copy (placementClearance in clearance.h).
+  std::vector<Affine3f> placements;
   std::optional<size_t>
       parts;  // convex-parts: most pieces (default: budget / 12 in [2, 32], or 16)
   // A face budget the caller gave (max_faces, ratio) that no verified proxy meets: true = throw
@@ -80,5 +102,11 @@ struct ProxyGenResult {
 // its guarantee or a hard budget is not met. A general proxy
 // that is not closed/manifold/free of self-intersections is returned with verified = false.
 ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& options);
+
+// For an outside/inside proxy of a text file (OFF, OBJ, ASCII PLY): reads `file` again in double
+// into `storage` and points options.input_double at it, so that generateProxy proves the class
+// in both readings; when the second reading fails, options.input_double_missing says why.
+void addDoubleReading(ProxyGenOptions& options, const std::filesystem::path& file,
+                      const TriMesh& input, std::vector<Vec3d>& storage);
 
 }  // namespace proxyvis

@@ -36,6 +36,8 @@ void fields(ProxyParameters& p, V& v) {
   v("max_faces_from_ratio", p.max_faces_from_ratio);
   v("min_faces", p.min_faces);
   v("max_faces_auto", p.max_faces_auto);
+  v("clearance", p.clearance);
+  v("clearance_ulps", p.clearance_ulps);
 }
 
 template <typename V>
@@ -57,6 +59,9 @@ void fields(ProxyChecks& c, V& v) {
   v("containment", c.containment);
   v("containment_detail", c.containment_detail);
   v("containment_against", c.containment_against);
+  v("clearance", c.clearance);
+  v("separation", c.separation);
+  v("containment_double", c.containment_double);
 }
 
 template <typename V>

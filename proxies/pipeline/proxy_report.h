@@ -39,6 +39,8 @@ struct ProxyParameters {
   std::optional<uint64_t> max_faces_from_ratio, min_faces;  // outside/inside with --ratio
   std::optional<uint64_t> max_faces_auto;                   // the input's count, as a goal
   std::string budget;                                       // "hard" or "soft"
+  std::optional<double> clearance;       // outside/inside: --clearance, in scene units
+  std::optional<double> clearance_ulps;  // or its ulps (given, or the default)
   bool operator==(const ProxyParameters&) const = default;
 };
 
@@ -69,6 +71,12 @@ struct ProxyChecks {
   uint64_t self_intersecting_pairs = 0;
   std::optional<std::string> containment, containment_detail;  // outside/inside
   std::optional<std::string> containment_against;  // "the hole-filled input" for --fill-holes
+  // Outside/inside: the clearance the proof holds with (scene units) and the surfaces' measured
+  // separation (at least the clearance; measured up to twice it, so 2 x clearance means "at
+  // least that").
+  std::optional<double> clearance, separation;
+  // Outside/inside with the input read in double too: the exact check's verdict on that reading.
+  std::optional<std::string> containment_double;
   bool operator==(const ProxyChecks&) const = default;
 };
 

@@ -51,6 +51,10 @@ Generated generate(const std::string& bytes, const SceneMeshDesc& mesh, ProxyGen
     o.alpha = kOpenMeshWrapAlpha;
     o.offset = kOpenMeshWrapOffset;
   }
+  // The proof also holds for the file read in double (a text file's decimals; a glTF mesh of
+  // the file stores floats).
+  std::vector<Vec3d> input_double;
+  if (mesh.gltf_mesh < 0) addDoubleReading(o, mesh.file, input, input_double);
   ProxyGenResult r = generateProxy(input, o);
   addLoadSeconds(r.report, load_seconds);
   if (r.proxy.numTriangles() >= input.numTriangles()) {

@@ -49,13 +49,15 @@ std::unique_ptr<ProxyCache> openCache(const SceneRunRequest& r) {
 
 // Mesh i's work, whose failure is its outcome (the rest of the scene goes on).
 MeshOutcome meshOutcome(const SceneMeshDesc& mesh, size_t i, const fs::path& proxy_file,
-                        const SceneRunRequest& r, const ProxyCache* cache, uint64_t seed) {
+                        const SceneRunRequest& r, const ProxyCache* cache, uint64_t seed,
+                        const std::vector<Affine3f>& placements) {
   MeshOutcome m;
   try {
     ProxyGenOptions o = r.base;
     // Per-mesh stream from the mesh's place in the scene (not in a shard): the same proxy at any
     // thread count and in any shard.
     o.seed = hashKeys(seed, i);
+    o.placements = placements;
     SceneMeshProxy p = proxyForSceneMesh(mesh, o, proxy_file, cache);
     m.report = std::move(p.report);
     m.ref = std::move(p.ref);
@@ -88,11 +90,18 @@ std::vector<MeshOutcome> generateSceneProxies(const SceneDesc& scene,
                                               const SceneRunRequest& r, const ProxyCache* cache,
                                               const CommonOptions& common) {
   std::vector<MeshOutcome> outcomes(scene.meshes.size());
+  // Where each mesh is placed: the clearance keeps its class on those placed copies.
+  std::vector<std::vector<Affine3f>> placements(scene.meshes.size());
+  for (size_t m = 0; m < scene.meshes.size(); ++m)
+    if (scene.meshes[m].place) placements[m].push_back(scene.meshes[m].transform);
+  for (const SceneInstanceDesc& instance : scene.instances)
+    placements[instance.mesh].push_back(instance.transform);
   Progress progress("proxy-gen", size_t(std::count(selected.begin(), selected.end(), true)),
                     common.quiet, r.progress);
   tbb::parallel_for(size_t(0), scene.meshes.size(), [&](size_t i) {
     if (!selected[i]) return;
-    outcomes[i] = meshOutcome(scene.meshes[i], i, proxy_files[i], r, cache, common.seed);
+    outcomes[i] =
+        meshOutcome(scene.meshes[i], i, proxy_files[i], r, cache, common.seed, placements[i]);
     progress.update();
     progress.setLabel(scene.meshes[i].name);  // the mesh finished last (one line each in a log)
   });

@@ -257,7 +257,7 @@ TriMesh simplifyBounded(const TriMesh& mesh, const BoundedSimplifyOptions& optio
   }
   if (!nestedPhase(sm, options, &st.collapses))
     return finish(cgal::fromSurfaceMesh(sm, mesh.source));
-  const cgal::InputBound bound(*options.bound);
+  const cgal::InputBound bound(*options.bound, options.clearance);
   tightPhase(sm, options, bound, &st.collapses);
   TriMesh out = cgal::fromSurfaceMesh(sm, mesh.source);
   if (out.numTriangles() <= kMaxRelaxFaces) {

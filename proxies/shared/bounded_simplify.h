@@ -27,6 +27,9 @@ struct BoundedSimplifyOptions {
   // (proxies/shared/internal/input_bound.h): much tighter at small budgets. Null = every
   // collapse keeps the mesh nested in the previous one (progressive hulls).
   const TriMesh* bound = nullptr;
+  // With `bound`: how close a moved face may come to it (a face within this distance touches;
+  // the proxy's clearance, proxies/pipeline/clearance.h). 0 = up to any distance but contact.
+  double clearance = 0;
 };
 
 struct BoundedSimplifyStats {

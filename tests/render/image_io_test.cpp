@@ -15,6 +15,7 @@
 #include "image/image_io.h"
 #include "image/oiio_module.h"
 #include "render/image_metadata.h"
+#include "tests/support/sanitizer_build.h"
 #include "util/error.h"
 #include "util/input_file.h"
 
@@ -186,11 +187,7 @@ TEST(ImageIo, DamagedExrLoadsOrThrowsError) {
       if (const size_t at = rng() % end; !size_byte[at]) return at;
   };
   // Under ASan a damaged width's allocation (up to 1 GiB, zeroed) costs ~0.3 s: fewer rounds.
-#if defined(__SANITIZE_ADDRESS__)
-  constexpr int kRounds = 150;
-#else
-  constexpr int kRounds = 1500;
-#endif
+  constexpr int kRounds = test::kSanitizerBuild ? 150 : 1500;
   int loaded = 0, refused = 0;
   const fs::path bad = good.parent_path() / "bad.exr";
   for (int round = 0; round < kRounds; ++round) {

@@ -37,7 +37,19 @@ double solidAngle(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
 // CGAL's own traversal runs the exact triangle-box test at every node, 3-4 times slower here.
 class TouchTraits {
  public:
-  explicit TouchTraits(const Triangle3& query) : box_(query.bbox()), a_(query[0]) {
+  // `clearance` > 0: within that distance counts as touching (distances in double: see
+  // proxies/check/containment.cpp).
+  TouchTraits(const Triangle3& query, double clearance)
+      : box_(query.bbox() + CGAL::Bbox_3(query[0].x() - clearance, query[0].y() - clearance,
+                                         query[0].z() - clearance, query[0].x() + clearance,
+                                         query[0].y() + clearance, query[0].z() + clearance)),
+        a_(query[0]),
+        clearance_(clearance) {
+    // (The box grown by the clearance: the union with a clearance-sized box at each corner.)
+    for (int i = 1; i < 3; ++i)
+      box_ += CGAL::Bbox_3(query[i].x() - clearance, query[i].y() - clearance,
+                           query[i].z() - clearance, query[i].x() + clearance,
+                           query[i].y() + clearance, query[i].z() + clearance);
     const Point3 &a = query[0], &b = query[1], &c = query[2];
     const double l = std::max(l1(b - a), l1(c - a));
     edge_l2_ = l * l;
@@ -49,13 +61,17 @@ class TouchTraits {
     slack_ = 1e-9 * (std::abs(n_[0]) + std::abs(n_[1]) + std::abs(n_[2])) *
              (std::abs(a.x()) + std::abs(a.y()) + std::abs(a.z()) + box_.xmax() - box_.xmin() +
               box_.ymax() - box_.ymin() + box_.zmax() - box_.zmin());
+    // The plane tests measure n.x - d, |n| times a distance: the clearance in those units.
+    reach_ = clearance * std::sqrt(n_[0] * n_[0] + n_[1] * n_[1] + n_[2] * n_[2]);
   }
   bool go_further() const { return !hit_; }
   template <typename Primitive>
   void intersection(const Triangle3& q, const Primitive& p) {
     const Triangle3& t = p.datum();
     if (!CGAL::do_overlap(box_, t.bbox()) || clearlyOneSide(t)) return;
-    if (CGAL::do_intersect(q, t)) hit_ = true;
+    if (CGAL::do_intersect(q, t) ||
+        (clearance_ > 0 && CGAL::squared_distance(q, t) < clearance_ * clearance_))
+      hit_ = true;
   }
   template <typename Node>
   bool do_intersect(const Triangle3&, const Node& node) const {
@@ -67,7 +83,7 @@ class TouchTraits {
                          (b.zmax() - b.zmin()) / 2};
     const double r = std::abs(n_[0]) * h[0] + std::abs(n_[1]) * h[1] + std::abs(n_[2]) * h[2];
     const double s = n_[0] * c[0] + n_[1] * c[1] + n_[2] * c[2] - d_;
-    return std::abs(s) <= r + slack_ + 1e-9 * std::abs(s);
+    return std::abs(s) <= r + reach_ + slack_ + 1e-9 * std::abs(s);
   }
   bool hit() const { return hit_; }
 
@@ -82,7 +98,7 @@ class TouchTraits {
     for (int i = 0; i < 3; ++i) {
       const Kernel::Vector_3 d = t[i] - a_;
       const double s = n_[0] * d.x() + n_[1] * d.y() + n_[2] * d.z();
-      const double bound = 1e-10 * edge_l2_ * l1(d);
+      const double bound = 1e-10 * edge_l2_ * l1(d) + reach_;
       above += s > bound;
       below += s < -bound;
     }
@@ -94,7 +110,7 @@ class TouchTraits {
 
   CGAL::Bbox_3 box_;
   Point3 a_;
-  double n_[3], d_, slack_, edge_l2_;
+  double n_[3], d_, slack_, edge_l2_, reach_ = 0, clearance_ = 0;
   bool hit_ = false;
 };
 
@@ -106,6 +122,7 @@ struct Component {
 }  // namespace
 
 struct InputBound::Impl {
+  double clearance = 0;
   std::vector<Triangle3> triangles;
   TriangleTree tree;
   std::vector<Component> components;  // sorted by box diagonal, smallest first
@@ -113,8 +130,9 @@ struct InputBound::Impl {
   TouchCache cache;  // touches() is const to its callers; the cache only remembers answers
 };
 
-InputBound::InputBound(const TriMesh& input) : impl_(std::make_unique<Impl>()) {
+InputBound::InputBound(const TriMesh& input, double clearance) : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
+  m.clearance = clearance;
   // Components by shared vertex indices (union-find).
   DisjointSets sets(input.vertices.size());
   m.triangles.reserve(input.triangles.size());
@@ -191,7 +209,7 @@ bool InputBound::touches(const std::array<Vec3d, 3>& t) const {
   const Triangle3 tri(toPoint(t[0]), toPoint(t[1]), toPoint(t[2]));
   bool hit = tri.is_degenerate();
   if (!hit) {
-    TouchTraits touch(tri);
+    TouchTraits touch(tri, impl_->clearance);
     impl_->tree.traversal(tri, touch);
     hit = touch.hit();
   }

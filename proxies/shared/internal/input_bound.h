@@ -29,7 +29,8 @@ inline Vec3d roundToFloat(const Vec3d& x) {
 // One per thread: touches() remembers its answers (internal/touch_cache.h).
 class InputBound {
  public:
-  explicit InputBound(const TriMesh& input);
+  // `clearance` > 0: a triangle within that distance of the input counts as touching it.
+  explicit InputBound(const TriMesh& input, double clearance = 0);
   ~InputBound();
   InputBound(const InputBound&) = delete;
   InputBound& operator=(const InputBound&) = delete;
@@ -44,7 +45,8 @@ class InputBound {
               const std::vector<std::array<Vec3d, 3>>& new_star,
               size_t* first_touch = nullptr) const;
 
-  // True when triangle t touches an input triangle (what allows refuses for a new face).
+  // True when triangle t touches an input triangle, or comes within the clearance of one (what
+  // allows refuses for a new face).
   bool touches(const std::array<Vec3d, 3>& t) const;
 
   // The input point nearest to p.

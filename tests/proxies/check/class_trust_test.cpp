@@ -175,10 +175,33 @@ TEST_F(ClassTrustScene, RecordedHashIsTheFastPath) {
   // The hash vouches even for a wrong claim: it records what was proven, so the check is skipped
   // (which is what makes it fast); proxy-gen and proxy-check only record hashes of proven classes.
   SceneDesc desc = scene(kShrunk, "outside", sha256OfFile(shrunk));
+  desc.meshes[0].transform = Affine3f{};  // in place: nothing is rounded again
   const std::vector<ProxyTrust> trust = establishProxyClasses(desc, {});
   ASSERT_EQ(trust.size(), 1u);
   EXPECT_EQ(trust[0].trust.status, ClassStatus::kVerifiedByHash);
+  EXPECT_EQ(trust[0].verified_on, "object space");
   EXPECT_EQ(desc.meshes[0].proxies[0].verified_class, ProxyClass::kOutside);
+}
+
+// A mesh placed with a transform is traced as float copies of its placed vertices: the hash
+// vouches for the files, not for those copies, so the class is checked on them as well.
+TEST_F(ClassTrustScene, APlacedMeshIsCheckedOnThePlacedCopies) {
+  saveMesh(kShrunk, dir_ / "shrunk.off");
+  SceneDesc wrong = scene(kShrunk, "outside", sha256OfFile(dir_ / "shrunk.off"));
+  std::vector<ProxyTrust> trust = establishProxyClasses(wrong, {});
+  ASSERT_EQ(trust.size(), 1u);
+  EXPECT_EQ(trust[0].trust.status, ClassStatus::kDowngraded);
+  EXPECT_EQ(trust[0].verified_on, "placed float copies");
+  EXPECT_NE(trust[0].trust.reason.find("placed float copies"), std::string::npos);
+  EXPECT_EQ(wrong.meshes[0].proxies[0].verified_class, ProxyClass::kGeneral);
+
+  saveMesh(kGrown, dir_ / "grown.off");
+  SceneDesc right = scene(kGrown, "outside", sha256OfFile(dir_ / "grown.off"));
+  trust = establishProxyClasses(right, {});
+  ASSERT_EQ(trust.size(), 1u);
+  EXPECT_EQ(trust[0].trust.status, ClassStatus::kVerifiedByHash);
+  EXPECT_EQ(trust[0].verified_on, "placed float copies");
+  EXPECT_EQ(right.meshes[0].proxies[0].verified_class, ProxyClass::kOutside);
 }
 
 TEST_F(ClassTrustScene, ProxyEditedAfterItsHashIsReVerified) {

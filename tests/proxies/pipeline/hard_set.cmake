@@ -20,7 +20,8 @@ function(hard_case mesh kind method budget_name ratio)
   add_test(NAME ${name}
     COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_LIST_DIR}/hard_set_case.py
       --bin $<TARGET_FILE_DIR:proxy-gen> --mesh ${hard_dir}/${mesh} --kind ${kind}
-      --method ${method} --ratio ${ratio} ${ARGN})
+      --method ${method} --ratio ${ratio}
+      --independent $<TARGET_FILE:independent_double_check> ${ARGN})
   # Under the sanitizers CGAL runs 5-10x slower: there only the two smallest meshes without a
   # budget (the whole matrix would take most of CI's time).
   set(labels hard_set slow)

@@ -6,7 +6,10 @@ Whatever proxy-gen decides, the outcome must be one of:
   exit 0  the proxy file exists; its face count is within the budget (computed here from the
           input's face count as reported by mesh-info, not from proxy-gen's report); mesh-info
           finds it closed and manifold; for a written class outside/inside, proxy-check against
-          the INPUT file confirms it (exact containment, zero HM' resp. MH' sampled rays).
+          the INPUT file confirms it (exact containment in the float and the double reading,
+          zero HM' resp. MH' sampled rays), and so does independent_double_check (CGAL's own
+          readers in double, no proxyvis code) when --independent names it; the report states
+          the clearance and a measured separation of at least that.
   exit 1  (only with a budget) one line on stderr saying the budget was not met, no output.
   exit 2  only where the case allows a refusal (e.g. an inside proxy of a mesh with no
           interior): one line on stderr naming the input, no output.
@@ -43,11 +46,14 @@ def main():
     ap.add_argument("--kind", required=True)
     ap.add_argument("--method", required=True)
     ap.add_argument("--ratio", type=float, default=0.0, help="0 = no budget")
+    ap.add_argument("--max-faces", type=int, default=0, help="a face budget (instead of --ratio)")
     ap.add_argument("--fill-holes", action="store_true")
     ap.add_argument("--allow-refusal", default="",
                     help="regex: exit 2 is accepted when stderr matches it")
     ap.add_argument("--timeout", type=float, default=300)
     ap.add_argument("--rays", type=int, default=200000)
+    ap.add_argument("--independent", default="",
+                    help="independent_double_check: also check a written class with it")
     a = ap.parse_args()
 
     tool = lambda name: os.path.join(a.bin, name)
@@ -56,6 +62,8 @@ def main():
         fail(f"mesh-info cannot read the input: {info.stderr.strip()}")
     input_faces = json.loads(info.stdout)[0]["faces"]
     budget = max(12, int(a.ratio * input_faces)) if a.ratio > 0 else None
+    if a.max_faces > 0:
+        budget = a.max_faces
 
     with tempfile.TemporaryDirectory() as work:
         out = os.path.join(work, "proxy.ply")
@@ -64,6 +72,8 @@ def main():
                "--json", report, "-q", "--threads", "1"]
         if a.ratio > 0:
             cmd += ["--ratio", str(a.ratio)]
+        if a.max_faces > 0:
+            cmd += ["--max-faces", str(a.max_faces)]
         if a.fill_holes:
             cmd.append("--fill-holes")
         p = run(cmd, a.timeout)
@@ -121,6 +131,24 @@ def main():
                 fail(f"exact check says {cj['exact']}, the class needs {want}")
             if cj["counts"][bad] != 0:
                 fail(f"{cj['counts'][bad]} {bad}' rays for an {cls} proxy")
+            if cj["precision"] != "both" or cj.get("exact_double") != want:
+                fail(f"double reading: {cj.get('exact_double')} ({cj.get('exact_double_detail')})")
+            checks = rep["checks"]
+            if not checks.get("clearance") or checks.get("separation", 0) < checks["clearance"]:
+                fail(f"clearance {checks.get('clearance')}, separation {checks.get('separation')}")
+            if a.independent:
+                # CGAL reads OFF, OBJ and PLY: a Draco or glTF input (floats both ways) is handed
+                # over as a binary PLY of the same floats.
+                original = a.mesh
+                if not original.lower().endswith((".off", ".obj", ".ply")):
+                    original = os.path.join(work, "input.ply")
+                    conv = run([tool("mesh-info"), a.mesh, "--save", original, "-q"], 120)
+                    if conv.returncode != 0:
+                        fail(f"mesh-info --save: {conv.stderr.strip()}")
+                ind = run([a.independent, original, out, "--expect", cls], a.timeout)
+                print(ind.stdout.strip())
+                if ind.returncode != 0:
+                    fail(f"independent_double_check: {ind.stdout.strip()} {ind.stderr.strip()}")
             print(f"OK: {cls} confirmed against the input ({cj['counts']})")
         elif cls == "general":
             if a.kind != "general" and not rep.get("class_reason"):

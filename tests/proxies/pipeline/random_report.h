@@ -58,8 +58,9 @@ class RandomReports {
     p.fill_holes = coin();
     p.seed = count();
     p.budget = coin() ? "hard" : "soft";
-    for (std::optional<double>* v : {&p.max_seconds, &p.hull_epsilon, &p.alpha, &p.offset,
-                                     &p.erosion, &p.voxel, &p.ratio, &p.parts_epsilon})
+    for (std::optional<double>* v :
+         {&p.max_seconds, &p.hull_epsilon, &p.alpha, &p.offset, &p.erosion, &p.voxel, &p.ratio,
+          &p.parts_epsilon, &p.clearance, &p.clearance_ulps})
       *v = maybe<double>([&] { return number(); });
     for (std::optional<uint64_t>* v :
          {&p.max_faces_from_ratio, &p.min_faces, &p.max_faces_auto, &p.parts})
@@ -83,6 +84,9 @@ class RandomReports {
                 count(),
                 maybe<std::string>([&] { return text(); }),
                 maybe<std::string>([&] { return text(); }),
+                maybe<std::string>([&] { return text(); }),
+                maybe<double>([&] { return number(); }),
+                maybe<double>([&] { return number(); }),
                 maybe<std::string>([&] { return text(); })};
     r.faces = count();
     r.verified = coin();

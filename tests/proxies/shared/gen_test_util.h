@@ -14,6 +14,7 @@
 #include "mesh/io/mesh_io.h"
 #include "proxies/check/containment.h"
 #include "proxies/pipeline/proxy_pipeline.h"
+#include "tests/support/sanitizer_build.h"
 
 namespace proxyvis::gen_test {
 
@@ -28,13 +29,8 @@ inline std::filesystem::path meshPath(const std::string& name) {
 // The AddressSanitizer build, where CGAL runs about 8x slower than in Release: the containment
 // suites leave the 100 k-face dragon out there (GTEST_SKIP, reported as skipped). The same code
 // runs there on bunny, spot and cow; the Release suite runs every case.
-#if defined(__SANITIZE_ADDRESS__)
-inline constexpr bool kSanitizerBuild = true;
-#else
-inline constexpr bool kSanitizerBuild = false;
-#endif
 inline bool tooLargeForSanitizers(const std::string& mesh_name) {
-  return kSanitizerBuild && mesh_name == "dragon.drc";
+  return test::kSanitizerBuild && mesh_name == "dragon.drc";
 }
 
 // Meshes are loaded once per test executable.
