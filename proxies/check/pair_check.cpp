@@ -33,24 +33,28 @@ MeshSummary summarizeMesh(const TriMesh& mesh, bool closed) {
   return s;
 }
 
+namespace {
+
+// Why a second exact check (`other`, on `other_where`) contradicts the first, or nothing.
+std::optional<std::string> verdictsDiffer(const ContainmentResult& first,
+                                          const std::optional<ContainmentResult>& other,
+                                          const char* first_where, const char* other_where) {
+  if (!other || other->verdict == first.verdict) return std::nullopt;
+  return fmt::format("the exact check finds '{}' {} and '{}' {} ({})",
+                     containmentName(first.verdict), first_where, containmentName(other->verdict),
+                     other_where, other->detail);
+}
+
+}  // namespace
+
 void finishVerdicts(PairCheckReport& r) {
   r.stats = deriveStats(r.sampled.counts);
   r.sampled_class = sampledClass(r.sampled.counts);
   r.mismatch = sampledExactMismatch(r.sampled.counts, r.exact.verdict);
-  r.precision_mismatch.reset();
-  if (r.exact_double && r.exact_double->verdict != r.exact.verdict)
-    r.precision_mismatch = fmt::format(
-        "the exact check finds '{}' on the float reading of the original and '{}' on the double "
-        "reading ({})",
-        containmentName(r.exact.verdict), containmentName(r.exact_double->verdict),
-        r.exact_double->detail);
-  r.placed_mismatch.reset();
-  if (r.exact_placed && r.exact_placed->verdict != r.exact.verdict)
-    r.placed_mismatch = fmt::format(
-        "the exact check finds '{}' in object space and '{}' on the placed float copies the "
-        "renderer traces ({})",
-        containmentName(r.exact.verdict), containmentName(r.exact_placed->verdict),
-        r.exact_placed->detail);
+  r.precision_mismatch = verdictsDiffer(
+      r.exact, r.exact_double, "on the float reading of the original", "on the double reading");
+  r.placed_mismatch = verdictsDiffer(r.exact, r.exact_placed, "in object space",
+                                     "on the placed float copies the renderer traces");
   r.contradiction.reset();
   if (r.expected)
     r.contradiction = contradictsExpectation(*r.expected, r.sampled.counts, r.exact.verdict);
