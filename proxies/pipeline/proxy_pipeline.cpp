@@ -243,7 +243,8 @@ bool recordChecks(ProxyReport& report, const VerifiedCandidate& chosen, ProxyCla
     report.checks.containment = containmentName(chosen.containment->verdict);
     report.checks.containment_detail = chosen.containment->detail;
     report.checks.separation = chosen.containment->separation;
-    verified = verified && chosen.containment->verdict == expectedVerdict(kind);
+    // chosen.ok: also the clearance (verifyCandidate).
+    verified = verified && chosen.ok && chosen.containment->verdict == expectedVerdict(kind);
   }
   return verified;
 }
@@ -305,7 +306,8 @@ void recordMetrics(ProxyReport& report, const TriMesh& proxy, const MeshReport& 
 }
 
 [[noreturn]] void throwNotVerified(const TriMesh& input, const ProxyGenOptions& options,
-                                   const std::string& method, const VerifiedCandidate& chosen) {
+                                   const std::string& method, const VerifiedCandidate& chosen,
+                                   const ProxyChecks& checks) {
   const MeshReport& r = chosen.report;
   const uint64_t si = r.self_intersecting_pairs.value_or(0);
   std::string what;
@@ -315,6 +317,9 @@ void recordMetrics(ProxyReport& report, const TriMesh& proxy, const MeshReport& 
     what = "the proxy is not manifold";
   else if (si > 0)
     what = fmt::format("the proxy has {} self-intersecting face pairs", si);
+  else if (chosen.containment->verdict == expectedVerdict(options.kind))
+    // The verdict holds in the float reading; the clearance or the double reading does not.
+    what = checks.containment_detail.value_or(chosen.containment->detail);
   else
     what = fmt::format("containment is '{}', not '{}': {}",
                        containmentName(chosen.containment->verdict),
@@ -422,7 +427,7 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
   report.seconds["total"] = whole.seconds();
 
   if (options.kind != ProxyClass::kGeneral && !verified)
-    throwNotVerified(input, options, method, chosen);
+    throwNotVerified(input, options, method, chosen, report.checks);
   return {std::move(chosen.mesh), verified, std::move(report)};
 }
 
