@@ -1,6 +1,7 @@
 #pragma once
 // Embree against the brute-force reference on many segments, disagreements counted and classified.
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "brute_force.h"
@@ -22,5 +23,16 @@ OcclusionAgreement compareOcclusion(const TraceScene& scene, const BruteForceMes
                                     const std::vector<Segment>& segs, double eps);
 
 std::vector<Segment> randomSegments(const Bounds3f& box, uint64_t seed, size_t n);
+
+// The seed of the trace tests' random segments and meshes.
+inline constexpr uint64_t kSeed = 20140623;
+
+// A scene of `mesh` alone, user id 7.
+inline std::unique_ptr<TraceScene> flatScene(TraceDevice& device, const TriMesh& mesh,
+                                             const TraceSceneOptions& options = {}) {
+  TraceSceneBuilder builder(device, options);
+  builder.addMesh(mesh, 7);
+  return builder.build();
+}
 
 }  // namespace proxyvis::test
