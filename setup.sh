@@ -134,8 +134,9 @@ build_sanitize() {
     -DPROXYVIS_BUILD_BENCH=OFF -DPROXYVIS_PRELOAD_OIIO_MODULE=ON -DPROXYVIS_TESTS_PER_EXECUTABLE=ON
   cmake --build "$dir" -j "$JOBS"
   # Tests labelled not_sanitized are too slow under ASan (see their definition for why). One job
-  # more than there are cores, as in run_tests: the app tests wait on the processes they start.
-  ctest --test-dir "$dir" --output-on-failure -j "${PROXYVIS_TEST_JOBS:-$((JOBS + 1))}" -LE not_sanitized
+  # per core: with one more (as the Release suite runs) a CPU-bound app test with a time limit
+  # (proxy_gen_budget.erode_non_manifold_fin_is_general, 75 s of its 120) timed out.
+  ctest --test-dir "$dir" --output-on-failure -j "$JOBS" -LE not_sanitized
 }
 
 # The fuzz build: clang, every library instrumented, no tests/benches, mesh-info (fuzz/run.sh
