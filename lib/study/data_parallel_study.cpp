@@ -12,6 +12,7 @@
 #include "image/oiio_module.h"
 #include "metrics/image_error.h"
 #include "scene/scene_desc.h"
+#include "study/data_parallel_rows.h"
 #include "util/atomic_write.h"
 #include "util/build_info.h"
 #include "util/rng.h"
@@ -21,24 +22,10 @@ namespace proxyvis {
 
 namespace {
 
-struct Row {
-  int spp = 0;
-  std::string estimator;
-  Forwarding forwarding{};
-  bool emulated = false;  // the run's exchange waited for the emulated fabric
-  double mse = 0, seconds = 0;
-  ModelledTime modelled;                // means over seeds
-  DataParallelStats stats;              // of the first seed; counts summed over seeds below
-  uint64_t segments = 0, forwards = 0;  // summed over seeds
-  uint64_t bytes = 0, messages = 0;     // per render (mean over seeds)
-  uint64_t peak_rss = 0;
-  double efficiency = 0, modelled_efficiency = 0, relative = 0, modelled_relative = 0;
-};
-
-std::string imageName(const Row& r) {
-  return fmt::format("{}_{}_{}spp{}", r.estimator, forwardingName(r.forwarding), r.spp,
-                     r.emulated ? "_emulated" : "");
-}
+using dp_study::htmlTable;
+using dp_study::imageName;
+using dp_study::markdownTable;
+using dp_study::Row;
 
 void writePair(const Image& image, const std::filesystem::path& stem, float exposure) {
   ImageWriteOptions exr;
@@ -47,63 +34,6 @@ void writePair(const Image& image, const std::filesystem::path& stem, float expo
   ImageWriteOptions png;
   png.exposure = exposure;
   writeImage(image, stem.string() + ".png", png);
-}
-
-// The table's columns and each row's cells, shared by report.md and report.html.
-std::vector<std::string> tableHeader(const std::string& network) {
-  return {"spp",
-          "estimator",
-          "forwarding",
-          "run on",
-          "forwards / shadow segment",
-          "forward MB",
-          "messages",
-          "rank peak RSS MiB",
-          "seconds (measured)",
-          fmt::format("seconds (modelled, {})", network),
-          "MSE",
-          "efficiency (measured)",
-          fmt::format("efficiency (modelled, {})", network)};
-}
-
-std::vector<std::string> tableCells(const Row& r) {
-  return {std::to_string(r.spp),
-          r.estimator,
-          forwardingName(r.forwarding),
-          r.emulated ? "emulated " + r.stats.network.name : "shm (this machine)",
-          fmt::format("{:.4f}", r.segments ? double(r.forwards) / double(r.segments) : 0.0),
-          fmt::format("{:.2f}", 1e-6 * double(r.bytes)),
-          std::to_string(r.messages),
-          fmt::format("{:.0f}", double(r.peak_rss) / double(1 << 20)),
-          fmt::format("{:.3f}", r.seconds),
-          fmt::format("{:.3f}", r.modelled.seconds),
-          fmt::format("{:.3e}", r.mse),
-          fmt::format("{:.2f}x", r.relative),
-          fmt::format("{:.2f}x", r.modelled_relative)};
-}
-
-std::string markdownTable(const std::vector<Row>& rows, const std::string& network) {
-  auto line = [](const std::vector<std::string>& cells) {
-    std::string t = "|";
-    for (const std::string& c : cells) t += " " + c + " |";
-    return t + "\n";
-  };
-  std::string t = line(tableHeader(network)) +
-                  "|---:|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
-  for (const Row& r : rows) t += line(tableCells(r));
-  return t;
-}
-
-std::string htmlTable(const std::vector<Row>& rows, const std::string& network) {
-  std::string t = "<table><tr>";
-  for (const std::string& h : tableHeader(network)) t += "<th>" + h + "</th>";
-  t += "</tr>";
-  for (const Row& r : rows) {
-    t += "<tr>";
-    for (const std::string& c : tableCells(r)) t += "<td>" + c + "</td>";
-    t += "</tr>";
-  }
-  return t + "</table>";
 }
 
 // What the flags and the scene file ask for, checked on every rank.
