@@ -30,6 +30,12 @@ inline Point3 toPoint(const Vec3d& v) {
   return {v.x, v.y, v.z};
 }
 
+// `box` grown by `margin` on every side (what lies within `margin` of it overlaps the result).
+inline CGAL::Bbox_3 grownBox(const CGAL::Bbox_3& box, double margin) {
+  return {box.xmin() - margin, box.ymin() - margin, box.zmin() - margin,
+          box.xmax() + margin, box.ymax() + margin, box.zmax() + margin};
+}
+
 // A triangle soup in CGAL's types. Polygon is SoupTriangle, or std::vector<std::size_t> for
 // repair_polygon_soup (which misbehaves on std::array soups in CGAL 5.5).
 template <typename Polygon = SoupTriangle>

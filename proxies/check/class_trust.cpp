@@ -4,6 +4,7 @@
 #include <fmt/core.h>
 
 #include <cstdio>
+#include <optional>
 
 #include "mesh/io/mesh_io.h"
 #include "proxies/check/scene_segments.h"
@@ -63,11 +64,12 @@ namespace {
 
 // A trusted outside/inside class of a mesh placed with a transform, checked again on the placed
 // float copies the renderer traces; downgraded when it does not hold there.
-void verifyPlaced(const SceneMeshDesc& mesh, const ProxyRef& ref, ProxyTrust& t) {
+void verifyPlaced(const Affine3f& transform, const TriMesh& original, const TriMesh& proxy,
+                  ProxyTrust& t) {
   const ProxyClass claimed = t.trust.trusted;
   // transformedMesh maps the vertices in float as the tracer's addMesh does.
-  const ContainmentResult r = checkContainment(transformedMesh(loadSceneMesh(mesh), mesh.transform),
-                                               transformedMesh(loadMesh(ref.file), mesh.transform));
+  const ContainmentResult r =
+      checkContainment(transformedMesh(original, transform), transformedMesh(proxy, transform));
   t.verified_on = "placed float copies";
   const std::string found = fmt::format("exact check on the placed float copies: {}, {}",
                                         containmentName(r.verdict), r.detail);
@@ -98,10 +100,20 @@ std::vector<ProxyTrust> establishProxyClasses(SceneDesc& scene, const RenderScen
     // so the check runs on the files as they are, in object space. An instance is traced through
     // its transform (the ray is mapped, not the mesh); a placed mesh is traced as float copies of
     // its placed vertices, rounded again, so a class that stands is checked on those as well.
-    t.trust = decideProxyTrust(
-        ref, [&] { return checkContainment(loadSceneMesh(mesh), loadMesh(ref.file)); });
-    if (t.trust.trusted != ProxyClass::kGeneral && mesh.place && !mesh.transform.isIdentity())
-      verifyPlaced(mesh, ref, t);
+    std::optional<TriMesh> original, proxy;  // read when a check needs them, once
+    auto load = [&] {
+      if (original) return;
+      original = loadSceneMesh(mesh);
+      proxy = loadMesh(ref.file);
+    };
+    t.trust = decideProxyTrust(ref, [&] {
+      load();
+      return checkContainment(*original, *proxy);
+    });
+    if (t.trust.trusted != ProxyClass::kGeneral && mesh.place && !mesh.transform.isIdentity()) {
+      load();
+      verifyPlaced(mesh.transform, *original, *proxy, t);
+    }
     if (ref.verified_class) ref.verified_class = t.trust.trusted;
     out.push_back(std::move(t));
   }

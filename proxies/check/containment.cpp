@@ -123,14 +123,8 @@ bool trianglesIntersect(const Triangle3& a, const Triangle3& b) {
 std::vector<Box> faceBoxes(const ExactMesh& m, double margin = 0) {
   std::vector<Box> boxes;
   boxes.reserve(m.faces.size());
-  const CGAL::Bbox_3 grow(-margin, -margin, -margin, margin, margin, margin);
-  for (std::size_t f = 0; f < m.faces.size(); ++f) {
-    CGAL::Bbox_3 b = triangleOf(m, f).bbox();
-    if (margin > 0)
-      b = CGAL::Bbox_3(b.xmin() + grow.xmin(), b.ymin() + grow.ymin(), b.zmin() + grow.zmin(),
-                       b.xmax() + grow.xmax(), b.ymax() + grow.ymax(), b.zmax() + grow.zmax());
-    boxes.emplace_back(b, f);
-  }
+  for (std::size_t f = 0; f < m.faces.size(); ++f)
+    boxes.emplace_back(cgal::grownBox(triangleOf(m, f).bbox(), margin), f);
   return boxes;
 }
 

@@ -1,11 +1,10 @@
 #include "proxies/check/pair_check.h"
 
-#include <utility>
-
 #include <fmt/core.h>
 
 #include <cmath>
 
+#include "mesh/io/double_reading.h"
 #include "proxies/check/mesh_distance.h"
 #include "trace/trace_scene.h"
 #include "util/rng.h"
@@ -67,17 +66,20 @@ PairCheckReport checkPair(const TriMesh& original, const TriMesh& proxy,
   r.seed = options.seed;
   r.rays_requested = options.rays;
   r.expected = options.expect;
-  if (options.original_double) {
-    ContainmentOptions in_double;
-    in_double.original_positions = options.original_double;
-    r.exact_double = checkContainment(original, proxy, in_double);
-    r.precision = "both";
-  }
+  // A double reading equal to the float one (a binary format) is checked once.
+  const bool second_reading =
+      options.original_double && !readsAsFloat(original, *options.original_double);
+  ContainmentOptions reading;
+  if (second_reading) reading.original_positions = options.original_double;
   if (options.original_double && options.double_only) {
-    r.exact = *std::exchange(r.exact_double, std::nullopt);
+    r.exact = checkContainment(original, proxy, reading);
     r.precision = "double";
   } else {
     r.exact = checkContainment(original, proxy);
+    if (options.original_double) {
+      r.exact_double = second_reading ? checkContainment(original, proxy, reading) : r.exact;
+      r.precision = "both";
+    }
   }
   r.exact_seconds = whole.seconds();
   r.original = summarizeMesh(original, r.exact.original_closed);

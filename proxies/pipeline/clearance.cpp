@@ -26,9 +26,13 @@ double largestCoordinate(const TriMesh& mesh) {
 }
 
 double clearanceDistance(const TriMesh& input, std::optional<double> distance,
-                         std::optional<double> ulps) {
+                         std::optional<double> ulps, const std::vector<Affine3f>& placements) {
   if (distance) return *distance;
-  return ulps.value_or(kDefaultClearanceUlps) * floatUlp(largestCoordinate(input));
+  const double k = ulps.value_or(kDefaultClearanceUlps);
+  double clearance = k * floatUlp(largestCoordinate(input));
+  for (const Affine3f& t : placements)
+    clearance = std::max(clearance, placementClearance(input, t, k));
+  return clearance;
 }
 
 namespace {

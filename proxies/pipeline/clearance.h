@@ -7,6 +7,7 @@
 // surface moves by more than d/2 (a triangle's points are convex combinations of its corners),
 // so the surfaces never meet on the way and the class is kept.
 #include <optional>
+#include <vector>
 
 #include "mesh/tri_mesh.h"
 #include "util/affine3.h"
@@ -28,9 +29,10 @@ double floatUlp(double magnitude);
 double largestCoordinate(const TriMesh& mesh);
 
 // The clearance in scene units: `distance` when given, else `ulps` (default
-// kDefaultClearanceUlps) x floatUlp(largest coordinate of the input).
+// kDefaultClearanceUlps) x floatUlp(largest coordinate of the input), or more where one of
+// `placements` needs it (placementClearance).
 double clearanceDistance(const TriMesh& input, std::optional<double> distance,
-                         std::optional<double> ulps);
+                         std::optional<double> ulps, const std::vector<Affine3f>& placements = {});
 
 // The clearance, in the mesh's own units, that keeps a class on the float copies placed by
 // `to_world` (Affine3f::apply, as the tracer places a mesh): `ulps` ulps of float at the largest

@@ -253,6 +253,11 @@ bool recordChecks(ProxyReport& report, const VerifiedCandidate& chosen, ProxyCla
 // the checks' detail) when the verdict differs there.
 bool provedInDouble(ProxyReport& report, const VerifiedCandidate& chosen, const TriMesh& input,
                     const std::vector<Vec3d>& input_double, const BudgetContext& ctx) {
+  // Decimals that floats represent read the same both ways: the float proof is that one too.
+  if (readsAsFloat(input, input_double)) {
+    report.checks.containment_double = containmentName(chosen.containment->verdict);
+    return true;
+  }
   ContainmentOptions o;
   o.original_positions = &input_double;
   const ContainmentResult d =
@@ -396,12 +401,8 @@ ProxyGenResult generateProxy(const TriMesh& input, const ProxyGenOptions& option
 
   BudgetContext ctx{input, reference, options, method, max_faces, budget, timer, report, rebuild};
   if (options.kind != ProxyClass::kGeneral) {
-    ctx.clearance = clearanceDistance(input, options.clearance, options.clearance_ulps);
-    if (!options.clearance)
-      for (const Affine3f& t : options.placements)
-        ctx.clearance = std::max(
-            ctx.clearance,
-            placementClearance(input, t, options.clearance_ulps.value_or(kDefaultClearanceUlps)));
+    ctx.clearance =
+        clearanceDistance(input, options.clearance, options.clearance_ulps, options.placements);
     params.clearance = options.clearance;
     if (!options.clearance)
       params.clearance_ulps = options.clearance_ulps.value_or(kDefaultClearanceUlps);

@@ -39,6 +39,13 @@ FloatKey keyOf(const Vec3f& v) {
 
 }  // namespace
 
+bool readsAsFloat(const TriMesh& mesh, const std::vector<Vec3d>& positions) {
+  if (positions.size() != mesh.vertices.size()) return false;
+  for (size_t i = 0; i < positions.size(); ++i)
+    if (!(positions[i] == Vec3d(mesh.vertices[i]))) return false;
+  return true;
+}
+
 bool storesDecimals(const std::filesystem::path& file) {
   const std::string ext = lowerExtension(file);
   return ext == ".off" || ext == ".obj" || (ext == ".ply" && plyIsAscii(file));

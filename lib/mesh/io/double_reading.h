@@ -21,4 +21,9 @@ std::vector<Vec3d> readDoublePositions(const std::filesystem::path& file, const 
 // Whether `file`'s format stores decimals (so the two readings can differ).
 bool storesDecimals(const std::filesystem::path& file);
 
+// Whether `positions` (another reading of `mesh`'s file) are exactly its float vertices, as for a
+// binary format or decimals that floats represent: a check on them then repeats the same check
+// on the float vertices, and its answer can be reused.
+bool readsAsFloat(const TriMesh& mesh, const std::vector<Vec3d>& positions);
+
 }  // namespace proxyvis

@@ -40,16 +40,7 @@ class TouchTraits {
   // `clearance` > 0: within that distance counts as touching (distances in double: see
   // proxies/check/containment.cpp).
   TouchTraits(const Triangle3& query, double clearance)
-      : box_(query.bbox() + CGAL::Bbox_3(query[0].x() - clearance, query[0].y() - clearance,
-                                         query[0].z() - clearance, query[0].x() + clearance,
-                                         query[0].y() + clearance, query[0].z() + clearance)),
-        a_(query[0]),
-        clearance_(clearance) {
-    // (The box grown by the clearance: the union with a clearance-sized box at each corner.)
-    for (int i = 1; i < 3; ++i)
-      box_ += CGAL::Bbox_3(query[i].x() - clearance, query[i].y() - clearance,
-                           query[i].z() - clearance, query[i].x() + clearance,
-                           query[i].y() + clearance, query[i].z() + clearance);
+      : box_(grownBox(query.bbox(), clearance)), a_(query[0]), clearance_(clearance) {
     const Point3 &a = query[0], &b = query[1], &c = query[2];
     const double l = std::max(l1(b - a), l1(c - a));
     edge_l2_ = l * l;
