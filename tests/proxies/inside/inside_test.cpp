@@ -23,7 +23,7 @@ using Case = gen_test::ContainmentCase;
 class InsideContainment : public testing::TestWithParam<Case> {};
 
 TEST_P(InsideContainment, ExactCheckProvesContainment) {
-  if (gen_test::tooLargeForSanitizers(GetParam().mesh)) GTEST_SKIP() << "Release suite only";
+  if (gen_test::skippedUnderSanitizers(GetParam().mesh)) GTEST_SKIP() << "Release suite only";
   const auto [o, r] = gen_test::runContainmentCase(
       GetParam(), ProxyClass::kInside, &ProxyGenOptions::offset, ContainmentVerdict::kContained);
   if (o.max_faces > 0 && *r.report.budget_reached) {
@@ -61,6 +61,7 @@ class InsideBudget : public testing::TestWithParam<BudgetCase> {};
 
 TEST_P(InsideBudget, IsRespected) {
   const BudgetCase c = GetParam();
+  if (gen_test::skippedUnderSanitizers(c.mesh)) GTEST_SKIP() << "Release suite only";
   const ProxyGenResult r =
       generateProxy(mesh(c.mesh), genOptions(ProxyClass::kInside, c.method, c.max_faces, 1000));
   EXPECT_TRUE(*r.report.budget_reached) << nlohmann::json(r.report).dump(2);

@@ -25,7 +25,7 @@ using Case = gen_test::ContainmentCase;
 class OutsideContainment : public testing::TestWithParam<Case> {};
 
 TEST_P(OutsideContainment, ExactCheckProvesContainment) {
-  if (gen_test::tooLargeForSanitizers(GetParam().mesh)) GTEST_SKIP() << "Release suite only";
+  if (gen_test::skippedUnderSanitizers(GetParam().mesh)) GTEST_SKIP() << "Release suite only";
   const auto [o, r] = gen_test::runContainmentCase(
       GetParam(), ProxyClass::kOutside, &ProxyGenOptions::alpha, ContainmentVerdict::kContains);
   if (o.max_faces > 0) {
