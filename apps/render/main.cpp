@@ -17,6 +17,7 @@
 #include "render/renderer.h"
 #include "render_data_parallel.h"
 #include "render_image.h"
+#include "render_out_of_core.h"
 #include "scene/scene_desc.h"
 #include "util/app_main.h"
 #include "util/error.h"
@@ -37,6 +38,7 @@ struct RenderOptions {
   double seconds = 0;  // --time; > 0 replaces --spp
   RenderFlags render;
   DataParallelFlags data_parallel;
+  OutOfCoreFlags out_of_core;
   CommonOptions common;
 };
 
@@ -57,6 +59,7 @@ void addOptions(CLI::App& app, RenderOptions& o) {
   spp->excludes(time);
   addRenderFlags(app, o.render);
   addDataParallelFlags(app, o.data_parallel, false);
+  addOutOfCoreFlags(app, o.out_of_core);
   addCommonOptions(app, o.common);
 }
 
@@ -64,7 +67,15 @@ int runRender(RenderOptions& o) {
   if (o.data_parallel.enabled) {
     DataParallelRenderRequest request{o.scene,   o.output, o.estimator,     o.spp,
                                       o.seconds, o.render, o.data_parallel, o.common};
+    if (!o.out_of_core.geometry_budget.empty())
+      throw Error("", "--geometry-budget is not available with --data-parallel", {},
+                  "render out of core on one machine, or data-parallel in core");
     return runDataParallelRender(request);
+  }
+  if (!o.out_of_core.geometry_budget.empty()) {
+    OutOfCoreRenderRequest request{o.scene,   o.output, o.estimator,   o.spp,
+                                   o.seconds, o.render, o.out_of_core, o.common};
+    return runOutOfCoreRender(request);
   }
   if (o.output == "-")
     throw Error("-o -", "an image cannot be written to stdout", {}, "name an .exr or .png file");
@@ -132,9 +143,8 @@ int main(int argc, char** argv) {
       "render"};
   proxyvis::RenderOptions options;
   proxyvis::addOptions(app, options);
-  return proxyvis::runApp(app, argc, argv, options.common,
-                          [&] {
-                            proxyvis::refuseDataParallelFlagsAlone(app, options.data_parallel);
-                            return proxyvis::runRender(options);
-                          });
+  return proxyvis::runApp(app, argc, argv, options.common, [&] {
+    proxyvis::refuseDataParallelFlagsAlone(app, options.data_parallel);
+    return proxyvis::runRender(options);
+  });
 }

@@ -25,28 +25,6 @@ int proxyOfKind(const SceneMeshDesc& mesh, const std::string& kind) {
   return -1;
 }
 
-// Forwarding decides rays by the proxy's class, so the class must be the kind's, trusted by the
-// decision the single-process renderer makes too (decideProxyTrust). Where that renderer would
-// re-verify the class with the exact check, this one refuses: the check needs the original,
-// which only its owner holds, and every rank must trust the same proxies.
-void requireTrustedClass(const SceneMeshDesc& mesh, const ProxyRef& ref, ProxyClass expected) {
-  const std::string file = ref.file.string();
-  const ClassTrust trust = decideProxyTrust(ref, [&]() -> ContainmentResult {
-    throw Error(file,
-                fmt::format("the {} class of mesh '{}''s proxy was not proved for this file",
-                            proxyClassName(expected), mesh.name),
-                ref.sha256.empty() ? "the scene records no sha256 for it"
-                                   : "the file's sha256 differs from the one recorded",
-                "prove it again: proxy-check SCENE --write-scene OUT");
-  });
-  if (trust.trusted != expected)
-    throw Error(file,
-                fmt::format("{} proxy of mesh '{}' has no proved {} class in the scene", ref.kind,
-                            mesh.name, proxyClassName(expected)),
-                "--forwarding proxies decides rays by it",
-                "generate it with proxy-gen, or prove it with proxy-check SCENE --write-scene OUT");
-}
-
 // The proxy kinds forwarding may rely on under --proxy-kind (DistributedSceneOptions::scene).
 void checkForwardingKind(const std::string& kind, bool proxies) {
   if (kind.empty()) return;
@@ -152,9 +130,11 @@ class DistributedSceneLoader {
         }
         if (!options_.proxies) continue;
         if (outside_[m] >= 0)
-          requireTrustedClass(mesh, mesh.proxies[size_t(outside_[m])], ProxyClass::kOutside);
+          requireProvedClass(mesh, mesh.proxies[size_t(outside_[m])], ProxyClass::kOutside,
+                             "--forwarding proxies decides rays by it");
         if (inside_[m] >= 0)
-          requireTrustedClass(mesh, mesh.proxies[size_t(inside_[m])], ProxyClass::kInside);
+          requireProvedClass(mesh, mesh.proxies[size_t(inside_[m])], ProxyClass::kInside,
+                             "--forwarding proxies decides rays by it");
       }
     });
   }

@@ -145,4 +145,23 @@ TrustedRenderScene loadTrustedRenderScene(SceneDesc& scene, const RenderSceneOpt
   return out;
 }
 
+void requireProvedClass(const SceneMeshDesc& mesh, const ProxyRef& ref, ProxyClass expected,
+                        const std::string& relies) {
+  const std::string file = ref.file.string();
+  const ClassTrust trust = decideProxyTrust(ref, [&]() -> ContainmentResult {
+    throw Error(file,
+                fmt::format("the {} class of mesh '{}''s proxy was not proved for this file",
+                            proxyClassName(expected), mesh.name),
+                ref.sha256.empty() ? "the scene records no sha256 for it"
+                                   : "the file's sha256 differs from the one recorded",
+                "prove it again: proxy-check SCENE --write-scene OUT");
+  });
+  if (trust.trusted != expected)
+    throw Error(file,
+                fmt::format("{} proxy of mesh '{}' has no proved {} class in the scene", ref.kind,
+                            mesh.name, proxyClassName(expected)),
+                relies,
+                "generate it with proxy-gen, or prove it with proxy-check SCENE --write-scene OUT");
+}
+
 }  // namespace proxyvis

@@ -18,6 +18,7 @@
 namespace proxyvis {
 
 struct SceneDesc;
+struct SceneMeshDesc;
 struct ProxyRef;
 struct RenderSceneOptions;
 class RenderScene;
@@ -54,6 +55,14 @@ ClassTrust decideClassTrust(std::optional<ProxyClass> claimed, std::string_view 
 // originals and the decision must be the same on every rank; its check refuses the scene
 // (lib/distributed/distributed_scene.cpp), and proxy-check --write-scene records the hash again.
 ClassTrust decideProxyTrust(const ProxyRef& ref, const std::function<ContainmentResult()>& check);
+
+// For the renderers that cannot re-verify a class (the data-parallel one: a rank holds only its
+// own originals, and every rank must trust the same proxies; the out-of-core one: the originals
+// are on disk): the proxy must have the class `expected`, trusted by decideProxyTrust on its
+// recorded hash alone. Otherwise throws Error naming the file, with `relies` (what decides by the
+// class) as the reason and how to prove it.
+void requireProvedClass(const SceneMeshDesc& mesh, const ProxyRef& ref, ProxyClass expected,
+                        const std::string& relies);
 
 struct ProxyTrust {
   std::string mesh;             // the mesh's name

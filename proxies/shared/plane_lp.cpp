@@ -188,9 +188,8 @@ class Seidel {
 
   // The optimum over the box and earlier[0, j) on the line of `l`: an interval of its parameter.
   std::optional<std::array<double, 2>> onLine(const Line& l, const std::vector<Line>& box,
-                                              const std::vector<Line>& earlier, size_t j,
-                                              double cu, double cv, double centre_u,
-                                              double centre_v) const {
+                                              const std::vector<Line>& earlier, size_t j, double cu,
+                                              double cv, double centre_u, double centre_v) const {
     const double len = std::hypot(l.ax, l.ay);
     if (!(len > 1e-12)) return std::nullopt;  // parallel to the plane and violated: infeasible
     const double nx = l.ax / len, ny = l.ay / len, offset = l.b / len;
@@ -214,9 +213,10 @@ class Seidel {
       lo = hi = 0.5 * (lo + hi);
     }
     const double slope = cu * wx + cv * wy;
-    const double t = slope > flat_    ? lo
-                     : slope < -flat_ ? hi
-                                      : std::clamp((centre_u - qx) * wx + (centre_v - qy) * wy, lo, hi);
+    const double t = slope > flat_ ? lo
+                     : slope < -flat_
+                         ? hi
+                         : std::clamp((centre_u - qx) * wx + (centre_v - qy) * wy, lo, hi);
     return std::array<double, 2>{qx + t * wx, qy + t * wy};
   }
 

@@ -1,0 +1,49 @@
+#include "outofcore/geometry_cache.h"
+
+#include <algorithm>
+
+namespace proxyvis {
+
+GeometryCache::GeometryCache(std::vector<uint64_t> expected_bytes, uint64_t budget_bytes,
+                             Loader loader)
+    : expected_(std::move(expected_bytes)),
+      budget_(budget_bytes),
+      loader_(std::move(loader)),
+      entries_(expected_.size()) {}
+
+void GeometryCache::evictOne() {
+  const uint32_t victim = lru_.back();
+  lru_.pop_back();
+  Entry& e = entries_[victim];
+  stats_.resident_bytes -= e.bytes;
+  e.scene.reset();
+  e.bytes = 0;
+  ++stats_.evictions;
+}
+
+const TraceScene& GeometryCache::acquire(uint32_t mesh) {
+  Entry& e = entries_[mesh];
+  if (e.scene) {
+    ++stats_.hits;
+    lru_.splice(lru_.begin(), lru_, e.lru);
+    return *e.scene;
+  }
+  while (!lru_.empty() && stats_.resident_bytes + expected_[mesh] > budget_) evictOne();
+  GeometryLoad load = loader_(mesh);
+  ++stats_.loads;
+  stats_.bytes_read += load.file_bytes;
+  stats_.read_seconds += load.read_seconds;
+  stats_.build_seconds += load.build_seconds;
+  // A build may take a few bytes more than the scan measured (allocation order): the budget
+  // still holds once the entry is in.
+  while (!lru_.empty() && stats_.resident_bytes + load.bytes > budget_) evictOne();
+  e.scene = std::move(load.scene);
+  e.bytes = load.bytes;
+  lru_.push_front(mesh);
+  e.lru = lru_.begin();
+  stats_.resident_bytes += e.bytes;
+  stats_.peak_resident_bytes = std::max(stats_.peak_resident_bytes, stats_.resident_bytes);
+  return *e.scene;
+}
+
+}  // namespace proxyvis

@@ -1,0 +1,335 @@
+// The out-of-core pass loop (contract in out_of_core_render.h).
+#include "outofcore/out_of_core_render.h"
+
+#include <fmt/core.h>
+#include <sys/resource.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <limits>
+#include <utility>
+
+#include "render/integrator_steps.h"
+#include "util/error.h"
+#include "util/progress.h"
+#include "util/stopwatch.h"
+
+namespace proxyvis {
+
+namespace {
+
+using Queues = std::vector<std::vector<uint32_t>>;  // per mesh: item indices
+
+// Per-thread (mesh, item) pairs gathered in parallel, then sorted into per-mesh queues in item
+// order (the order only matters for the trace's memory access, never for an answer).
+struct QueueBuilder {
+  tbb::enumerable_thread_specific<std::vector<std::pair<uint32_t, uint32_t>>> pairs;
+  void add(uint32_t mesh, uint32_t item) { pairs.local().emplace_back(mesh, item); }
+  uint64_t into(Queues& queues) {
+    uint64_t total = 0;
+    for (auto& q : queues) q.clear();
+    for (auto& local : pairs) {
+      for (const auto& [mesh, item] : local) queues[mesh].push_back(item);
+      total += local.size();
+      local.clear();
+    }
+    for (auto& q : queues) std::sort(q.begin(), q.end());
+    return total;
+  }
+};
+
+// The meshes with a queue, the resident ones first (no load), then by index.
+std::vector<uint32_t> visitOrder(const Queues& queues, const GeometryCache& cache) {
+  std::vector<uint32_t> order;
+  for (uint32_t m = 0; m < queues.size(); ++m)
+    if (!queues[m].empty() && cache.resident(m)) order.push_back(m);
+  for (uint32_t m = 0; m < queues.size(); ++m)
+    if (!queues[m].empty() && !cache.resident(m)) order.push_back(m);
+  return order;
+}
+
+struct Sums {
+  Vec3d radiance;
+  double vis_sum = 0;
+  uint32_t vis_n = 0;
+};
+
+class OutOfCoreRun {
+ public:
+  OutOfCoreRun(const OutOfCoreScene& scene, const OutOfCoreSettings& settings)
+      : scene_(scene),
+        settings_(settings),
+        tiling_(scene.camera().width(), scene.camera().height(), settings.tile_size),
+        pixels_(size_t(tiling_.width) * size_t(tiling_.height)),
+        cache_(expectedBytes(scene), settings.budget_bytes,
+               [&scene](uint32_t m) { return scene.loadOriginal(m); }),
+        queues_(scene.desc().meshes.size()) {}
+
+  OutOfCoreResult run() {
+    const Stopwatch clock;
+    const int batch = settings_.batch_passes > 0 ? std::min(settings_.batch_passes, settings_.spp)
+                                                 : settings_.spp;
+    const int batches = (settings_.spp + batch - 1) / batch;
+    Progress progress("render", uint64_t(batches) + 1, settings_.quiet);
+    const Stopwatch primary;
+    shadePoints();
+    stats_.primary_seconds = primary.seconds();
+    progress.update();
+    sums_.assign(pixels_, Sums{});
+    const Stopwatch shadow;
+    for (int first = 0; first < settings_.spp; first += batch) {
+      runBatch(first, std::min(batch, settings_.spp - first));
+      progress.update();
+    }
+    stats_.shadow_seconds = shadow.seconds();
+    stats_.seconds = clock.seconds();
+    progress.done();
+    return result();
+  }
+
+ private:
+  static std::vector<uint64_t> expectedBytes(const OutOfCoreScene& scene) {
+    std::vector<uint64_t> bytes;
+    for (const OutOfCoreMesh& m : scene.meshes()) bytes.push_back(m.built_bytes);
+    return bytes;
+  }
+
+  // Primary rays: queued on every mesh whose object boxes they enter; each mesh traced once.
+  // The nearest hit wins, and of hits at the same distance the one of the lower mesh index, so
+  // the answer does not depend on which meshes were resident.
+  void shadePoints() {
+    std::vector<Segment> rays(pixels_);
+    std::vector<Hit> hits(pixels_);
+    std::vector<uint32_t> hit_mesh(pixels_, std::numeric_limits<uint32_t>::max());
+    QueueBuilder builder;
+    tbb::parallel_for(0, tiling_.count(), [&](int t) {
+      thread_local std::vector<LabelEntry> labels;
+      tiling_.forEachPixel(t, [&](int x, int y, uint32_t pixel) {
+        rays[pixel] = primaryRay(scene_.camera(), x, y, pixel);
+        labels.clear();
+        scene_.objectBoxes().labelsAlong(rays[pixel], labels);
+        for (const LabelEntry& e : labels) builder.add(e.label, pixel);
+      });
+    });
+    stats_.primary_queued = builder.into(queues_);
+    for (uint32_t m : visitOrder(queues_, cache_)) {
+      const TraceScene& originals = cache_.acquire(m);
+      const std::vector<uint32_t>& queue = queues_[m];
+      tbb::parallel_for(size_t(0), queue.size(), [&](size_t i) {
+        const uint32_t pixel = queue[i];
+        const Hit hit = originals.intersect(rays[pixel]);
+        if (!hit.hit) return;
+        if (!hits[pixel].hit || hit.t < hits[pixel].t ||
+            (hit.t == hits[pixel].t && m < hit_mesh[pixel])) {
+          hits[pixel] = hit;
+          hit_mesh[pixel] = m;
+        }
+      });
+    }
+    points_.assign(pixels_, ShadingPoint{});
+    const float eps = scene_.epsilon();
+    tbb::parallel_for(size_t(0), pixels_, [&](size_t p) {
+      if (!hits[p].hit) return;
+      const Vec3f& albedo = scene_.desc().meshes[scene_.objects()[hits[p].user_id].mesh].albedo;
+      points_[p] = shadingPointOf(rays[p], hits[p], eps, albedo);
+    });
+  }
+
+  // Which meshes segment `item` (from a point on object `self`) must be traced against; false
+  // when it needs none (then `blocked` says whether an inside proxy blocks it).
+  void route(const Segment& s, uint32_t self, uint32_t item, QueueBuilder& builder,
+             uint8_t& blocked) {
+    thread_local std::vector<LabelEntry> labels;
+    thread_local std::vector<BoxIndex::BoxEntry> boxes;
+    thread_local std::vector<TraceScene::Candidate> candidates;
+    thread_local std::vector<uint32_t> groups;
+    thread_local std::vector<uint8_t> found;
+    thread_local std::vector<uint32_t> queued;
+    if (settings_.policy == OutOfCorePolicy::kExactBatched) {
+      labels.clear();
+      scene_.objectBoxes().labelsAlong(s, labels);
+      for (const LabelEntry& e : labels) builder.add(e.label, item);
+      return;
+    }
+    // The self-shadowing rule: the shading point's own object is traced as its original when
+    // the segment is in its box (it leaves that object's surface, so it usually is); other
+    // objects, of its mesh or not, only where their proxies cannot decide.
+    boxes.clear();
+    scene_.objectBoxes().boxesAlong(s, boxes);
+    candidates.clear();
+    groups.clear();
+    queued.clear();
+    auto queue = [&](uint32_t mesh) {
+      if (std::find(queued.begin(), queued.end(), mesh) != queued.end()) return;
+      queued.push_back(mesh);
+      builder.add(mesh, item);
+    };
+    bool self_box = false;
+    for (const BoxIndex::BoxEntry& b : boxes) {
+      if (b.id == self) {
+        self_box = true;
+        continue;
+      }
+      size_t g = std::find(groups.begin(), groups.end(), b.label) - groups.begin();
+      if (g == groups.size()) groups.push_back(b.label);
+      candidates.push_back({b.id, uint32_t(g)});
+    }
+    found.assign(groups.size(), 0);
+    const TraceScene* inside = scene_.insideProxies();
+    if (!candidates.empty() && inside && inside->crossedGroups(s, candidates, found, 1) > 0) {
+      blocked = 1;
+      return;
+    }
+    if (self_box) queue(scene_.objects()[self].mesh);
+    if (candidates.empty()) return;
+    std::fill(found.begin(), found.end(), 0);
+    const TraceScene* outside = scene_.outsideProxies();
+    if (outside) outside->crossedGroups(s, candidates, found, groups.size());
+    // A mesh without an outside proxy (none, or an inside one only) cannot be ruled out.
+    for (size_t g = 0; g < groups.size(); ++g)
+      if (found[g] || scene_.meshes()[groups[g]].outside < 0) queue(groups[g]);
+  }
+
+  void runBatch(int first_pass, int passes) {
+    ++stats_.batches;
+    const size_t n = pixels_ * size_t(passes);
+    samples_.resize(n);
+    blocked_.assign(n, 0);
+    QueueBuilder builder;
+    std::atomic<uint64_t> segments{0}, unqueued{0}, by_inside{0};
+    tbb::parallel_for(0, tiling_.count(), [&](int t) {
+      uint64_t local_segments = 0, local_unqueued = 0, local_inside = 0;
+      tiling_.forEachPixel(t, [&](int, int, uint32_t pixel) {
+        for (int k = 0; k < passes; ++k) {
+          const uint32_t item = uint32_t(size_t(k) * pixels_ + pixel);
+          PreparedSample& ps = samples_[item];
+          prepareSamples(scene_.lights(), points_[pixel], settings_.seed, pixel, first_pass + k, 1,
+                         &ps);
+          if (!(ps.weight.x > 0 || ps.weight.y > 0 || ps.weight.z > 0)) continue;
+          ++local_segments;
+          const size_t before = builder.pairs.local().size();
+          route(ps.segment, points_[pixel].object, item, builder, blocked_[item]);
+          if (builder.pairs.local().size() == before) {
+            ++local_unqueued;
+            local_inside += blocked_[item];
+          }
+        }
+      });
+      segments += local_segments, unqueued += local_unqueued, by_inside += local_inside;
+    });
+    stats_.shadow_segments += segments;
+    stats_.unqueued_segments += unqueued;
+    stats_.blocked_by_inside += by_inside;
+    stats_.queued += builder.into(queues_);
+    std::atomic<uint64_t> traces{0};
+    for (uint32_t m : visitOrder(queues_, cache_)) {
+      const TraceScene& originals = cache_.acquire(m);
+      const std::vector<uint32_t>& queue = queues_[m];
+      tbb::parallel_for(tbb::blocked_range<size_t>(0, queue.size(), 256),
+                        [&](const tbb::blocked_range<size_t>& r) {
+                          uint64_t local = 0;
+                          for (size_t i = r.begin(); i < r.end(); ++i) {
+                            const uint32_t item = queue[i];
+                            if (blocked_[item]) continue;
+                            ++local;
+                            if (originals.occluded(samples_[item].segment)) blocked_[item] = 1;
+                          }
+                          traces += local;
+                        });
+    }
+    stats_.original_traces += traces;
+    // Accumulated pass by pass, as the in-core renderer does: the same sums, bit for bit.
+    tbb::parallel_for(size_t(0), pixels_, [&](size_t pixel) {
+      Sums& sums = sums_[pixel];
+      for (int k = 0; k < passes; ++k) {
+        const size_t item = size_t(k) * pixels_ + pixel;
+        const PreparedSample& ps = samples_[item];
+        if (!points_[pixel].valid || !(ps.weight.x > 0 || ps.weight.y > 0 || ps.weight.z > 0))
+          continue;
+        const double v = blocked_[item] ? 0.0 : 1.0;
+        sums.radiance += Vec3d(ps.weight) * v;
+        sums.vis_sum += v;
+        sums.vis_n += 1;
+      }
+    });
+  }
+
+  OutOfCoreResult result() {
+    OutOfCoreResult r;
+    const int w = tiling_.width, h = tiling_.height;
+    r.spp = settings_.spp;
+    r.radiance = Image{w, h, 3, std::vector<float>(pixels_ * 3)};
+    r.visibility = Image{w, h, 1, std::vector<float>(pixels_)};
+    for (size_t i = 0; i < pixels_; ++i) {
+      const Sums& s = sums_[i];
+      for (int c = 0; c < 3; ++c)
+        r.radiance.pixels[i * 3 + c] = float(s.radiance[c] / settings_.spp);
+      r.visibility.pixels[i] = s.vis_n ? float(s.vis_sum / s.vis_n) : 0.0f;
+    }
+    stats_.cache = cache_.stats();
+    stats_.budget_bytes = settings_.budget_bytes;
+    stats_.peak_rss_bytes = processPeakRssBytes();
+    r.stats = stats_;
+    return r;
+  }
+
+  const OutOfCoreScene& scene_;
+  const OutOfCoreSettings& settings_;
+  const Tiling tiling_;
+  const size_t pixels_;
+  GeometryCache cache_;
+  Queues queues_;
+  std::vector<ShadingPoint> points_;
+  std::vector<PreparedSample> samples_;
+  std::vector<uint8_t> blocked_;
+  std::vector<Sums> sums_;
+  OutOfCoreStats stats_;
+};
+
+}  // namespace
+
+const char* outOfCorePolicyName(OutOfCorePolicy p) {
+  return p == OutOfCorePolicy::kExactBatched ? "exact-batched" : "proxies-exact";
+}
+
+OutOfCorePolicy parseOutOfCorePolicy(const std::string& name) {
+  for (OutOfCorePolicy p : {OutOfCorePolicy::kExactBatched, OutOfCorePolicy::kProxiesExact})
+    if (name == outOfCorePolicyName(p)) return p;
+  throw Error("", "--ooc-policy: unknown policy '" + name + "'", {},
+              "use exact-batched or proxies-exact");
+}
+
+uint64_t processPeakRssBytes() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return uint64_t(usage.ru_maxrss) * 1024u;
+}
+
+OutOfCoreResult renderOutOfCore(const OutOfCoreScene& scene, const OutOfCoreSettings& settings) {
+  if (settings.spp < 1) throw Error("", "--spp must be at least 1");
+  if (settings.tile_size < 1 || settings.batch_passes < 0)
+    throw Error("", "tile size must be at least 1 and passes per batch at least 0");
+  if (settings.policy == OutOfCorePolicy::kProxiesExact && !scene.outsideProxies() &&
+      !scene.insideProxies())
+    throw Error(scene.desc().path.string(), "--ooc-policy proxies-exact needs proxies",
+                "no mesh of the scene has an outside or inside proxy with a proved class",
+                "generate them with proxy-gen, or use --ooc-policy exact-batched");
+  // A budget below one mesh's built scene could not hold that mesh while its queue is traced:
+  // the largest is named, with what it takes.
+  size_t largest = 0;
+  for (size_t m = 1; m < scene.meshes().size(); ++m)
+    if (scene.meshes()[m].built_bytes > scene.meshes()[largest].built_bytes) largest = m;
+  const uint64_t need = scene.meshes().empty() ? 0 : scene.meshes()[largest].built_bytes;
+  if (need > settings.budget_bytes)
+    throw Error(
+        "",
+        fmt::format("--geometry-budget of {} bytes is smaller than mesh '{}' alone",
+                    settings.budget_bytes, scene.desc().meshes[largest].name),
+        fmt::format("its built scene takes {} bytes, and a mesh is loaded whole", need),
+        fmt::format("give at least {} bytes ({:.1f} MiB)", need, double(need) / double(1 << 20)));
+  return OutOfCoreRun(scene, settings).run();
+}
+
+}  // namespace proxyvis

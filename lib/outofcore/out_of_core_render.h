@@ -1,0 +1,67 @@
+#pragma once
+// The out-of-core renderer (docs/out_of_core.md): direct illumination with exact visibility where
+// the originals stay on disk and a cache of built originals holds what a budget allows. The
+// integrator's steps are the single-process renderer's (render/integrator_steps.h): the same
+// primary rays, shading points and light samples, so an exact image here equals the in-core
+// exact image bit for bit, at any budget, batch size and thread count.
+//
+// Work is batched by mesh, as Pharr et al. (1997) batch rays by geometry: the primary rays are
+// queued on every mesh whose object boxes they enter, then each mesh is loaded once and its
+// queue traced; shadow segments of a batch of passes likewise. Policies decide what queues:
+//   exact-batched  every mesh whose object box a segment enters (the fair exact baseline);
+//   proxies-exact  the mesh of the shading point's own object (the self-shadowing rule traces
+//                  its original), and only the other meshes whose outside proxy the segment
+//                  crosses, or that have none; a segment an inside proxy blocks queues nowhere.
+#include <cstdint>
+#include <string>
+
+#include "outofcore/geometry_cache.h"
+#include "outofcore/out_of_core_scene.h"
+#include "util/image.h"
+
+namespace proxyvis {
+
+enum class OutOfCorePolicy { kExactBatched, kProxiesExact };
+const char* outOfCorePolicyName(OutOfCorePolicy p);  // "exact-batched", "proxies-exact"
+// Throws Error naming --ooc-policy for anything else.
+OutOfCorePolicy parseOutOfCorePolicy(const std::string& name);
+
+struct OutOfCoreSettings {
+  OutOfCorePolicy policy = OutOfCorePolicy::kExactBatched;
+  int spp = 16;
+  uint64_t seed = 0;
+  int batch_passes = 0;  // passes whose segments are queued together; 0: the whole frame
+  uint64_t budget_bytes = 0;
+  int tile_size = 16;
+  bool quiet = false;
+};
+
+struct OutOfCoreStats {
+  GeometryCacheStats cache;
+  uint64_t batches = 0;
+  uint64_t shadow_segments = 0;    // segments needing visibility
+  uint64_t queued = 0;             // (segment, mesh) pairs queued
+  uint64_t unqueued_segments = 0;  // decided without a load (by the boxes or the proxies)
+  uint64_t blocked_by_inside = 0;  // of those, blocked by an inside proxy
+  uint64_t original_traces = 0;    // segment traces against loaded originals
+  uint64_t primary_queued = 0;     // (ray, mesh) pairs of the primary rays
+  uint64_t budget_bytes = 0;
+  uint64_t peak_rss_bytes = 0;
+  double seconds = 0, primary_seconds = 0, shadow_seconds = 0;
+};
+
+struct OutOfCoreResult {
+  Image radiance;    // RGB, the mean over spp
+  Image visibility;  // Y, the mean visibility of the pixel's segments
+  int spp = 0;
+  OutOfCoreStats stats;
+};
+
+// Throws Error for settings it cannot run with, a budget below the largest mesh's built bytes,
+// or an original that can no longer be read (naming its file; nothing is written).
+OutOfCoreResult renderOutOfCore(const OutOfCoreScene& scene, const OutOfCoreSettings& settings);
+
+// The process's peak resident set (getrusage), bytes.
+uint64_t processPeakRssBytes();
+
+}  // namespace proxyvis

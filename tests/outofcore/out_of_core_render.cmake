@@ -1,0 +1,9 @@
+if(CMAKE_SCRIPT_MODE_FILE)
+  return()
+endif()
+find_package(Python3 REQUIRED COMPONENTS Interpreter)
+add_test(NAME app.render.out_of_core
+  COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_LIST_DIR}/out_of_core_render.py
+          $<TARGET_FILE_DIR:render> ${CMAKE_SOURCE_DIR} ${CMAKE_CURRENT_BINARY_DIR}/out_of_core)
+set_tests_properties(app.render.out_of_core PROPERTIES TIMEOUT 600
+  FAIL_REGULAR_EXPRESSION "FAIL:")

@@ -1,0 +1,136 @@
+#!/usr/bin/env python3
+"""render --geometry-budget end to end on a small unique park (4 meshes, each its own file).
+
+  out_of_core_render.py BIN_DIR SOURCE_DIR WORK_DIR
+
+Checks:
+  - exact out-of-core images equal the in-core exact image bit for bit (R, G, B) at budgets of
+    100 %, 40 % and just the largest mesh, both policies, one batch or one pass per batch, on one
+    and two threads;
+  - the report's loads, hits, evictions and bytes: at 100 % every mesh is loaded once; at smaller
+    budgets meshes are evicted and loaded again, and the cache never holds more than its budget;
+    proxies-exact queues fewer (segment, mesh) pairs than exact-batched;
+  - errors exit 2 with one line and write nothing: a budget below the largest mesh, an original
+    damaged on disk, --estimator roulette, --time, --data-parallel with a budget.
+"""
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+from image_diff import differing_pairs  # noqa: E402
+
+SIZE = ["--width", "96", "--height", "72", "--spp", "4", "--seed", "3"]
+
+
+def fail(msg):
+    print(f"FAIL: {msg}")
+    sys.exit(1)
+
+
+def run(args, expect=0):
+    p = subprocess.run(args, capture_output=True, text=True, timeout=600)
+    if p.returncode != expect:
+        fail(f"{' '.join(args)}: exit {p.returncode}, expected {expect}\n{p.stdout}\n{p.stderr}")
+    return p
+
+
+def main():
+    bin_dir, source, work = sys.argv[1:4]
+    render = os.path.join(bin_dir, "render")
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    park = os.path.join(work, "park")
+    run([sys.executable, os.path.join(source, "scenes", "make_unique_park.py"), "--count", "4",
+         "--prototypes", "bunny,spot", "--out", park, "--ratio", "0.05",
+         "--proxy-gen", os.path.join(bin_dir, "proxy-gen"),
+         "--mesh-info", os.path.join(bin_dir, "mesh-info")])
+    scene = os.path.join(park, "unique-park.json")
+
+    ref = os.path.join(work, "ref.exr")
+    run([render, scene, *SIZE, "-o", ref, "--quiet", "--threads", "2"])
+    probe = os.path.join(work, "probe.json")
+    run([render, scene, *SIZE, "--geometry-budget", "100%", "-o",
+         os.path.join(work, "probe.exr"), "--json", probe, "--quiet"])
+    info = json.load(open(probe))
+    in_core = info["in_core_bytes"]
+    meshes = len(json.load(open(scene))["meshes"])  # the sculptures and the lawn
+    if info["loads"] != meshes or info["evictions"] != 0:
+        fail(f"at 100 % every mesh loads once: {info['loads']} loads, {info['evictions']} evictions")
+    # The largest mesh alone, from the error message of a budget of one byte.
+    p = run([render, scene, *SIZE, "--geometry-budget", "1", "-o", os.path.join(work, "no.exr"),
+             "--quiet"], expect=2)
+    lines = [l for l in p.stderr.splitlines() if l.strip()]
+    if len(lines) != 1 or "smaller than mesh" not in lines[0]:
+        fail(f"a budget below the largest mesh: {lines}")
+    if os.path.exists(os.path.join(work, "no.exr")):
+        fail("a refused render wrote its image")
+    largest = int(lines[0].split("give at least ")[1].split(" bytes")[0])
+    if not 0 < largest < in_core:
+        fail(f"largest mesh {largest} bytes against {in_core} in core")
+
+    pairs, queued = [], {}
+    for budget in ("100%", "40%", str(largest)):
+        for policy in ("exact-batched", "proxies-exact"):
+            for batch, threads in (("0", "2"), ("1", "1")):
+                name = f"{policy}-{budget.rstrip('%')}-{batch}-{threads}"
+                out = os.path.join(work, name + ".exr")
+                js = os.path.join(work, name + ".json")
+                run([render, scene, *SIZE, "--geometry-budget", budget, "--ooc-policy", policy,
+                     "--batch-passes", batch, "--threads", threads, "-o", out, "--json", js,
+                     "--quiet"])
+                r = json.load(open(js))
+                pairs.append((ref, out))
+                if r["peak_cache_bytes"] > r["geometry_budget_bytes"]:
+                    fail(f"{name}: cache peak {r['peak_cache_bytes']} over the budget")
+                if budget != "100%" and r["evictions"] == 0:
+                    fail(f"{name}: a budget below the scene evicted nothing")
+                if r["loads"] < meshes or r["bytes_read"] <= 0 or r["load_seconds"] <= 0:
+                    fail(f"{name}: loads {r['loads']}, bytes {r['bytes_read']}")
+                for key in ("loads_per_frame", "peak_rss_bytes", "queued", "original_traces"):
+                    if key not in r:
+                        fail(f"{name}: no {key} in the report")
+                queued[(policy, budget, batch)] = r["queued"]
+                print(f"ok: {name}: {r['loads']} loads, {r['evictions']} evictions, "
+                      f"{r['queued']} queued")
+    for (policy, budget, batch), q in queued.items():
+        if policy == "proxies-exact" and not q < queued[("exact-batched", budget, batch)]:
+            fail(f"proxies-exact queued {q}, exact-batched {queued[('exact-batched', budget, batch)]}")
+    bad = differing_pairs(pairs, channels="R,G,B")
+    if bad:
+        fail("out-of-core images differ from the in-core one:\n" +
+             "\n".join(f"{b}: {r}" for _, b, r in bad[:3]))
+    print(f"ok: {len(pairs)} out-of-core images equal the in-core one bit for bit")
+
+    # A damaged original: exit 2 naming it, nothing written.
+    broken = os.path.join(work, "broken")
+    shutil.copytree(park, broken, symlinks=True)
+    victim = sorted(f for f in os.listdir(os.path.join(broken, "meshes"))
+                    if not f.endswith(".json"))[0]
+    path = os.path.join(broken, "meshes", victim)
+    with open(path, "r+b") as f:
+        f.truncate(os.path.getsize(path) // 3)
+    out = os.path.join(work, "broken.exr")
+    p = run([render, os.path.join(broken, "unique-park.json"), *SIZE, "--geometry-budget", "40%",
+             "-o", out, "--quiet"], expect=2)
+    lines = [l for l in p.stderr.splitlines() if l.strip()]
+    if len(lines) != 1 or victim not in lines[0]:
+        fail(f"a damaged original must be named in one line: {lines}")
+    if os.path.exists(out):
+        fail("a refused render wrote its image")
+    for extra, words in ((["--estimator", "roulette"], "--estimator roulette"),
+                         (["--time", "1"], "--time"),
+                         (["--data-parallel"], "not available with --data-parallel")):
+        args = [render, scene, "--geometry-budget", "40%", "-o", out, "--quiet", *extra]
+        if "--time" not in extra:
+            args += ["--spp", "1"]
+        p = run(args, expect=2)
+        if words not in p.stderr or os.path.exists(out):
+            fail(f"{extra}: {p.stderr}")
+    print("ok: errors exit 2 with one line and write nothing")
+
+
+if __name__ == "__main__":
+    main()
