@@ -40,7 +40,7 @@ nlohmann::json summaryJson(const OutOfCoreRenderRequest& o, const SceneDesc& des
       {"program", "render"},
       {"scene", desc.path.string()},
       {"output", o.output.string()},
-      {"estimator", "exact"},
+      {"estimator", settings.policy == OutOfCorePolicy::kProxiesRoulette ? "roulette" : "exact"},
       {"policy", outOfCorePolicyName(settings.policy)},
       {"spp", r.spp},
       {"seed", o.common.seed},
@@ -74,6 +74,8 @@ nlohmann::json summaryJson(const OutOfCoreRenderRequest& o, const SceneDesc& des
       {"unqueued_segments", s.unqueued_segments},
       {"blocked_by_inside", s.blocked_by_inside},
       {"original_traces", s.original_traces},
+      {"load_q", settings.policy == OutOfCorePolicy::kProxiesRoulette ? settings.load_q : 1.0},
+      {"skipped_queues", s.skipped_queues},
       {"build", buildText()},
       {"version", versionText()},
   };
@@ -88,12 +90,19 @@ void addOutOfCoreFlags(CLI::App& app, OutOfCoreFlags& f) {
                  "size (25%); exact visibility (docs/out_of_core.md)");
   app.add_option("--ooc-policy", f.policy,
                  "Out of core: exact-batched (segments queued on every mesh whose object box they "
-                 "enter) or proxies-exact (only where the proxies cannot decide)")
+                 "enter), proxies-exact (only where the proxies cannot decide) or "
+                 "proxies-roulette (a mesh's queue traced with probability --load-q per batch, "
+                 "else the proxies' answer, weighted to stay unbiased)")
       ->capture_default_str();
   app.add_option("--batch-passes", f.batch_passes,
                  "Out of core: passes whose segments are queued together before any mesh is "
                  "loaded (0: the whole frame)")
       ->check(CLI::Range(0, 1 << 20))
+      ->capture_default_str();
+  app.add_option("--load-q", f.load_q,
+                 "Out of core, proxies-roulette: the probability that a mesh with an outside "
+                 "proxy is loaded and its queue traced in a batch")
+      ->check(CLI::Range(0.001, 1.0))
       ->capture_default_str();
 }
 
@@ -117,7 +126,7 @@ int runOutOfCoreRender(OutOfCoreRenderRequest& o) {
   o.render.applyTo(desc);
   OutOfCoreSceneOptions scene_options;
   scene_options.scene = o.render.sceneOptions(o.common.quiet);
-  scene_options.proxies = settings.policy == OutOfCorePolicy::kProxiesExact;
+  scene_options.proxies = settings.policy != OutOfCorePolicy::kExactBatched;
   const auto scene = OutOfCoreScene::load(desc, scene_options);
   image_module.get();
 
@@ -125,12 +134,17 @@ int runOutOfCoreRender(OutOfCoreRenderRequest& o) {
   // Seed index 0 of --seed, as render and render-compare: the images agree.
   settings.seed = hashKeys(o.common.seed, 0);
   settings.batch_passes = o.out_of_core.batch_passes;
+  settings.load_q = o.out_of_core.load_q;
   settings.budget_bytes = budget.resolve(scene->inCoreBytes());
   settings.quiet = o.common.quiet;
   const OutOfCoreResult result = renderOutOfCore(*scene, settings);
 
-  RenderMetadata meta{"render", "exact", result.spp, result.stats.seconds, o.common.seed, {}};
+  RenderMetadata meta{"render",      outOfCorePolicyName(settings.policy),
+                      result.spp,    result.stats.seconds,
+                      o.common.seed, {}};
   meta.extra.push_back({"proxyvis:ooc_policy", std::string(outOfCorePolicyName(settings.policy))});
+  if (settings.policy == OutOfCorePolicy::kProxiesRoulette)
+    meta.extra.push_back({"proxyvis:load_q", float(settings.load_q)});
   meta.extra.push_back({"proxyvis:geometry_budget", o.out_of_core.geometry_budget});
   const RenderImageFile file = renderImageFile(
       format, result.radiance, [&] { return outOfCoreExr(result); },
@@ -145,18 +159,18 @@ int runOutOfCoreRender(OutOfCoreRenderRequest& o) {
   const OutOfCoreStats& s = result.stats;
   printHumanReport(
       o.common,
-      fmt::format("render: wrote {}: exact, --ooc-policy {}, {} spp in {:.2f} s (scan {:.2f} s)\n"
-                  "  geometry budget {} = {:.1f} MiB of {:.1f} MiB in core; {} loads ({:.1f} MB "
-                  "read, {:.2f} s reading and building), {} hits, {} evictions\n"
-                  "  shadow segments {}: {} queued on meshes, {} decided without a load ({} "
-                  "blocked by inside proxies); peak RSS {:.1f} MiB\n",
-                  o.output.string(), outOfCorePolicyName(settings.policy), result.spp, s.seconds,
-                  scene->scanSeconds(), o.out_of_core.geometry_budget,
-                  double(s.budget_bytes) / double(1 << 20),
-                  double(scene->inCoreBytes()) / double(1 << 20), s.cache.loads,
-                  1e-6 * double(s.cache.bytes_read), s.cache.loadSeconds(), s.cache.hits,
-                  s.cache.evictions, s.shadow_segments, s.queued, s.unqueued_segments,
-                  s.blocked_by_inside, double(s.peak_rss_bytes) / double(1 << 20)));
+      fmt::format(
+          "render: wrote {}: --ooc-policy {}, {} spp in {:.2f} s (scan {:.2f} s)\n"
+          "  geometry budget {} = {:.1f} MiB of {:.1f} MiB in core; {} loads ({:.1f} MB "
+          "read, {:.2f} s reading and building), {} hits, {} evictions, {} queues skipped\n"
+          "  shadow segments {}: {} queued on meshes, {} decided without a load ({} "
+          "blocked by inside proxies); peak RSS {:.1f} MiB\n",
+          o.output.string(), outOfCorePolicyName(settings.policy), result.spp, s.seconds,
+          scene->scanSeconds(), o.out_of_core.geometry_budget,
+          double(s.budget_bytes) / double(1 << 20), double(scene->inCoreBytes()) / double(1 << 20),
+          s.cache.loads, 1e-6 * double(s.cache.bytes_read), s.cache.loadSeconds(), s.cache.hits,
+          s.cache.evictions, s.skipped_queues, s.shadow_segments, s.queued, s.unqueued_segments,
+          s.blocked_by_inside, double(s.peak_rss_bytes) / double(1 << 20)));
   return kExitOk;
 }
 

@@ -18,8 +18,9 @@ struct OutOfCoreFlags {
   std::string geometry_budget;  // empty: in core
   std::string policy = "exact-batched";
   int batch_passes = 0;  // 0: the whole frame in one batch
+  double load_q = 0.5;   // proxies-roulette's probability of tracing a mesh's queue
 };
-// Adds --geometry-budget, --ooc-policy and --batch-passes.
+// Adds --geometry-budget, --ooc-policy, --batch-passes and --load-q.
 void addOutOfCoreFlags(CLI::App& app, OutOfCoreFlags& flags);
 
 struct OutOfCoreRenderRequest {

@@ -8,12 +8,14 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <limits>
 #include <utility>
 
 #include "render/integrator_steps.h"
 #include "util/error.h"
 #include "util/progress.h"
+#include "util/rng.h"
 #include "util/stopwatch.h"
 
 namespace proxyvis {
@@ -21,6 +23,11 @@ namespace proxyvis {
 namespace {
 
 using Queues = std::vector<std::vector<uint32_t>>;  // per mesh: item indices
+
+// The high bit of a queued item: the pair of a segment and its own object's mesh (whose proxy
+// answer, under roulette, is "not self-shadowed").
+constexpr uint32_t kSelfPair = 1u << 31;
+constexpr uint32_t kItemMask = kSelfPair - 1;
 
 // Per-thread (mesh, item) pairs gathered in parallel, then sorted into per-mesh queues in item
 // order (the order only matters for the trace's memory access, never for an answer).
@@ -182,11 +189,20 @@ class OutOfCoreRun {
       blocked = 1;
       return;
     }
-    if (self_box) queue(scene_.objects()[self].mesh);
-    if (candidates.empty()) return;
     std::fill(found.begin(), found.end(), 0);
     const TraceScene* outside = scene_.outsideProxies();
-    if (outside) outside->crossedGroups(s, candidates, found, groups.size());
+    if (outside && !candidates.empty()) outside->crossedGroups(s, candidates, found, groups.size());
+    // The proxies' answer for the own object's mesh is "not self-shadowed" (kSelfPair) unless
+    // the segment also crosses the outside proxy of another object of that mesh; for another
+    // mesh queued here, "blocked" (it crosses that mesh's outside proxy).
+    const uint32_t self_mesh = scene_.objects()[self].mesh;
+    if (self_box) {
+      bool other_crossed = false;
+      for (size_t g = 0; g < groups.size(); ++g)
+        other_crossed |= groups[g] == self_mesh && found[g];
+      queued.push_back(self_mesh);
+      builder.add(self_mesh, other_crossed ? item : item | kSelfPair);
+    }
     // A mesh without an outside proxy (none, or an inside one only) cannot be ruled out.
     for (size_t g = 0; g < groups.size(); ++g)
       if (found[g] || scene_.meshes()[groups[g]].outside < 0) queue(groups[g]);
@@ -197,6 +213,8 @@ class OutOfCoreRun {
     const size_t n = pixels_ * size_t(passes);
     samples_.resize(n);
     blocked_.assign(n, 0);
+    up_.assign(n, 0);
+    down_.assign(n, 0);
     QueueBuilder builder;
     std::atomic<uint64_t> segments{0}, unqueued{0}, by_inside{0};
     tbb::parallel_for(0, tiling_.count(), [&](int t) {
@@ -224,22 +242,42 @@ class OutOfCoreRun {
     stats_.blocked_by_inside += by_inside;
     stats_.queued += builder.into(queues_);
     std::atomic<uint64_t> traces{0};
+    const bool roulette = settings_.policy == OutOfCorePolicy::kProxiesRoulette;
     for (uint32_t m : visitOrder(queues_, cache_)) {
-      const TraceScene& originals = cache_.acquire(m);
       const std::vector<uint32_t>& queue = queues_[m];
+      if (roulette && scene_.meshes()[m].outside >= 0) {
+        // One draw per batch and mesh, keyed on neither the thread nor what is resident.
+        Rng draw(settings_.seed, hashKeys(uint64_t(first_pass), m, 0x6c6f6164u));
+        if (!(draw.uniformDouble() < settings_.load_q)) {
+          ++stats_.skipped_queues;
+          // The proxies' answer: blocked by another object's original, not by its own.
+          for (uint32_t q : queue)
+            if (!(q & kSelfPair)) blocked_[q] = 1;
+          continue;
+        }
+      }
+      const TraceScene& originals = cache_.acquire(m);
+      const bool weighted = roulette && scene_.meshes()[m].outside >= 0;
       tbb::parallel_for(tbb::blocked_range<size_t>(0, queue.size(), 256),
                         [&](const tbb::blocked_range<size_t>& r) {
                           uint64_t local = 0;
                           for (size_t i = r.begin(); i < r.end(); ++i) {
-                            const uint32_t item = queue[i];
+                            const uint32_t item = queue[i] & kItemMask;
                             if (blocked_[item]) continue;
                             ++local;
-                            if (originals.occluded(samples_[item].segment)) blocked_[item] = 1;
+                            const bool v = !originals.occluded(samples_[item].segment);
+                            const bool v_proxy = (queue[i] & kSelfPair) != 0;
+                            if (!weighted || v == v_proxy) {
+                              if (!v) blocked_[item] = 1;
+                            } else if (v) {
+                              ++up_[item];  // v' = 0, v = 1: factor 1/q
+                            } else {
+                              ++down_[item];  // v' = 1, v = 0: factor 1 - 1/q
+                            }
                           }
                           traces += local;
                         });
     }
-    stats_.original_traces += traces;
     // Accumulated pass by pass, as the in-core renderer does: the same sums, bit for bit.
     tbb::parallel_for(size_t(0), pixels_, [&](size_t pixel) {
       Sums& sums = sums_[pixel];
@@ -248,7 +286,12 @@ class OutOfCoreRun {
         const PreparedSample& ps = samples_[item];
         if (!points_[pixel].valid || !(ps.weight.x > 0 || ps.weight.y > 0 || ps.weight.z > 0))
           continue;
-        const double v = blocked_[item] ? 0.0 : 1.0;
+        // A product of the roulette's factors, from their counts: the same bits whatever the
+        // order the meshes were visited in.
+        double v = blocked_[item] ? 0.0 : 1.0;
+        if (v != 0 && (up_[item] || down_[item]))
+          v = std::pow(1.0 / settings_.load_q, up_[item]) *
+              std::pow(1.0 - 1.0 / settings_.load_q, down_[item]);
         sums.radiance += Vec3d(ps.weight) * v;
         sums.vis_sum += v;
         sums.vis_n += 1;
@@ -284,6 +327,7 @@ class OutOfCoreRun {
   std::vector<ShadingPoint> points_;
   std::vector<PreparedSample> samples_;
   std::vector<uint8_t> blocked_;
+  std::vector<uint8_t> up_, down_;  // proxies-roulette: counts of factors 1/q and 1 - 1/q
   std::vector<Sums> sums_;
   OutOfCoreStats stats_;
 };
@@ -291,14 +335,23 @@ class OutOfCoreRun {
 }  // namespace
 
 const char* outOfCorePolicyName(OutOfCorePolicy p) {
-  return p == OutOfCorePolicy::kExactBatched ? "exact-batched" : "proxies-exact";
+  switch (p) {
+    case OutOfCorePolicy::kExactBatched:
+      return "exact-batched";
+    case OutOfCorePolicy::kProxiesExact:
+      return "proxies-exact";
+    case OutOfCorePolicy::kProxiesRoulette:
+      return "proxies-roulette";
+  }
+  return "?";
 }
 
 OutOfCorePolicy parseOutOfCorePolicy(const std::string& name) {
-  for (OutOfCorePolicy p : {OutOfCorePolicy::kExactBatched, OutOfCorePolicy::kProxiesExact})
+  for (OutOfCorePolicy p : {OutOfCorePolicy::kExactBatched, OutOfCorePolicy::kProxiesExact,
+                            OutOfCorePolicy::kProxiesRoulette})
     if (name == outOfCorePolicyName(p)) return p;
   throw Error("", "--ooc-policy: unknown policy '" + name + "'", {},
-              "use exact-batched or proxies-exact");
+              "use exact-batched, proxies-exact or proxies-roulette");
 }
 
 uint64_t processPeakRssBytes() {
@@ -311,9 +364,12 @@ OutOfCoreResult renderOutOfCore(const OutOfCoreScene& scene, const OutOfCoreSett
   if (settings.spp < 1) throw Error("", "--spp must be at least 1");
   if (settings.tile_size < 1 || settings.batch_passes < 0)
     throw Error("", "tile size must be at least 1 and passes per batch at least 0");
-  if (settings.policy == OutOfCorePolicy::kProxiesExact && !scene.outsideProxies() &&
+  if (!(settings.load_q > 0 && settings.load_q <= 1))
+    throw Error("", fmt::format("--load-q {} is not in (0, 1]", settings.load_q));
+  if (settings.policy != OutOfCorePolicy::kExactBatched && !scene.outsideProxies() &&
       !scene.insideProxies())
-    throw Error(scene.desc().path.string(), "--ooc-policy proxies-exact needs proxies",
+    throw Error(scene.desc().path.string(),
+                fmt::format("--ooc-policy {} needs proxies", outOfCorePolicyName(settings.policy)),
                 "no mesh of the scene has an outside or inside proxy with a proved class",
                 "generate them with proxy-gen, or use --ooc-policy exact-batched");
   // A budget below one mesh's built scene could not hold that mesh while its queue is traced:

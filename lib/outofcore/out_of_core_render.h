@@ -12,6 +12,14 @@
 //   proxies-exact  the mesh of the shading point's own object (the self-shadowing rule traces
 //                  its original), and only the other meshes whose outside proxy the segment
 //                  crosses, or that have none; a segment an inside proxy blocks queues nowhere.
+//   proxies-roulette  proxies-exact's queues, but a mesh with an outside proxy is loaded and its
+//                  queue traced with probability q per batch (one draw, keyed on the seed, the
+//                  batch and the mesh); otherwise its segments take the proxies' answer (blocked
+//                  where they cross its outside proxy; not self-shadowed by their own object).
+//                  Per segment and mesh the estimate is v' + [traced] (v - v') / q, and a
+//                  segment's visibility the product over its meshes: unbiased, since the draws
+//                  of different meshes are independent. Meshes without an outside proxy are
+//                  always traced.
 #include <cstdint>
 #include <string>
 
@@ -21,8 +29,9 @@
 
 namespace proxyvis {
 
-enum class OutOfCorePolicy { kExactBatched, kProxiesExact };
-const char* outOfCorePolicyName(OutOfCorePolicy p);  // "exact-batched", "proxies-exact"
+enum class OutOfCorePolicy { kExactBatched, kProxiesExact, kProxiesRoulette };
+// "exact-batched", "proxies-exact", "proxies-roulette"
+const char* outOfCorePolicyName(OutOfCorePolicy p);
 // Throws Error naming --ooc-policy for anything else.
 OutOfCorePolicy parseOutOfCorePolicy(const std::string& name);
 
@@ -32,6 +41,7 @@ struct OutOfCoreSettings {
   uint64_t seed = 0;
   int batch_passes = 0;  // passes whose segments are queued together; 0: the whole frame
   uint64_t budget_bytes = 0;
+  double load_q = 0.5;  // proxies-roulette: the probability a mesh's queue is traced in a batch
   int tile_size = 16;
   bool quiet = false;
 };
@@ -44,6 +54,7 @@ struct OutOfCoreStats {
   uint64_t unqueued_segments = 0;  // decided without a load (by the boxes or the proxies)
   uint64_t blocked_by_inside = 0;  // of those, blocked by an inside proxy
   uint64_t original_traces = 0;    // segment traces against loaded originals
+  uint64_t skipped_queues = 0;     // proxies-roulette: (batch, mesh) queues not traced
   uint64_t primary_queued = 0;     // (ray, mesh) pairs of the primary rays
   uint64_t budget_bytes = 0;
   uint64_t peak_rss_bytes = 0;

@@ -10,9 +10,15 @@ Checks:
   - the report's loads, hits, evictions and bytes: at 100 % every mesh is loaded once; at smaller
     budgets meshes are evicted and loaded again, and the cache never holds more than its budget;
     proxies-exact queues fewer (segment, mesh) pairs than exact-batched;
+  - proxies-roulette is unbiased: over 40 seeds, the mean of the paired differences between its
+    image mean and the in-core exact image mean of the same seed is within 3 standard errors
+    (measured) of zero, and it skips some meshes' queues (the same estimator without its 1/q
+    weights gave z = -3.5 here: the test can tell);
   - errors exit 2 with one line and write nothing: a budget below the largest mesh, an original
     damaged on disk, --estimator roulette, --time, --data-parallel with a budget.
 """
+import math
+import re
 import json
 import os
 import shutil
@@ -37,6 +43,44 @@ def run(args, expect=0):
     return p
 
 
+def image_means(paths):
+    """The mean of R, G and B over each image (iinfo --stats, one process for all)."""
+    p = run(["iinfo", "--stats", *paths])
+    means = [float(sum(map(float, m.split()[:3])) / 3)
+             for m in re.findall(r"Stats Avg: ([^(]*)\(", p.stdout)]
+    if len(means) != len(paths):
+        fail(f"iinfo gave {len(means)} means for {len(paths)} images")
+    return means
+
+
+def roulette_unbiased(render, scene, work):
+    seeds = 40
+    small = ["--width", "64", "--height", "48", "--spp", "8", "--threads", "2", "--quiet"]
+    exact, roulette, skipped = [], [], 0
+    for seed in range(seeds):
+        e = os.path.join(work, f"exact-{seed}.exr")
+        r = os.path.join(work, f"roulette-{seed}.exr")
+        js = os.path.join(work, f"roulette-{seed}.json")
+        run([render, scene, *small, "--seed", str(seed), "-o", e])
+        run([render, scene, *small, "--seed", str(seed), "-o", r, "--geometry-budget", "40%",
+             "--ooc-policy", "proxies-roulette", "--load-q", "0.5", "--batch-passes", "1",
+             "--json", js])
+        skipped += json.load(open(js))["skipped_queues"]
+        exact.append(e)
+        roulette.append(r)
+    means = image_means(exact + roulette)
+    d = [means[seeds + i] - means[i] for i in range(seeds)]
+    mean = sum(d) / seeds
+    sd = math.sqrt(sum((x - mean) ** 2 for x in d) / (seeds - 1))
+    if skipped == 0 or sd == 0:
+        fail(f"roulette skipped {skipped} queues, spread {sd}: the test cannot tell anything")
+    z = mean / (sd / math.sqrt(seeds))
+    print(f"ok: roulette - exact image mean over {seeds} seeds: {mean:.3e} +- {sd / math.sqrt(seeds):.3e}"
+          f" (z = {z:.2f}), {skipped} queues skipped")
+    if abs(z) > 3.0:
+        fail(f"proxies-roulette looks biased: z = {z:.2f}")
+
+
 def main():
     bin_dir, source, work = sys.argv[1:4]
     render = os.path.join(bin_dir, "render")
@@ -44,7 +88,7 @@ def main():
     os.makedirs(work)
     park = os.path.join(work, "park")
     run([sys.executable, os.path.join(source, "scenes", "make_unique_park.py"), "--count", "4",
-         "--prototypes", "bunny,spot", "--out", park, "--ratio", "0.05",
+         "--prototypes", "bunny,spot", "--out", park, "--ratio", "0.01",
          "--proxy-gen", os.path.join(bin_dir, "proxy-gen"),
          "--mesh-info", os.path.join(bin_dir, "mesh-info")])
     scene = os.path.join(park, "unique-park.json")
@@ -103,6 +147,8 @@ def main():
         fail("out-of-core images differ from the in-core one:\n" +
              "\n".join(f"{b}: {r}" for _, b, r in bad[:3]))
     print(f"ok: {len(pairs)} out-of-core images equal the in-core one bit for bit")
+
+    roulette_unbiased(render, scene, work)
 
     # A damaged original: exit 2 naming it, nothing written.
     broken = os.path.join(work, "broken")
