@@ -509,12 +509,6 @@ class RankRender {
 
 }  // namespace
 
-uint64_t peakRssBytes() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return uint64_t(usage.ru_maxrss) * 1024u;
-}
-
 DataParallelResult renderDataParallel(const DistributedScene& scene,
                                       const DataParallelSettings& settings, const MpiComm& comm) {
   if (settings.spp < 1) throw Error("", "--spp must be at least 1 for a data-parallel render");

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "distributed/distributed_scene.h"
+#include "util/peak_rss.h"
 #include "distributed/mpi_comm.h"
 #include "distributed/network_fabric.h"
 #include "util/image.h"
@@ -92,8 +93,5 @@ struct DataParallelResult {
 // Collective. Throws Error for bad settings (on every rank alike).
 DataParallelResult renderDataParallel(const DistributedScene& scene,
                                       const DataParallelSettings& settings, const MpiComm& comm);
-
-// Peak resident set size of this process, in bytes (getrusage).
-uint64_t peakRssBytes();
 
 }  // namespace proxyvis

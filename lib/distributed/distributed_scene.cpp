@@ -19,12 +19,6 @@ namespace proxyvis {
 
 namespace {
 
-int proxyOfKind(const SceneMeshDesc& mesh, const std::string& kind) {
-  for (size_t i = 0; i < mesh.proxies.size(); ++i)
-    if (mesh.proxies[i].kind == kind) return int(i);
-  return -1;
-}
-
 // The proxy kinds forwarding may rely on under --proxy-kind (DistributedSceneOptions::scene).
 void checkForwardingKind(const std::string& kind, bool proxies) {
   if (kind.empty()) return;

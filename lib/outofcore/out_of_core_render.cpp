@@ -2,7 +2,6 @@
 #include "outofcore/out_of_core_render.h"
 
 #include <fmt/core.h>
-#include <sys/resource.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
@@ -14,6 +13,7 @@
 
 #include "render/integrator_steps.h"
 #include "util/error.h"
+#include "util/peak_rss.h"
 #include "util/progress.h"
 #include "util/rng.h"
 #include "util/stopwatch.h"
@@ -313,7 +313,7 @@ class OutOfCoreRun {
     }
     stats_.cache = cache_.stats();
     stats_.budget_bytes = settings_.budget_bytes;
-    stats_.peak_rss_bytes = processPeakRssBytes();
+    stats_.peak_rss_bytes = peakRssBytes();
     r.stats = stats_;
     return r;
   }
@@ -352,12 +352,6 @@ OutOfCorePolicy parseOutOfCorePolicy(const std::string& name) {
     if (name == outOfCorePolicyName(p)) return p;
   throw Error("", "--ooc-policy: unknown policy '" + name + "'", {},
               "use exact-batched, proxies-exact or proxies-roulette");
-}
-
-uint64_t processPeakRssBytes() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return uint64_t(usage.ru_maxrss) * 1024u;
 }
 
 OutOfCoreResult renderOutOfCore(const OutOfCoreScene& scene, const OutOfCoreSettings& settings) {

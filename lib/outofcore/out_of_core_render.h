@@ -72,7 +72,4 @@ struct OutOfCoreResult {
 // or an original that can no longer be read (naming its file; nothing is written).
 OutOfCoreResult renderOutOfCore(const OutOfCoreScene& scene, const OutOfCoreSettings& settings);
 
-// The process's peak resident set (getrusage), bytes.
-uint64_t processPeakRssBytes();
-
 }  // namespace proxyvis

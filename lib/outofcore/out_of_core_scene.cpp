@@ -14,12 +14,6 @@ namespace proxyvis {
 
 namespace {
 
-int proxyOfKind(const SceneMeshDesc& mesh, const std::string& kind) {
-  for (size_t i = 0; i < mesh.proxies.size(); ++i)
-    if (mesh.proxies[i].kind == kind) return int(i);
-  return -1;
-}
-
 uint64_t fileBytes(const std::filesystem::path& file) {
   std::error_code ec;
   const auto bytes = std::filesystem::file_size(file, ec);

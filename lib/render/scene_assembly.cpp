@@ -5,11 +5,16 @@
 
 namespace proxyvis {
 
+int proxyOfKind(const SceneMeshDesc& mesh, const std::string& kind) {
+  for (size_t i = 0; i < mesh.proxies.size(); ++i)
+    if (mesh.proxies[i].kind == kind) return int(i);
+  return -1;
+}
+
 int requestedProxy(const SceneMeshDesc& mesh, const RenderSceneOptions& options) {
   if (!options.use_proxies) return -1;
-  for (size_t i = 0; i < mesh.proxies.size(); ++i)
-    if (options.proxy_kind.empty() || mesh.proxies[i].kind == options.proxy_kind) return int(i);
-  return -1;
+  if (options.proxy_kind.empty()) return mesh.proxies.empty() ? -1 : 0;
+  return proxyOfKind(mesh, options.proxy_kind);
 }
 
 ProxyChoice chooseProxy(const SceneMeshDesc& mesh, const RenderSceneOptions& options,

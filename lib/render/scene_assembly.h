@@ -20,6 +20,9 @@ namespace proxyvis {
 // Reads no file: what the class checks (proxies/check/class_trust.h) look at before loading.
 int requestedProxy(const SceneMeshDesc& mesh, const RenderSceneOptions& options);
 
+// The index of the first proxy of `mesh` whose "kind" is `kind`, -1 if none.
+int proxyOfKind(const SceneMeshDesc& mesh, const std::string& kind);
+
 struct ProxyChoice {
   int proxy = -1;       // the proxy traced in place of the original, -1: the original
   std::string dropped;  // a warning when the requested proxy is not traced, else empty
