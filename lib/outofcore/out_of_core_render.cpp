@@ -278,6 +278,7 @@ class OutOfCoreRun {
                           traces += local;
                         });
     }
+    stats_.original_traces += traces;
     // Accumulated pass by pass, as the in-core renderer does: the same sums, bit for bit.
     tbb::parallel_for(size_t(0), pixels_, [&](size_t pixel) {
       Sums& sums = sums_[pixel];

@@ -131,6 +131,8 @@ def main():
                     fail(f"{name}: cache peak {r['peak_cache_bytes']} over the budget")
                 if budget != "100%" and r["evictions"] == 0:
                     fail(f"{name}: a budget below the scene evicted nothing")
+                if r["original_traces"] <= 0 or r["original_traces"] > r["queued"]:
+                    fail(f"{name}: {r['original_traces']} traces of {r['queued']} queued pairs")
                 if r["loads"] < meshes or r["bytes_read"] <= 0 or r["load_seconds"] <= 0:
                     fail(f"{name}: loads {r['loads']}, bytes {r['bytes_read']}")
                 for key in ("loads_per_frame", "peak_rss_bytes", "queued", "original_traces"):
