@@ -226,28 +226,33 @@ class Seidel {
   std::vector<Plane> planes_;
 };
 
-// True when x lies on exactly three of the constraint planes (the first s of `planes`), off the
-// box, with the objective a positive combination of their normals (Cramer's rule): then x is the
-// program's only optimum. Generous tolerances: a near-tie only costs the enumeration.
-bool uniqueVertex(const PlaneLpProblem& problem, const std::vector<Plane>& planes, size_t s,
-                  const Vec3d& x) {
+// When x lies on exactly three of the constraint planes (the first s of `planes`), off the box,
+// with the objective a positive combination of their normals, x is the program's only optimum:
+// returns that vertex computed as the enumeration computes it (Cramer's rule on the three planes
+// in their order), so that both solvers give the same bits, not merely the same point. Else
+// nullopt. Generous tolerances: a near-tie only costs the enumeration.
+std::optional<Vec3d> uniqueVertex(const PlaneLpProblem& problem, const std::vector<Plane>& planes,
+                                  size_t s, const Vec3d& x) {
   const double near = 1e-7 * problem.half_size;
   for (size_t i = s; i < planes.size(); ++i)
-    if (std::abs(dot(planes[i].n, x) - planes[i].d) <= near) return false;
+    if (std::abs(dot(planes[i].n, x) - planes[i].d) <= near) return std::nullopt;
   size_t tight[3], count = 0;
   for (size_t i = 0; i < s; ++i) {
     if (std::abs(dot(planes[i].n, x) - planes[i].d) > near) continue;
-    if (count == 3) return false;
+    if (count == 3) return std::nullopt;
     tight[count++] = i;
   }
-  if (count != 3) return false;
-  const Vec3d &a = planes[tight[0]].n, &b = planes[tight[1]].n, &c = planes[tight[2]].n;
-  const Vec3d bc = cross(b, c), ca = cross(c, a), ab = cross(a, b);
-  const double det = dot(a, bc);
-  if (std::abs(det) < 1e-6) return false;
-  const double least = 1e-6 * length(problem.objective) * std::abs(det);
+  if (count != 3) return std::nullopt;
+  const Plane &pi = planes[tight[0]], &pj = planes[tight[1]], &pk = planes[tight[2]];
+  const Vec3d jk = cross(pj.n, pk.n), ik = cross(pi.n, pk.n), ij = cross(pi.n, pj.n);
+  const double det = dot(pi.n, jk);
+  if (std::abs(det) < 1e-6) return std::nullopt;
   const Vec3d& obj = problem.objective;
-  return dot(obj, bc) * det > least && dot(obj, ca) * det > least && dot(obj, ab) * det > least;
+  // Multipliers of c = l_i n_i + l_j n_j + l_k n_k (Cramer): all strictly positive.
+  const double least = 1e-6 * length(obj) * std::abs(det);
+  if (!(dot(obj, jk) * det > least && -dot(obj, ik) * det > least && dot(obj, ij) * det > least))
+    return std::nullopt;
+  return (jk * pi.d - ik * pj.d + ij * pk.d) / det;
 }
 
 }  // namespace
@@ -267,11 +272,16 @@ std::optional<Vec3d> solvePlaneLp(const PlaneLpProblem& problem) {
   // handing those cases to Seidel's arbitrary optimal vertex made the fandisk's inside wrap 1.6x
   // slower to reduce (other placements, more of them refused by the input test). Rounding in the
   // 2-D frames could also leave the optimum a little outside a plane (never seen).
-  if (x && !(isFeasible(planes, *x, 4 * tol, last_cut) && uniqueVertex(problem, planes, s, *x)))
+  if (!x) return std::nullopt;
+  const std::optional<Vec3d> vertex =
+      isFeasible(planes, *x, 4 * tol, last_cut) ? uniqueVertex(problem, planes, s, *x)
+                                                 : std::nullopt;
+  if (!vertex || !isFeasible(planes, *vertex, tol, last_cut))
     return solvePlaneLpByEnumeration(problem);
-  if (x) best.offer(*x);
+  // The enumeration's order: the candidates, then the vertex.
   for (const Vec3d& c : problem.candidates)
     if (isFeasible(planes, c, tol, last_cut)) best.offer(c);
+  if (dot(problem.objective, *vertex) <= best.value + best.tie) best.offer(*vertex);
   return best.point;
 }
 
