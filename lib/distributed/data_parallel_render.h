@@ -21,10 +21,10 @@
 #include <vector>
 
 #include "distributed/distributed_scene.h"
-#include "util/peak_rss.h"
 #include "distributed/mpi_comm.h"
 #include "distributed/network_fabric.h"
 #include "util/image.h"
+#include "util/peak_rss.h"
 
 namespace proxyvis {
 

@@ -273,9 +273,9 @@ std::optional<Vec3d> solvePlaneLp(const PlaneLpProblem& problem) {
   // slower to reduce (other placements, more of them refused by the input test). Rounding in the
   // 2-D frames could also leave the optimum a little outside a plane (never seen).
   if (!x) return std::nullopt;
-  const std::optional<Vec3d> vertex =
-      isFeasible(planes, *x, 4 * tol, last_cut) ? uniqueVertex(problem, planes, s, *x)
-                                                 : std::nullopt;
+  const std::optional<Vec3d> vertex = isFeasible(planes, *x, 4 * tol, last_cut)
+                                          ? uniqueVertex(problem, planes, s, *x)
+                                          : std::nullopt;
   if (!vertex || !isFeasible(planes, *vertex, tol, last_cut))
     return solvePlaneLpByEnumeration(problem);
   // The enumeration's order: the candidates, then the vertex.
