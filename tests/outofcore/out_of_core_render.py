@@ -4,7 +4,7 @@ each its own file).
 
   out_of_core_render.py BIN_DIR SOURCE_DIR WORK_DIR [--quick]
 
---quick (the sanitizer build's case): one budget below the scene, both exact policies once, a
+--quick (the sanitizer build's case): two sculptures, one budget below the scene, both exact policies once, a
 few roulette renders without the z-test, and the errors; every code path, little statistics.
 
 Checks:
@@ -57,7 +57,7 @@ def image_means(paths):
     return means
 
 
-def roulette_unbiased(render, scene, work, seeds):
+def roulette_unbiased(render, scene, work, seeds, budget):
     small = ["--width", "64", "--height", "48", "--spp", "8", "--threads", "2", "--quiet"]
     exact, roulette, skipped = [], [], 0
     for seed in range(seeds):
@@ -65,7 +65,7 @@ def roulette_unbiased(render, scene, work, seeds):
         r = os.path.join(work, f"roulette-{seed}.exr")
         js = os.path.join(work, f"roulette-{seed}.json")
         run([render, scene, *small, "--seed", str(seed), "-o", e])
-        run([render, scene, *small, "--seed", str(seed), "-o", r, "--geometry-budget", "40%",
+        run([render, scene, *small, "--seed", str(seed), "-o", r, "--geometry-budget", budget,
              "--ooc-policy", "proxies-roulette", "--load-q", "0.5", "--batch-passes", "1",
              "--json", js])
         skipped += json.load(open(js))["skipped_queues"]
@@ -94,7 +94,8 @@ def main():
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
     park = os.path.join(work, "park")
-    run([sys.executable, os.path.join(source, "scenes", "make_unique_park.py"), "--count", "4",
+    run([sys.executable, os.path.join(source, "scenes", "make_unique_park.py"), "--count",
+         "2" if quick else "4",
          "--prototypes", "spot", "--out", park, "--ratio", "0.01",
          "--proxy-gen", os.path.join(bin_dir, "proxy-gen"),
          "--mesh-info", os.path.join(bin_dir, "mesh-info")])
@@ -123,7 +124,7 @@ def main():
         fail(f"largest mesh {largest} bytes against {in_core} in core")
 
     pairs, queued = [], {}
-    budgets = ("40%",) if quick else ("100%", "40%", str(largest))
+    budgets = ("60%",) if quick else ("100%", "40%", str(largest))
     runs = (("1", "2"),) if quick else (("0", "2"), ("1", "1"))
     for budget in budgets:
         for policy in ("exact-batched", "proxies-exact"):
@@ -159,7 +160,7 @@ def main():
              "\n".join(f"{b}: {r}" for _, b, r in bad[:3]))
     print(f"ok: {len(pairs)} out-of-core images equal the in-core one bit for bit")
 
-    roulette_unbiased(render, scene, work, 3 if quick else 40)
+    roulette_unbiased(render, scene, work, 3 if quick else 40, budgets[-1] if quick else "40%")
 
     # A damaged original: exit 2 naming it, nothing written.
     broken = os.path.join(work, "broken")
