@@ -57,12 +57,6 @@ std::vector<uint32_t> visitOrder(const Queues& queues, const GeometryCache& cach
   return order;
 }
 
-struct Sums {
-  Vec3d radiance;
-  double vis_sum = 0;
-  uint32_t vis_n = 0;
-};
-
 class OutOfCoreRun {
  public:
   OutOfCoreRun(const OutOfCoreScene& scene, const OutOfCoreSettings& settings)
@@ -84,7 +78,7 @@ class OutOfCoreRun {
     shadePoints();
     stats_.primary_seconds = primary.seconds();
     progress.update();
-    sums_.assign(pixels_, Sums{});
+    sums_.assign(pixels_, SampleSums{});
     const Stopwatch shadow;
     for (int first = 0; first < settings_.spp; first += batch) {
       runBatch(first, std::min(batch, settings_.spp - first));
@@ -144,8 +138,9 @@ class OutOfCoreRun {
     });
   }
 
-  // Which meshes segment `item` (from a point on object `self`) must be traced against; false
-  // when it needs none (then `blocked` says whether an inside proxy blocks it).
+  // Queues segment `item` (from a point on object `self`) on the meshes it must be traced
+  // against; none when the boxes or proxies decide it (`blocked` is then set if an inside proxy
+  // blocks it).
   void route(const Segment& s, uint32_t self, uint32_t item, QueueBuilder& builder,
              uint8_t& blocked) {
     thread_local std::vector<LabelEntry> labels;
@@ -225,7 +220,7 @@ class OutOfCoreRun {
           PreparedSample& ps = samples_[item];
           prepareSamples(scene_.lights(), points_[pixel], settings_.seed, pixel, first_pass + k, 1,
                          &ps);
-          if (!(ps.weight.x > 0 || ps.weight.y > 0 || ps.weight.z > 0)) continue;
+          if (!ps.needsVisibility()) continue;
           ++local_segments;
           const size_t before = builder.pairs.local().size();
           route(ps.segment, points_[pixel].object, item, builder, blocked_[item]);
@@ -281,21 +276,18 @@ class OutOfCoreRun {
     stats_.original_traces += traces;
     // Accumulated pass by pass, as the in-core renderer does: the same sums, bit for bit.
     tbb::parallel_for(size_t(0), pixels_, [&](size_t pixel) {
-      Sums& sums = sums_[pixel];
+      SampleSums& sums = sums_[pixel];
       for (int k = 0; k < passes; ++k) {
         const size_t item = size_t(k) * pixels_ + pixel;
         const PreparedSample& ps = samples_[item];
-        if (!points_[pixel].valid || !(ps.weight.x > 0 || ps.weight.y > 0 || ps.weight.z > 0))
-          continue;
+        if (!ps.needsVisibility()) continue;  // also every sample of a pixel without a point
         // A product of the roulette's factors, from their counts: the same bits whatever the
         // order the meshes were visited in.
         double v = blocked_[item] ? 0.0 : 1.0;
         if (v != 0 && (up_[item] || down_[item]))
           v = std::pow(1.0 / settings_.load_q, up_[item]) *
               std::pow(1.0 - 1.0 / settings_.load_q, down_[item]);
-        sums.radiance += Vec3d(ps.weight) * v;
-        sums.vis_sum += v;
-        sums.vis_n += 1;
+        sums.add(ps.weight, v);
       }
     });
   }
@@ -307,10 +299,9 @@ class OutOfCoreRun {
     r.radiance = Image{w, h, 3, std::vector<float>(pixels_ * 3)};
     r.visibility = Image{w, h, 1, std::vector<float>(pixels_)};
     for (size_t i = 0; i < pixels_; ++i) {
-      const Sums& s = sums_[i];
       for (int c = 0; c < 3; ++c)
-        r.radiance.pixels[i * 3 + c] = float(s.radiance[c] / settings_.spp);
-      r.visibility.pixels[i] = s.vis_n ? float(s.vis_sum / s.vis_n) : 0.0f;
+        r.radiance.pixels[i * 3 + c] = sums_[i].radianceMean(c, settings_.spp);
+      r.visibility.pixels[i] = sums_[i].visibilityMean();
     }
     stats_.cache = cache_.stats();
     stats_.budget_bytes = settings_.budget_bytes;
@@ -329,7 +320,7 @@ class OutOfCoreRun {
   std::vector<PreparedSample> samples_;
   std::vector<uint8_t> blocked_;
   std::vector<uint8_t> up_, down_;  // proxies-roulette: counts of factors 1/q and 1 - 1/q
-  std::vector<Sums> sums_;
+  std::vector<SampleSums> sums_;
   OutOfCoreStats stats_;
 };
 

@@ -34,12 +34,17 @@ uint64_t OutOfCoreScene::inCoreBytes() const {
 }
 
 GeometryLoad OutOfCoreScene::loadOriginal(uint32_t mesh) const {
-  GeometryLoad load;
-  const SceneMeshDesc& desc = desc_.meshes[mesh];
   const Stopwatch read;
-  load.file_bytes = fileBytes(desc.file);
-  const TriMesh original = loadSceneMesh(desc);
-  load.read_seconds = read.seconds();
+  const uint64_t file_bytes = fileBytes(desc_.meshes[mesh].file);
+  const TriMesh original = loadSceneMesh(desc_.meshes[mesh]);
+  GeometryLoad load = buildOriginal(mesh, original);
+  load.file_bytes = file_bytes;
+  load.read_seconds = read.seconds() - load.build_seconds;
+  return load;
+}
+
+GeometryLoad OutOfCoreScene::buildOriginal(uint32_t mesh, const TriMesh& original) const {
+  GeometryLoad load;
   const Stopwatch build;
   std::vector<const TriMesh*> geometry(desc_.meshes.size(), nullptr);
   geometry[mesh] = &original;
@@ -112,9 +117,9 @@ class OutOfCoreSceneLoader {
   }
 
   // Every original once: its triangles and bounds, then (once the build is decided) its built
-  // bytes and scene bounds. A scene without instances is flat whatever the triangles, so its
-  // originals are read once; with instances the decision needs every mesh's triangles first,
-  // and each original is read twice.
+  // bytes and scene bounds. A scene without instances is flat whatever the triangles, so each
+  // original is read once and built from that reading; with instances the decision needs every
+  // mesh's triangles first, and each original is read twice.
   void scanOriginals() {
     const size_t n = desc_.meshes.size();
     std::vector<uint64_t> original_triangles(n, 0), proxy_triangles(n, 0);
@@ -138,15 +143,22 @@ class OutOfCoreSceneLoader {
     s_.build_ = has_instances ? chooseSceneBuild(assembly_, desc_, options_.scene,
                                                  original_triangles, proxy_triangles)
                               : chooseBuild(options_.scene.instance_build, false, 0, 0);
-    s_.objects_ = assembly_.objects;
     Bounds3f all;
     for (size_t m = 0; m < n; ++m) {
       if (!s_.meshes_[m].used) continue;
-      if (!has_instances) measure(m, loadSceneMesh(desc_.meshes[m]));
-      const GeometryLoad load = s_.loadOriginal(uint32_t(m));
+      GeometryLoad load;
+      if (has_instances) {
+        load = s_.loadOriginal(uint32_t(m));
+      } else {
+        const TriMesh original = loadSceneMesh(desc_.meshes[m]);
+        measure(m, original);
+        load = s_.buildOriginal(uint32_t(m), original);
+      }
       s_.meshes_[m].built_bytes = load.bytes;
       all.extend(load.scene->bounds());
     }
+    // With each mesh's proxy settled (the objects' proxy fields follow it).
+    s_.objects_ = assembly_.objects;
     if (!has_instances) {
       // The build description with the real triangle count, as the in-core renderer reports it.
       uint64_t flat = 0;

@@ -64,6 +64,8 @@ class OutOfCoreScene {
   // Reads, decodes and builds mesh `mesh`'s original for its objects (world space as in the
   // in-core scene). Throws Error naming the file if it cannot be read any more.
   GeometryLoad loadOriginal(uint32_t mesh) const;
+  // Builds mesh `mesh`'s objects from its original, already read (the scan's second half).
+  GeometryLoad buildOriginal(uint32_t mesh, const TriMesh& original) const;
 
   // One box per object (its original's world box, grown by epsilon()), labelled by its mesh.
   const BoxIndex& objectBoxes() const { return *boxes_; }
