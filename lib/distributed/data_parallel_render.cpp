@@ -29,10 +29,7 @@ enum : uint8_t { kNoVisibility = 0, kDecided = 1, kPending = 2 };
 // How a segment was decided before any forward.
 enum Outcome : uint8_t { kBlockedLocally, kBlockedByInside, kNoRemoteRank, kUndecided };
 
-struct PixelSums {
-  Vec3d radiance;
-  double vis_sum = 0;
-  uint32_t vis_n = 0;
+struct PixelSums : SampleSums {
   uint32_t forwards = 0;
 };
 
@@ -230,7 +227,7 @@ class RankRender {
     const uint32_t pixel = owned_[i];
     PreparedSample& ps = r.samples[e];
     prepareSamples(scene_.lights(), points_[i], settings_.seed, pixel, pass, 1, &ps);
-    if (!(ps.weight.x > 0 || ps.weight.y > 0 || ps.weight.z > 0)) return;
+    if (!ps.needsVisibility()) return;
     r.region[e] = pixel_tile_[pixel] * uint32_t(num_lights_) + ps.light;
     r.state[e] = kDecided;
     if (scene_.locallyOccluded(ps.segment)) return;  // V = 0
@@ -334,10 +331,7 @@ class RankRender {
       for (int j = 0; j < count; ++j) {
         const size_t e = i * size_t(count) + size_t(j);
         if (r.state[e] == kNoVisibility) continue;
-        const double v = r.estimate[e];
-        s.radiance += Vec3d(r.samples[e].weight) * v;
-        s.vis_sum += v;
-        s.vis_n += 1;
+        s.add(r.samples[e].weight, r.estimate[e]);
         s.forwards += r.forwards[e];
       }
     });
@@ -371,8 +365,8 @@ class RankRender {
       const size_t p = owned_[i];
       const PixelSums& s = sums_[i];
       for (int c = 0; c < 3; ++c)
-        radiance.pixels[p * 3 + size_t(c)] = float(s.radiance[c] / settings_.spp);
-      visibility.pixels[p] = s.vis_n ? float(s.vis_sum / s.vis_n) : 0.0f;
+        radiance.pixels[p * 3 + size_t(c)] = s.radianceMean(c, settings_.spp);
+      visibility.pixels[p] = s.visibilityMean();
       forwards.pixels[p] = float(s.forwards);
       owner.pixels[p] = float(rank_ + 1);
     }

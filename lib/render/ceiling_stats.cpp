@@ -125,7 +125,7 @@ CeilingMeasurement measureCeilingStats(const RenderScene& scene, const RenderSet
         prepareSamples(scene, sp, settings.seed, pixel, pass, 1, &ps);
         r.light = ps.light;
         r.weight = ps.weight;
-        if (!(ps.weight.x > 0 || ps.weight.y > 0 || ps.weight.z > 0)) return;
+        if (!ps.needsVisibility()) return;
         r.segment = true;
         const SceneTracer tracer(scene, sp.object);
         bool vp = false, v = false;

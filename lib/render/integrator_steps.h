@@ -52,6 +52,24 @@ struct PreparedSample {
   Segment segment;
   Vec3f weight;  // albedo/pi * L_e * cos_x * cos_y / dist^2 / pdf_area
   uint32_t light = 0;
+  // False for a zero weight: the sample adds nothing and its segment is never traced.
+  bool needsVisibility() const { return weight.x > 0 || weight.y > 0 || weight.z > 0; }
+};
+
+// One pixel's sums of weighted visibility estimates. Every renderer adds a pixel's samples in the
+// same order (pass by pass) through add(), so that their images agree bit for bit.
+struct SampleSums {
+  Vec3d radiance;
+  double vis_sum = 0;
+  uint32_t vis_n = 0;
+  void add(const Vec3f& weight, double v) {
+    radiance += Vec3d(weight) * v;
+    vis_sum += v;
+    vis_n += 1;
+  }
+  // The pixel's radiance (channel c) over `spp` light samples per pixel, and its mean visibility.
+  float radianceMean(int c, int spp) const { return float(radiance[c] / spp); }
+  float visibilityMean() const { return vis_n ? float(vis_sum / vis_n) : 0.0f; }
 };
 
 // Light samples [first, first + count) of `pass` for one shading point, from the stream keyed

@@ -41,11 +41,8 @@ int samplesPerPass(const RenderSettings& s, int probes) {
 }
 
 // Per-pixel sums, one cache line per pixel: phase B touches one line per pixel, not four.
-struct alignas(64) PixelSums {
-  Vec3d radiance;
-  double vis_sum = 0;
+struct alignas(64) PixelSums : SampleSums {
   RayCounts rays;
-  uint32_t vis_n = 0;
 };
 
 // Per-thread scratch for phase B.
@@ -65,7 +62,7 @@ void estimatePixel(const RenderScene& scene, VisibilityEstimator& estimator, con
   if (count == 1 && probes == 0) {
     // The common case (one sample per pass, no probes): no grouping, no copies.
     const PreparedSample& ps = samples[0];
-    if (!(ps.weight.x > 0 || ps.weight.y > 0 || ps.weight.z > 0)) return;
+    if (!ps.needsVisibility()) return;
     const SceneTracer tracer(scene, sp.object);
     Rng rng = Rng::deferred(seed, pixel, uint64_t(pass), 1);
     ShadingPointQuery query;
@@ -76,16 +73,13 @@ void estimatePixel(const RenderScene& scene, VisibilityEstimator& estimator, con
     double v = 0;
     RayCounts counts;
     estimator.estimate(query, rng, std::span<double>(&v, 1), counts);
-    sums.radiance += Vec3d(ps.weight) * v;
-    sums.vis_sum += v;
-    sums.vis_n += 1;
+    sums.add(ps.weight, v);
     sums.rays += counts;
     return;
   }
   scratch.order.clear();
   for (int j = 0; j < count; ++j)
-    if (samples[j].weight.x > 0 || samples[j].weight.y > 0 || samples[j].weight.z > 0)
-      scratch.order.push_back(uint32_t(j));
+    if (samples[j].needsVisibility()) scratch.order.push_back(uint32_t(j));
   if (scratch.order.empty()) return;
   // In-place sort by (light, index): std::stable_sort would allocate a buffer per pixel.
   if (scratch.order.size() > 1)
@@ -122,11 +116,7 @@ void estimatePixel(const RenderScene& scene, VisibilityEstimator& estimator, con
     query.probes = scratch.probes;
     estimator.estimate(query, rng, scratch.estimates, counts);
     for (size_t i = begin; i < end; ++i) {
-      const double v = scratch.estimates[i - begin];
-      const Vec3f& w = samples[scratch.order[i]].weight;
-      sums.radiance += Vec3d(w) * v;
-      sums.vis_sum += v;
-      sums.vis_n += 1;
+      sums.add(samples[scratch.order[i]].weight, scratch.estimates[i - begin]);
     }
     begin = end;
   }
@@ -339,8 +329,8 @@ RenderResult RenderSession::result() const {
   const int taken = std::max(1, s.taken);  // no pass yet: a black image, not a NaN one
   for (size_t i = 0; i < s.num_pixels; ++i) {
     const PixelSums& sums = s.sums[i];
-    for (int c = 0; c < 3; ++c) result.radiance.pixels[i * 3 + c] = float(sums.radiance[c] / taken);
-    result.visibility.pixels[i] = sums.vis_n ? float(sums.vis_sum / sums.vis_n) : 0.0f;
+    for (int c = 0; c < 3; ++c) result.radiance.pixels[i * 3 + c] = sums.radianceMean(c, taken);
+    result.visibility.pixels[i] = sums.visibilityMean();
     result.cost.pixels[i * 3 + 0] = float(sums.rays.proxy);
     result.cost.pixels[i * 3 + 1] = float(sums.rays.original);
     result.cost.pixels[i * 3 + 2] = float(sums.rays.probe);
