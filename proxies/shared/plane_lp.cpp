@@ -34,16 +34,12 @@ void addPlane(std::vector<Plane>& planes, Vec3d n, double d) {
   planes.push_back({n, d});
 }
 
-std::vector<Plane> constraintPlanes(const PlaneLpProblem& problem) {
+// The constraint planes (the first num_constraints), then the box's six (a box plane parallel to
+// a constraint plane is merged into it).
+std::vector<Plane> normalizePlanes(const PlaneLpProblem& problem, size_t& num_constraints) {
   std::vector<Plane> planes;
   planes.reserve(problem.constraints.size() + 6);
   for (const HalfSpace& h : problem.constraints) addPlane(planes, h.n, h.d);
-  return planes;
-}
-
-// The constraint planes (the first num_constraints), then the box's six.
-std::vector<Plane> normalizePlanes(const PlaneLpProblem& problem, size_t& num_constraints) {
-  std::vector<Plane> planes = constraintPlanes(problem);
   num_constraints = planes.size();
   for (int axis = 0; axis < 3; ++axis) {
     Vec3d e(0, 0, 0);
@@ -100,12 +96,13 @@ struct Best {
 // section of the box.
 class Seidel {
  public:
-  Seidel(const PlaneLpProblem& problem, std::vector<Plane> planes)
+  // `constraints`: the normalized constraint planes (the box is the problem's).
+  Seidel(const PlaneLpProblem& problem, std::vector<Plane> constraints)
       : c_(problem.objective),
         center_(problem.center),
         tol_(1e-9 * problem.half_size),
         flat_(1e-12 * length(problem.objective)),
-        planes_(std::move(planes)) {
+        planes_(std::move(constraints)) {
     for (int a = 0; a < 3; ++a)
       lo_[a] = center_[a] - problem.half_size, hi_[a] = center_[a] + problem.half_size;
     std::minstd_rand shuffle(uint32_t(planes_.size()) + 1);
@@ -166,7 +163,7 @@ class Seidel {
         if (std::abs(det) < 1e-12) continue;
         const std::array<double, 2> q{(box[a].b * box[b].ay - box[a].ay * box[b].b) / det,
                                       (box[a].ax * box[b].b - box[a].b * box[b].ax) / det};
-        if (!satisfies(box, box.size(), q)) continue;
+        if (!satisfies(box, q)) continue;
         const double value = cu * q[0] + cv * q[1];
         if (value < best) best = value, y = q;
       }
@@ -180,9 +177,9 @@ class Seidel {
     return origin + u * (*y)[0] + v * (*y)[1];
   }
 
-  bool satisfies(const std::vector<Line>& lines, size_t n, const std::array<double, 2>& y) const {
-    for (size_t k = 0; k < n; ++k)
-      if (lines[k].ax * y[0] + lines[k].ay * y[1] < lines[k].b - tol_) return false;
+  bool satisfies(const std::vector<Line>& lines, const std::array<double, 2>& y) const {
+    for (const Line& l : lines)
+      if (l.ax * y[0] + l.ay * y[1] < l.b - tol_) return false;
     return true;
   }
 
@@ -255,39 +252,9 @@ std::optional<Vec3d> uniqueVertex(const PlaneLpProblem& problem, const std::vect
   return (jk * pi.d - ik * pj.d + ij * pk.d) / det;
 }
 
-}  // namespace
-
-std::optional<Vec3d> solvePlaneLp(const PlaneLpProblem& problem) {
-  size_t s = 0;
-  const std::vector<Plane> planes = normalizePlanes(problem, s);
-  const double tol = 1e-9 * problem.half_size;
-  const std::optional<Vec3d> x = Seidel(problem, constraintPlanes(problem)).solve();
-  Best best(problem);
-  size_t last_cut = 0;
-  // Seidel's optimum is returned only where it is the enumeration's answer too: a vertex of
-  // exactly three constraint planes (not of the box) whose objective is a strictly positive
-  // combination of their normals, so that no other point ties with it. Elsewhere (an optimum on
-  // the box, a flat neighbourhood where a whole face ties) the enumeration decides, with its rule
-  // for ties (closest to the centre) and its preference for the planes' own vertices: measured,
-  // handing those cases to Seidel's arbitrary optimal vertex made the fandisk's inside wrap 1.6x
-  // slower to reduce (other placements, more of them refused by the input test). Rounding in the
-  // 2-D frames could also leave the optimum a little outside a plane (never seen).
-  if (!x) return std::nullopt;
-  const std::optional<Vec3d> vertex = isFeasible(planes, *x, 4 * tol, last_cut)
-                                          ? uniqueVertex(problem, planes, s, *x)
-                                          : std::nullopt;
-  if (!vertex || !isFeasible(planes, *vertex, tol, last_cut))
-    return solvePlaneLpByEnumeration(problem);
-  // The enumeration's order: the candidates, then the vertex.
-  for (const Vec3d& c : problem.candidates)
-    if (isFeasible(planes, c, tol, last_cut)) best.offer(c);
-  if (dot(problem.objective, *vertex) <= best.value + best.tie) best.offer(*vertex);
-  return best.point;
-}
-
-std::optional<Vec3d> solvePlaneLpByEnumeration(const PlaneLpProblem& problem) {
-  size_t s = 0;
-  const std::vector<Plane> planes = normalizePlanes(problem, s);
+// The enumeration over planes normalized by normalizePlanes (the first s the constraints').
+std::optional<Vec3d> enumerate(const PlaneLpProblem& problem, const std::vector<Plane>& planes,
+                               size_t s) {
   const double tol = 1e-9 * problem.half_size;
   const size_t m = planes.size();
 
@@ -314,7 +281,7 @@ std::optional<Vec3d> solvePlaneLpByEnumeration(const PlaneLpProblem& problem) {
   // Pass 1: vertices of the constraint planes alone (C(s,3) instead of C(s+6,3) triples). Any
   // feasible one inside the box will do: optimality only affects quality, feasibility is what
   // keeps containment. Pass 2, with the box planes, only when pass 1 found nothing.
-  auto enumerate = [&](bool with_box) {
+  auto vertices = [&](bool with_box) {
     const size_t k_begin = with_box ? s : 0, k_end = with_box ? m : s;
     for (size_t i = 0; i < m; ++i) {
       for (size_t j = i + 1; j < m; ++j) {
@@ -333,9 +300,46 @@ std::optional<Vec3d> solvePlaneLpByEnumeration(const PlaneLpProblem& problem) {
       }
     }
   };
-  enumerate(false);
-  if (!best.point) enumerate(true);
+  vertices(false);
+  if (!best.point) vertices(true);
   return best.point;
+}
+
+}  // namespace
+
+std::optional<Vec3d> solvePlaneLp(const PlaneLpProblem& problem) {
+  size_t s = 0;
+  const std::vector<Plane> planes = normalizePlanes(problem, s);
+  const double tol = 1e-9 * problem.half_size;
+  const std::optional<Vec3d> x =
+      Seidel(problem, std::vector<Plane>(planes.begin(), planes.begin() + std::ptrdiff_t(s)))
+          .solve();
+  Best best(problem);
+  size_t last_cut = 0;
+  // Seidel's optimum is returned only where it is the enumeration's answer too: a vertex of
+  // exactly three constraint planes (not of the box) whose objective is a strictly positive
+  // combination of their normals, so that no other point ties with it. Elsewhere (an optimum on
+  // the box, a flat neighbourhood where a whole face ties) the enumeration decides, with its rule
+  // for ties (closest to the centre) and its preference for the planes' own vertices: measured,
+  // handing those cases to Seidel's arbitrary optimal vertex made the fandisk's inside wrap 1.6x
+  // slower to reduce (other placements, more of them refused by the input test). Rounding in the
+  // 2-D frames could also leave the optimum a little outside a plane (never seen).
+  if (!x) return std::nullopt;
+  const std::optional<Vec3d> vertex = isFeasible(planes, *x, 4 * tol, last_cut)
+                                          ? uniqueVertex(problem, planes, s, *x)
+                                          : std::nullopt;
+  if (!vertex || !isFeasible(planes, *vertex, tol, last_cut)) return enumerate(problem, planes, s);
+  // The enumeration's order: the candidates, then the vertex.
+  for (const Vec3d& c : problem.candidates)
+    if (isFeasible(planes, c, tol, last_cut)) best.offer(c);
+  if (dot(problem.objective, *vertex) <= best.value + best.tie) best.offer(*vertex);
+  return best.point;
+}
+
+std::optional<Vec3d> solvePlaneLpByEnumeration(const PlaneLpProblem& problem) {
+  size_t s = 0;
+  const std::vector<Plane> planes = normalizePlanes(problem, s);
+  return enumerate(problem, planes, s);
 }
 
 }  // namespace proxyvis::lp
