@@ -20,6 +20,7 @@
 #include "render/render_scene.h"
 #include "scene/scene_desc.h"
 #include "study/data_parallel_study.h"
+#include "study/out_of_core_study.h"
 #include "study/reference.h"
 #include "study/study.h"
 #include "study/study_merge.h"
@@ -235,20 +236,34 @@ int main(int argc, char** argv) {
   proxyvis::addCompareOptions(app, options);
   proxyvis::DataParallelFlags data_parallel;
   proxyvis::addDataParallelFlags(app, data_parallel, true);
+  proxyvis::OutOfCoreStudyFlags out_of_core;
+  proxyvis::addOutOfCoreStudyFlags(app, out_of_core);
   std::filesystem::path plan_dir;
   app.add_option("--plan", plan_dir,
                  "Write the study as independent work units to this folder (plan.json) instead "
                  "of running it: run them with scripts/slurm/submit.sh, which merges them into "
                  "--out (docs/slurm.md). Also: --run-unit DIR K, --merge DIR");
   return proxyvis::runApp(app, argc, argv, options.common, [&] {
+    const proxyvis::StudyFlagsGiven given{
+        app.count("--estimators") > 0, app.count("--equal-time") > 0, app.count("--repeats") > 0};
+    if (!out_of_core.geometry_budget.empty()) {
+      if (!plan_dir.empty() || data_parallel.enabled)
+        throw proxyvis::Error("",
+                              std::string(data_parallel.enabled ? "--data-parallel" : "--plan") +
+                                  " is not available with --geometry-budget",
+                              "the out-of-core study runs on one machine, in one process",
+                              "drop one of them");
+      return proxyvis::runOutOfCoreStudy(options, out_of_core, given);
+    }
+    for (const char* flag : {"--ooc-policies", "--batch-passes", "--load-q"})
+      if (app.count(flag) > 0)
+        throw proxyvis::Error("", std::string(flag) + " needs --geometry-budget", {},
+                              "give --geometry-budget, or drop it");
     if (data_parallel.enabled) {
       if (!plan_dir.empty())
         throw proxyvis::Error("", "--plan is not available with --data-parallel", {},
                               "run the data-parallel study under mpirun or srun");
-      return proxyvis::runDataParallelStudy(
-          options, data_parallel,
-          {app.count("--estimators") > 0, app.count("--equal-time") > 0,
-           app.count("--repeats") > 0});
+      return proxyvis::runDataParallelStudy(options, data_parallel, given);
     }
     proxyvis::refuseDataParallelFlagsAlone(app, data_parallel);
     return proxyvis::runCompare(options, app, plan_dir);

@@ -74,7 +74,10 @@ nlohmann::json summaryJson(const OutOfCoreRenderRequest& o, const SceneDesc& des
       {"unqueued_segments", s.unqueued_segments},
       {"blocked_by_inside", s.blocked_by_inside},
       {"original_traces", s.original_traces},
-      {"load_q", settings.policy == OutOfCorePolicy::kProxiesRoulette ? settings.load_q : 1.0},
+      {"load_q", settings.policy != OutOfCorePolicy::kProxiesRoulette ? nlohmann::json(1.0)
+                 : settings.learn_q                                   ? nlohmann::json("learned")
+                                    : nlohmann::json(settings.load_q)},
+      {"mean_load_q", s.q_draws ? s.q_sum / double(s.q_draws) : 1.0},
       {"skipped_queues", s.skipped_queues},
       {"build", buildText()},
       {"version", versionText()},
@@ -101,8 +104,9 @@ void addOutOfCoreFlags(CLI::App& app, OutOfCoreFlags& f) {
       ->capture_default_str();
   app.add_option("--load-q", f.load_q,
                  "Out of core, proxies-roulette: the probability that a mesh with an outside "
-                 "proxy is loaded and its queue traced in a batch")
-      ->check(CLI::Range(0.001, 1.0))
+                 "proxy is loaded and its queue traced in a batch, or 'learned': per batch and "
+                 "mesh from earlier batches' load costs and proxy errors (needs several batches: "
+                 "see --batch-passes)")
       ->capture_default_str();
 }
 
@@ -134,7 +138,8 @@ int runOutOfCoreRender(OutOfCoreRenderRequest& o) {
   // Seed index 0 of --seed, as render and render-compare: the images agree.
   settings.seed = hashKeys(o.common.seed, 0);
   settings.batch_passes = o.out_of_core.batch_passes;
-  settings.load_q = o.out_of_core.load_q;
+  applyLoadQ(o.out_of_core.load_q, settings);
+  settings.q_min = o.render.q_min;
   settings.budget_bytes = budget.resolve(scene->inCoreBytes());
   settings.quiet = o.common.quiet;
   const OutOfCoreResult result = renderOutOfCore(*scene, settings);
@@ -144,7 +149,7 @@ int runOutOfCoreRender(OutOfCoreRenderRequest& o) {
                       o.common.seed, {}};
   meta.extra.push_back({"proxyvis:ooc_policy", std::string(outOfCorePolicyName(settings.policy))});
   if (settings.policy == OutOfCorePolicy::kProxiesRoulette)
-    meta.extra.push_back({"proxyvis:load_q", float(settings.load_q)});
+    meta.extra.push_back({"proxyvis:load_q", loadQText(settings)});
   meta.extra.push_back({"proxyvis:geometry_budget", o.out_of_core.geometry_budget});
   const RenderImageFile file = renderImageFile(
       format, result.radiance, [&] { return outOfCoreExr(result); },

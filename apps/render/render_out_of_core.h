@@ -17,8 +17,9 @@ namespace proxyvis {
 struct OutOfCoreFlags {
   std::string geometry_budget;  // empty: in core
   std::string policy = "exact-batched";
-  int batch_passes = 0;  // 0: the whole frame in one batch
-  double load_q = 0.5;   // proxies-roulette's probability of tracing a mesh's queue
+  int batch_passes = 0;        // 0: the whole frame in one batch
+  std::string load_q = "0.5";  // proxies-roulette's probability of tracing a mesh's queue, or
+                               // "learned"
 };
 // Adds --geometry-budget, --ooc-policy, --batch-passes and --load-q.
 void addOutOfCoreFlags(CLI::App& app, OutOfCoreFlags& flags);

@@ -9,9 +9,12 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <utility>
 
+#include "outofcore/load_q_learner.h"
 #include "render/integrator_steps.h"
+#include "util/app_main.h"
 #include "util/error.h"
 #include "util/peak_rss.h"
 #include "util/progress.h"
@@ -66,7 +69,8 @@ class OutOfCoreRun {
         pixels_(size_t(tiling_.width) * size_t(tiling_.height)),
         cache_(expectedBytes(scene), settings.budget_bytes,
                [&scene](uint32_t m) { return scene.loadOriginal(m); }),
-        queues_(scene.desc().meshes.size()) {}
+        queues_(scene.desc().meshes.size()),
+        learner_(scene.desc().meshes.size(), settings.q_min) {}
 
   OutOfCoreResult run() {
     const Stopwatch clock;
@@ -79,7 +83,9 @@ class OutOfCoreRun {
     stats_.primary_seconds = primary.seconds();
     progress.update();
     sums_.assign(pixels_, SampleSums{});
+    if (settings_.learn_q) square_sums_.assign(pixels_, 0.0);
     const Stopwatch shadow;
+    shadow_clock_.restart();
     for (int first = 0; first < settings_.spp; first += batch) {
       runBatch(first, std::min(batch, settings_.spp - first));
       progress.update();
@@ -208,8 +214,8 @@ class OutOfCoreRun {
     const size_t n = pixels_ * size_t(passes);
     samples_.resize(n);
     blocked_.assign(n, 0);
-    up_.assign(n, 0);
-    down_.assign(n, 0);
+    factor_.assign(n, 1.0);
+    wrong_.assign(n, 0);
     QueueBuilder builder;
     std::atomic<uint64_t> segments{0}, unqueued{0}, by_inside{0};
     tbb::parallel_for(0, tiling_.count(), [&](int t) {
@@ -238,21 +244,35 @@ class OutOfCoreRun {
     stats_.queued += builder.into(queues_);
     std::atomic<uint64_t> traces{0};
     const bool roulette = settings_.policy == OutOfCorePolicy::kProxiesRoulette;
+    const double variance = settings_.learn_q ? frameVariance() : 0;
+    const double seconds = settings_.learn_q ? projectedSeconds() : 0;
     for (uint32_t m : visitOrder(queues_, cache_)) {
       const std::vector<uint32_t>& queue = queues_[m];
-      if (roulette && scene_.meshes()[m].outside >= 0) {
+      const bool has_proxy_answer =
+          settings_.policy != OutOfCorePolicy::kExactBatched && scene_.meshes()[m].outside >= 0;
+      double q = 1;
+      if (roulette && has_proxy_answer) {
+        q = settings_.learn_q ? learner_.q(m, queue.size(), cache_.resident(m), variance, seconds)
+                              : settings_.load_q;
+        stats_.q_sum += q;
+        ++stats_.q_draws;
         // One draw per batch and mesh, keyed on neither the thread nor what is resident.
         Rng draw(settings_.seed, hashKeys(uint64_t(first_pass), m, 0x6c6f6164u));
-        if (!(draw.uniformDouble() < settings_.load_q)) {
+        if (!(draw.uniformDouble() < q)) {
           ++stats_.skipped_queues;
           // The proxies' answer: blocked by another object's original, not by its own.
-          for (uint32_t q : queue)
-            if (!(q & kSelfPair)) blocked_[q] = 1;
+          for (uint32_t item : queue)
+            if (!(item & kSelfPair)) blocked_[item] = 1;
           continue;
         }
       }
+      const Stopwatch load_clock;
+      const uint64_t loads_before = cache_.stats().loads;
       const TraceScene& originals = cache_.acquire(m);
-      const bool weighted = roulette && scene_.meshes()[m].outside >= 0;
+      const bool loaded = cache_.stats().loads > loads_before;
+      const double load_seconds = load_clock.seconds();
+      const Stopwatch trace_clock;
+      const bool weighted = q < 1;
       tbb::parallel_for(tbb::blocked_range<size_t>(0, queue.size(), 256),
                         [&](const tbb::blocked_range<size_t>& r) {
                           uint64_t local = 0;
@@ -262,16 +282,30 @@ class OutOfCoreRun {
                             ++local;
                             const bool v = !originals.occluded(samples_[item].segment);
                             const bool v_proxy = (queue[i] & kSelfPair) != 0;
+                            wrong_[item] = v != v_proxy;
                             if (!weighted || v == v_proxy) {
                               if (!v) blocked_[item] = 1;
-                            } else if (v) {
-                              ++up_[item];  // v' = 0, v = 1: factor 1/q
                             } else {
-                              ++down_[item];  // v' = 1, v = 0: factor 1 - 1/q
+                              // v' + (v - v') / q: 1/q where v' = 0, 1 - 1/q where v' = 1.
+                              factor_[item] *= v ? 1.0 / q : 1.0 - 1.0 / q;
                             }
                           }
                           traces += local;
                         });
+      ++stats_.traced_queues;
+      if (has_proxy_answer) {
+        // Summed in queue order: the same bits at any thread count.
+        double w2 = 0;
+        for (uint32_t entry : queue) {
+          const uint32_t item = entry & kItemMask;
+          if (!wrong_[item]) continue;
+          wrong_[item] = 0;
+          const Vec3f& w = samples_[item].weight;
+          w2 += double(w.x) * w.x + double(w.y) * w.y + double(w.z) * w.z;
+        }
+        learner_.observe(m, queue.size(), w2, loaded, load_seconds, trace_clock.seconds());
+        stats_.proxy_queues.push_back({m, w2, load_clock.seconds(), loaded});
+      }
     }
     stats_.original_traces += traces;
     // Accumulated pass by pass, as the in-core renderer does: the same sums, bit for bit.
@@ -281,15 +315,41 @@ class OutOfCoreRun {
         const size_t item = size_t(k) * pixels_ + pixel;
         const PreparedSample& ps = samples_[item];
         if (!ps.needsVisibility()) continue;  // also every sample of a pixel without a point
-        // A product of the roulette's factors, from their counts: the same bits whatever the
-        // order the meshes were visited in.
-        double v = blocked_[item] ? 0.0 : 1.0;
-        if (v != 0 && (up_[item] || down_[item]))
-          v = std::pow(1.0 / settings_.load_q, up_[item]) *
-              std::pow(1.0 - 1.0 / settings_.load_q, down_[item]);
+        // The product of the roulette's factors, multiplied in the meshes' visit order, which
+        // depends on the batches alone (never on the threads).
+        const double v = blocked_[item] ? 0.0 : factor_[item];
         sums.add(ps.weight, v);
+        if (settings_.learn_q) {
+          const Vec3d x = Vec3d(ps.weight) * v;
+          square_sums_[pixel] += x.x * x.x + x.y * x.y + x.z * x.z;
+        }
       }
     });
+    passes_done_ += passes;
+    shadow_seconds_ = shadow_clock_.seconds();
+  }
+
+  // The frame's variance as LoadQLearner::q wants it (sum over pixels and channels of the pixel
+  // mean's variance, times spp^2): spp x the per-sample variance, from the passes so far; 0
+  // before two passes.
+  double frameVariance() const {
+    if (passes_done_ < 2) return 0;
+    const double n = passes_done_;
+    double sum = 0;
+    for (size_t p = 0; p < pixels_; ++p) {
+      const Vec3d mean = sums_[p].radiance / n;
+      const double var =
+          (square_sums_[p] / n - (mean.x * mean.x + mean.y * mean.y + mean.z * mean.z)) * n /
+          (n - 1);
+      sum += std::max(0.0, var);
+    }
+    return sum * double(settings_.spp);
+  }
+
+  // The render's seconds projected from the passes so far.
+  double projectedSeconds() const {
+    if (passes_done_ < 1) return 0;
+    return stats_.primary_seconds + shadow_seconds_ * double(settings_.spp) / passes_done_;
   }
 
   OutOfCoreResult result() {
@@ -319,7 +379,13 @@ class OutOfCoreRun {
   std::vector<ShadingPoint> points_;
   std::vector<PreparedSample> samples_;
   std::vector<uint8_t> blocked_;
-  std::vector<uint8_t> up_, down_;  // proxies-roulette: counts of factors 1/q and 1 - 1/q
+  std::vector<double> factor_;       // proxies-roulette: the product of a segment's factors
+  std::vector<uint8_t> wrong_;       // the proxies' answer was wrong for the mesh being traced
+  std::vector<double> square_sums_;  // learned q: per pixel, the sum of its samples' |w v|^2
+  LoadQLearner learner_;
+  int passes_done_ = 0;
+  Stopwatch shadow_clock_;
+  double shadow_seconds_ = 0;
   std::vector<SampleSums> sums_;
   OutOfCoreStats stats_;
 };
@@ -344,6 +410,20 @@ OutOfCorePolicy parseOutOfCorePolicy(const std::string& name) {
     if (name == outOfCorePolicyName(p)) return p;
   throw Error("", "--ooc-policy: unknown policy '" + name + "'", {},
               "use exact-batched, proxies-exact or proxies-roulette");
+}
+
+void applyLoadQ(const std::string& text, OutOfCoreSettings& settings) {
+  settings.learn_q = text == "learned";
+  if (settings.learn_q) return;
+  const std::optional<double> q = parseNumber(text);
+  if (!q || !(*q > 0 && *q <= 1))
+    throw Error("", "--load-q " + text + " is not a probability in (0, 1] or 'learned'", {},
+                "e.g. --load-q 0.5, or --load-q learned (per mesh, from earlier batches)");
+  settings.load_q = *q;
+}
+
+std::string loadQText(const OutOfCoreSettings& settings) {
+  return settings.learn_q ? "learned" : fmt::format("{:g}", settings.load_q);
 }
 
 OutOfCoreResult renderOutOfCore(const OutOfCoreScene& scene, const OutOfCoreSettings& settings) {

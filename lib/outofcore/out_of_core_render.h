@@ -19,9 +19,11 @@
 //                  Per segment and mesh the estimate is v' + [traced] (v - v') / q, and a
 //                  segment's visibility the product over its meshes: unbiased, since the draws
 //                  of different meshes are independent. Meshes without an outside proxy are
-//                  always traced.
+//                  always traced. q is fixed, or learned per batch and mesh from earlier
+//                  batches only (outofcore/load_q_learner.h).
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "outofcore/geometry_cache.h"
 #include "outofcore/out_of_core_scene.h"
@@ -41,10 +43,26 @@ struct OutOfCoreSettings {
   uint64_t seed = 0;
   int batch_passes = 0;  // passes whose segments are queued together; 0: the whole frame
   uint64_t budget_bytes = 0;
-  double load_q = 0.5;  // proxies-roulette: the probability a mesh's queue is traced in a batch
+  double load_q = 0.5;   // proxies-roulette: the probability a mesh's queue is traced in a batch
+  bool learn_q = false;  // proxies-roulette: q per batch and mesh learned (load_q unused)
+  double q_min = 0.05;   // the learned q's floor
   int tile_size = 16;
   bool quiet = false;
 };
+
+// A traced queue whose segments have a proxy answer: what skipping it would have added to the
+// image's summed squared error per unit of (1/q - 1), and what tracing it cost.
+struct ProxyQueueRecord {
+  uint32_t mesh = 0;
+  double wrong_w2 = 0;  // sum of |w|^2 over its traced segments the proxies answer wrongly
+  double seconds = 0;   // measured: its load (if it loaded) and its traces
+  bool loaded = false;
+};
+
+// --load-q: a probability in (0, 1], or "learned". Throws Error naming --load-q otherwise.
+void applyLoadQ(const std::string& text, OutOfCoreSettings& settings);
+// What a report says of q: the fixed value, or "learned".
+std::string loadQText(const OutOfCoreSettings& settings);
 
 struct OutOfCoreStats {
   GeometryCacheStats cache;
@@ -55,7 +73,13 @@ struct OutOfCoreStats {
   uint64_t blocked_by_inside = 0;  // of those, blocked by an inside proxy
   uint64_t original_traces = 0;    // segment traces against loaded originals
   uint64_t skipped_queues = 0;     // proxies-roulette: (batch, mesh) queues not traced
+  double q_sum = 0;                // proxies-roulette: the sum of q over its draws
+  uint64_t q_draws = 0;            //   and their count (the mean q: q_sum / q_draws)
   uint64_t primary_queued = 0;     // (ray, mesh) pairs of the primary rays
+  uint64_t traced_queues = 0;      // (batch, mesh) shadow queues traced
+  // The oracle ceiling's inputs (proxy policies): every traced (batch, mesh) queue of a mesh
+  // with an outside proxy.
+  std::vector<ProxyQueueRecord> proxy_queues;
   uint64_t budget_bytes = 0;
   uint64_t peak_rss_bytes = 0;
   double seconds = 0, primary_seconds = 0, shadow_seconds = 0;

@@ -41,4 +41,11 @@ struct CompareOptions {
   int referenceSpp(int largest_spp_reached) const;
 };
 
+// Which of render-compare's own flags were on the command line, for the studies that compare at
+// equal samples (data-parallel, out-of-core): --estimators (else their own list); --equal-time
+// and --repeats, which they refuse.
+struct StudyFlagsGiven {
+  bool estimators = false, equal_time = false, repeats = false;
+};
+
 }  // namespace proxyvis

@@ -46,28 +46,10 @@ std::vector<std::string> tableCells(const Row& r) {
 
 }  // namespace
 
-std::string markdownTable(const std::vector<Row>& rows, const std::string& network) {
-  auto line = [](const std::vector<std::string>& cells) {
-    std::string t = "|";
-    for (const std::string& c : cells) t += " " + c + " |";
-    return t + "\n";
-  };
-  std::string t = line(tableHeader(network)) +
-                  "|---:|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
-  for (const Row& r : rows) t += line(tableCells(r));
+TextTable studyTable(const std::vector<Row>& rows, const std::string& network) {
+  TextTable t{tableHeader(network), "rlllrrrrrrrrr", {}};
+  for (const Row& r : rows) t.rows.push_back(tableCells(r));
   return t;
-}
-
-std::string htmlTable(const std::vector<Row>& rows, const std::string& network) {
-  std::string t = "<table><tr>";
-  for (const std::string& h : tableHeader(network)) t += "<th>" + h + "</th>";
-  t += "</tr>";
-  for (const Row& r : rows) {
-    t += "<tr>";
-    for (const std::string& c : tableCells(r)) t += "<td>" + c + "</td>";
-    t += "</tr>";
-  }
-  return t + "</table>";
 }
 
 }  // namespace proxyvis::dp_study

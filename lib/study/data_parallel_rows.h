@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "distributed/data_parallel_render.h"
+#include "study/study_page.h"
 
 namespace proxyvis::dp_study {
 
@@ -27,8 +28,8 @@ struct Row {
 // "<estimator>_<forwarding>_<spp>spp[_emulated]": the row's images without extension.
 std::string imageName(const Row& r);
 
-// The rows as a Markdown table and as an HTML table; `network` names the modelled fabric.
-std::string markdownTable(const std::vector<Row>& rows, const std::string& network);
-std::string htmlTable(const std::vector<Row>& rows, const std::string& network);
+// The rows as the report's table (report.md and report.html); `network` names the modelled
+// fabric.
+TextTable studyTable(const std::vector<Row>& rows, const std::string& network);
 
 }  // namespace proxyvis::dp_study

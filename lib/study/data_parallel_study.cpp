@@ -22,19 +22,8 @@ namespace proxyvis {
 
 namespace {
 
-using dp_study::htmlTable;
 using dp_study::imageName;
-using dp_study::markdownTable;
 using dp_study::Row;
-
-void writePair(const Image& image, const std::filesystem::path& stem, float exposure) {
-  ImageWriteOptions exr;
-  exr.full_float = true;
-  writeImage(image, stem.string() + ".exr", exr);
-  ImageWriteOptions png;
-  png.exposure = exposure;
-  writeImage(image, stem.string() + ".png", png);
-}
 
 // What the flags and the scene file ask for, checked on every rank.
 struct DataParallelPlan {
@@ -271,26 +260,6 @@ std::vector<std::string> losingNotes(const std::vector<Row>& rows) {
   return notes;
 }
 
-std::string studyHtml(const std::string& title, int ranks, const std::string& model_note,
-                      const std::vector<Row>& rows, const std::string& network) {
-  std::string html =
-      "<!doctype html><html><head><meta charset=\"utf-8\"><title>render-compare "
-      "(data-parallel)</title><style>body{font-family:sans-serif}table{border-"
-      "collapse:collapse}td,th{border:1px solid #ccc;padding:3px 6px}img{image-"
-      "rendering:pixelated;width:320px}</style></head><body>";
-  html += fmt::format("<h1>{} (data-parallel, {} ranks)</h1><p>{}</p>{}", title, ranks, model_note,
-                      htmlTable(rows, network));
-  html +=
-      "<h2>Images</h2><p><figure style=\"display:inline-block\"><img "
-      "src=\"images/reference.png\"><figcaption>reference</figcaption></figure>";
-  for (const Row& r : rows)
-    html += fmt::format(
-        "<figure style=\"display:inline-block\"><img src=\"images/{}.png\">"
-        "<figcaption>{}</figcaption></figure>",
-        imageName(r), imageName(r));
-  return html + "</p></body></html>\n";
-}
-
 }  // namespace
 
 int runDataParallelStudy(CompareOptions& o, const DataParallelFlags& flags,
@@ -353,7 +322,8 @@ int runDataParallelStudy(CompareOptions& o, const DataParallelFlags& flags,
         {"rows", rowsJson(rows, o.seeds, cost_us)},
         {"build", buildText()},
         {"version", versionText()}};
-    const std::string table = markdownTable(rows, fabric.name);
+    const TextTable table_cells = dp_study::studyTable(rows, fabric.name);
+    const std::string table = markdownTable(table_cells);
     const std::string md = fmt::format(
         "# render-compare (data-parallel): {}\n\n{} ranks, {}, reference exact {} spp; {} "
         "seed(s) per cell; efficiency = 1/(MSE x time) relative to exact with instance-box "
@@ -365,13 +335,18 @@ int runDataParallelStudy(CompareOptions& o, const DataParallelFlags& flags,
     const std::filesystem::path dir = folder.path();
     std::filesystem::create_directories(dir / "images");
     const float exposure = autoExposure(reference.radiance);
-    writePair(reference.radiance, dir / "images" / "reference", exposure);
-    for (size_t i = 0; i < rows.size(); ++i)
-      writePair(first_images[i], dir / "images" / imageName(rows[i]), exposure);
+    std::vector<std::string> images{"reference"};
+    writeImagePair(reference.radiance, dir / "images" / "reference", exposure);
+    for (size_t i = 0; i < rows.size(); ++i) {
+      images.push_back(imageName(rows[i]));
+      writeImagePair(first_images[i], dir / "images" / images.back(), exposure);
+    }
     writeTextAtomically(dir / "report.json", report.dump(2) + "\n");
     writeTextAtomically(dir / "report.md", md);
-    writeTextAtomically(dir / "report.html",
-                        studyHtml(desc.displayName(), comm.size(), model_note, rows, fabric.name));
+    writeTextAtomically(
+        dir / "report.html",
+        studyPageHtml(fmt::format("{} (data-parallel, {} ranks)", desc.displayName(), comm.size()),
+                      htmlTable(table_cells), {model_note}, images));
     folder.commit();
     printHumanReport(o.common, table + "\n" + model_note + "\n" +
                                    "report: " + (folder.target() / "report.html").string() + "\n");

@@ -10,12 +10,6 @@
 
 namespace proxyvis {
 
-// Which of render-compare's own flags were on the command line: --estimators (else
-// exact,roulette); --equal-time and --repeats, which the study does not do (it compares at equal
-// samples) and refuses.
-struct StudyFlagsGiven {
-  bool estimators = false, equal_time = false, repeats = false;
-};
 int runDataParallelStudy(CompareOptions& options, const DataParallelFlags& flags,
                          const StudyFlagsGiven& given);
 

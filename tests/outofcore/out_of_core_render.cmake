@@ -15,3 +15,9 @@ add_test(NAME app.render.out_of_core.quick
           --quick)
 set_tests_properties(app.render.out_of_core.quick PROPERTIES TIMEOUT 900
   FAIL_REGULAR_EXPRESSION "FAIL:")
+add_test(NAME app.render_compare.out_of_core
+  COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_LIST_DIR}/out_of_core_compare.py
+          $<TARGET_FILE_DIR:render-compare> ${CMAKE_SOURCE_DIR}
+          ${CMAKE_CURRENT_BINARY_DIR}/out_of_core_compare)
+set_tests_properties(app.render_compare.out_of_core PROPERTIES TIMEOUT 600
+  FAIL_REGULAR_EXPRESSION "FAIL:")

@@ -14,10 +14,11 @@ Checks:
   - the report's loads, hits, evictions and bytes: at 100 % every mesh is loaded once; at smaller
     budgets meshes are evicted and loaded again, and the cache never holds more than its budget;
     proxies-exact queues fewer (segment, mesh) pairs than exact-batched;
-  - proxies-roulette is unbiased: over 40 seeds, the mean of the paired differences between its
-    image mean and the in-core exact image mean of the same seed is within 3 standard errors
-    (measured) of zero, and it skips some meshes' queues (the same estimator without its 1/q
-    weights gave z = -13 here: the test can tell);
+  - proxies-roulette is unbiased, at a fixed q and with q learned from earlier batches: over 40
+    seeds, the mean of the paired differences between its image mean and the in-core exact image
+    mean of the same seed is within 3 standard errors (measured) of zero, and it skips some
+    meshes' queues (the same estimator without its 1/q weights gave z = -13 here: the test can
+    tell);
   - errors exit 2 with one line and write nothing: a budget below the largest mesh, an original
     damaged on disk, --estimator roulette, --time, --data-parallel with a budget.
 """
@@ -58,33 +59,47 @@ def image_means(paths):
 
 
 def roulette_unbiased(render, scene, work, seeds, budget):
+    """proxies-roulette at a fixed q (0.5) and with q learned from earlier batches, each seed's
+    image mean against the in-core exact image mean of the same seed (paired z-test)."""
     small = ["--width", "64", "--height", "48", "--spp", "8", "--threads", "2", "--quiet"]
-    exact, roulette, skipped = [], [], 0
+    variants = {"fixed": "0.5", "learned": "learned"}
+    exact, images, skipped, mean_q = [], {k: [] for k in variants}, dict.fromkeys(variants, 0), {}
     for seed in range(seeds):
         e = os.path.join(work, f"exact-{seed}.exr")
-        r = os.path.join(work, f"roulette-{seed}.exr")
-        js = os.path.join(work, f"roulette-{seed}.json")
         run([render, scene, *small, "--seed", str(seed), "-o", e])
-        run([render, scene, *small, "--seed", str(seed), "-o", r, "--geometry-budget", budget,
-             "--ooc-policy", "proxies-roulette", "--load-q", "0.5", "--batch-passes", "1",
-             "--json", js])
-        skipped += json.load(open(js))["skipped_queues"]
         exact.append(e)
-        roulette.append(r)
-    means = image_means(exact + roulette)
-    d = [means[seeds + i] - means[i] for i in range(seeds)]
-    mean = sum(d) / seeds
-    sd = math.sqrt(sum((x - mean) ** 2 for x in d) / (seeds - 1))
-    if seeds < 10:
-        print(f"ok: {seeds} roulette renders ({skipped} queues skipped), no z-test with so few")
-        return
-    if skipped == 0 or sd == 0:
-        fail(f"roulette skipped {skipped} queues, spread {sd}: the test cannot tell anything")
-    z = mean / (sd / math.sqrt(seeds))
-    print(f"ok: roulette - exact image mean over {seeds} seeds: {mean:.3e} +- {sd / math.sqrt(seeds):.3e}"
-          f" (z = {z:.2f}), {skipped} queues skipped")
-    if abs(z) > 3.0:
-        fail(f"proxies-roulette looks biased: z = {z:.2f}")
+        for name, q in variants.items():
+            r = os.path.join(work, f"roulette-{name}-{seed}.exr")
+            js = os.path.join(work, f"roulette-{name}-{seed}.json")
+            run([render, scene, *small, "--seed", str(seed), "-o", r, "--geometry-budget", budget,
+                 "--ooc-policy", "proxies-roulette", "--load-q", q, "--batch-passes", "1",
+                 "--json", js])
+            info = json.load(open(js))
+            skipped[name] += info["skipped_queues"]
+            mean_q.setdefault(name, []).append(info["mean_load_q"])
+            images[name].append(r)
+    names = list(variants)
+    means = image_means(exact + [p for n in names for p in images[n]])
+    for k, name in enumerate(names):
+        d = [means[seeds * (k + 1) + i] - means[i] for i in range(seeds)]
+        mean = sum(d) / seeds
+        sd = math.sqrt(sum((x - mean) ** 2 for x in d) / (seeds - 1))
+        q = sum(mean_q[name]) / seeds
+        if seeds < 10:
+            print(f"ok: {seeds} {name} roulette renders ({skipped[name]} queues skipped, mean q "
+                  f"{q:.2f}), no z-test with so few")
+            continue
+        if skipped[name] == 0 or sd == 0:
+            fail(f"{name} roulette skipped {skipped[name]} queues, spread {sd}: the test cannot "
+                 "tell anything")
+        z = mean / (sd / math.sqrt(seeds))
+        print(f"ok: {name} roulette - exact image mean over {seeds} seeds: {mean:.3e} +- "
+              f"{sd / math.sqrt(seeds):.3e} (z = {z:.2f}), {skipped[name]} queues skipped, "
+              f"mean q {q:.2f}")
+        if abs(z) > 3.0:
+            fail(f"proxies-roulette ({name} q) looks biased: z = {z:.2f}")
+    if not 0 < sum(mean_q["learned"]) / seeds < 1:
+        fail(f"the learned q never left 1: {mean_q['learned']}")
 
 
 def main():
