@@ -18,6 +18,7 @@
 #include "proxies/check/check_report.h"
 #include "proxies/check/check_view3d.h"
 #include "proxies/check/pair_check.h"
+#include "proxies/check/proxy_check_settings.h"
 #include "proxies/check/scene_pairs.h"
 #include "scene/scene_desc.h"
 #include "util/app_main.h"
@@ -31,20 +32,14 @@ using namespace proxyvis;
 
 namespace {
 
-// Ten billion segments take hours; more is a typo (2^64-1 would never end).
-constexpr uint64_t kMaxRays = 10'000'000'000ULL;
-
 struct Options {
   GltfPick original_pick, proxy_pick;  // --mesh/--node, --proxy-mesh/--proxy-node (glTF pair)
   CommonOptions common;
   std::vector<std::string> inputs;
-  uint64_t rays = 1'000'000;
-  std::string distribution = "sphere";
-  std::string expect;
+  ProxyCheckSettings check;  // --rays, --distribution, --expect, --precision (seed, quiet: common)
   std::string dump_errors;
   std::string write_scene;
   std::string html;
-  std::string precision = "both";
 };
 
 // Error segments kept for --html alone (the page draws a few thousand of each class; keeping the
@@ -82,35 +77,31 @@ void printMismatch(const PairCheckReport& r) {
                  r.label.empty() ? "" : " for ", r.label.c_str(), r.mismatch->c_str());
 }
 
+ProxyCheckSettings checkSettings(const Options& o) {
+  ProxyCheckSettings s = o.check;
+  s.seed = o.common.seed;
+  s.quiet = o.common.quiet;
+  if (!o.html.empty()) s.max_error_segments = kHtmlErrorSegments;
+  if (!o.dump_errors.empty()) s.max_error_segments = 1'000'000;
+  return s;
+}
+
 PairCheckOptions pairOptions(const Options& o) {
-  PairCheckOptions p;
-  p.rays = o.rays;
-  p.seed = o.common.seed;
-  p.quiet = o.common.quiet;
-  if (!o.expect.empty()) p.expect = parseProxyClass(o.expect);
-  if (!o.html.empty()) p.max_error_segments = kHtmlErrorSegments;
-  if (!o.dump_errors.empty()) p.max_error_segments = 1'000'000;
-  return p;
+  return pairCheckOptions(checkSettings(o));
 }
 
 int runPair(const Options& o) {
-  if (o.distribution != "sphere")
-    throw Error("", "--distribution scene needs a scene", "a mesh pair has no camera or lights",
-                "run proxy-check SCENE.json --distribution scene");
+  const ProxyCheckSettings settings = checkSettings(o);
+  requireSphereDistribution(settings);
   if (!o.write_scene.empty())
     throw Error("", "--write-scene needs a scene", "a mesh pair has no scene to record into",
                 "run proxy-check SCENE.json --write-scene OUT.json");
   const TriMesh original = loadMesh(o.inputs[0], o.original_pick);
   const TriMesh proxy = loadMesh(o.inputs[1], o.proxy_pick);
-  PairCheckOptions options = pairOptions(o);
   // The original's file read again in double (text formats; binary ones store the floats).
   std::vector<Vec3d> in_double;
-  if (o.precision != "float") {
-    in_double = readDoublePositions(o.inputs[0], original);
-    options.original_double = &in_double;
-    options.double_only = o.precision == "double";
-  }
-  PairCheckReport r = checkPair(original, proxy, options);
+  if (needsDoubleReading(settings)) in_double = readDoublePositions(o.inputs[0], original);
+  PairCheckReport r = checkMeshPair(original, &in_double, proxy, settings);
   printHuman(o, formatHumanReport(r));
   printMismatch(r);
   const std::string html = o.html.empty() ? std::string() : checkReportHtml(original, proxy, r);
@@ -122,7 +113,7 @@ int runScene(const Options& o) {
   const SceneDesc scene = loadSceneDesc(o.inputs[0]);
   SceneDesc proven = scene;  // --write-scene: the classes the checks prove, with their hashes
   std::vector<ScenePair> checked =
-      checkScenePairs(scene, pairOptions(o), o.distribution == "scene");
+      checkScenePairs(scene, pairOptions(o), o.check.distribution == "scene");
   const size_t pairs = checked.size();
   nlohmann::json checks = nlohmann::json::array();
   std::vector<ErrorSegment> all_errors;
@@ -148,7 +139,7 @@ int runScene(const Options& o) {
   writeOutputs(o, all_errors,
                {{"scene", scene.path.string()},
                 {"seed", o.common.seed},
-                {"rays", o.rays},
+                {"rays", o.check.rays},
                 {"checks", checks},
                 {"ok", !failed}});
   return failed ? kExitCheckFailed : kExitOk;
@@ -170,26 +161,15 @@ int main(int argc, char** argv) {
          "ORIGINAL PROXY (meshes: .obj .ply .off .drc .gltf .glb) or SCENE (.json, .gltf, .glb)")
       ->required()
       ->expected(1, 2);
-  app.add_option("--rays", o.rays,
-                 "Number of segments to classify (per proxy). The scene distribution counts only "
-                 "segments that cross the box of original or proxy and draws until it has N, or "
-                 "gives up with a warning after 1000 N attempts")
-      ->check(integerIn(1, kMaxRays))
+  app.add_option("--rays", o.check.rays, proxyCheckHelp("--rays"))
+      ->check(integerIn(1, kMaxCheckRays))
       ->capture_default_str();
-  app.add_option("--distribution", o.distribution,
-                 "sphere: random lines through a sphere around both meshes; scene: camera hits "
-                 "to light samples")
+  app.add_option("--distribution", o.check.distribution, proxyCheckHelp("--distribution"))
       ->check(CLI::IsMember({"sphere", "scene"}))
       ->capture_default_str();
-  app.add_option("--expect", o.expect,
-                 "Exit 1 if the evidence contradicts this class (outside: no HM' and exact "
-                 "'contains'; inside: no MH' and exact 'contained'; general: never)")
+  app.add_option("--expect", o.check.expect, proxyCheckHelp("--expect"))
       ->check(CLI::IsMember({"outside", "inside", "general"}));
-  app.add_option("--precision", o.precision,
-                 "Mesh pair: the readings of the original's file the exact check runs on: float "
-                 "(as proxyvis reads it), double (its decimals as the nearest doubles, as a CAD "
-                 "tool reads them), or both (default; the class holds only when both agree). "
-                 "Binary formats store floats: both readings are the same")
+  app.add_option("--precision", o.check.precision, proxyCheckHelp("--precision"))
       ->check(CLI::IsMember({"float", "double", "both"}))
       ->capture_default_str();
   app.add_option("--dump-errors", o.dump_errors,

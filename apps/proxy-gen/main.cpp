@@ -9,6 +9,7 @@
 
 #include "mesh/io/mesh_io.h"
 #include "proxies/outside/outside_proxy.h"
+#include "proxies/pipeline/proxy_gen_settings.h"
 #include "proxies/pipeline/proxy_outputs.h"
 #include "proxies/pipeline/proxy_pipeline.h"
 #include "proxies/pipeline/proxy_report_text.h"
@@ -32,15 +33,10 @@ using json = nlohmann::json;
 namespace {
 
 struct Args {
-  std::string input, output, out_dir, kind = "outside", method;
-  std::optional<double> alpha, offset, ratio, erosion, voxel, clearance, clearance_ulps;
-  std::optional<size_t> parts;
-  std::string budget = "hard";
-  size_t max_faces = 0, min_faces = 12;
-  double max_seconds = 600;
-  bool fill_holes = false;
-  bool progress = false;  // the bar also when stderr is not a terminal
-  std::string cache_dir;  // scene mode: the proxy cache (empty = the default folder)
+  std::string input, output, out_dir;
+  ProxyGenSettings proxy;  // --kind, --method, the sizes and budgets
+  bool progress = false;   // the bar also when stderr is not a terminal
+  std::string cache_dir;   // scene mode: the proxy cache (empty = the default folder)
   bool no_cache = false;
   std::string shard;                      // --shard i/n (scene mode)
   std::vector<std::string> merge_shards;  // --merge-shards DIR... (scene mode)
@@ -56,27 +52,7 @@ struct Args {
 };
 
 ProxyGenOptions toOptions(const Args& a, const CommonOptions& common) {
-  ProxyGenOptions o;
-  const std::optional<ProxyClass> kind = parseProxyClass(a.kind);
-  if (!kind)
-    throw Error("", fmt::format("unknown --kind '{}'", a.kind), "use outside, inside or general");
-  o.kind = *kind;
-  o.method = a.method;
-  o.alpha = a.alpha;
-  o.offset = a.offset;
-  o.ratio = a.ratio;
-  o.erosion = a.erosion;
-  o.clearance = a.clearance;
-  o.clearance_ulps = a.clearance_ulps;
-  o.voxel = a.voxel;
-  o.parts = a.parts;
-  o.hard_budget = a.budget == "hard";
-  o.max_faces = a.max_faces;
-  o.min_faces = a.min_faces;
-  o.fill_holes = a.fill_holes;
-  o.seed = common.seed;
-  o.max_seconds = a.max_seconds;
-  return o;
+  return proxyGenOptions(a.proxy, common.seed);
 }
 
 int runMesh(const Args& a, const CommonOptions& common) {
@@ -145,10 +121,10 @@ int runScene(const Args& a, const CommonOptions& common, const CLI::App& app) {
   if (!a.plan_dir.empty()) return writePlan(a, common, app);
   const ProxyGenOptions base = toOptions(a, common);
   if (!a.merge_shards.empty())
-    return mergeShards({a.input, a.out_dir, a.kind, base, cacheDirSetting(a.cache_dir, a.no_cache),
-                        a.merge_shards},
+    return mergeShards({a.input, a.out_dir, a.proxy.kind, base,
+                        cacheDirSetting(a.cache_dir, a.no_cache), a.merge_shards},
                        common);
-  return runSceneProxies({a.input, a.out_dir, a.kind, base, a.cache_dir, a.no_cache, a.shard,
+  return runSceneProxies({a.input, a.out_dir, a.proxy.kind, base, a.cache_dir, a.no_cache, a.shard,
                           a.done_file, a.scene_gltf, a.compress, a.progress},
                          common);
 }
@@ -159,23 +135,13 @@ void addProxyOptions(CLI::App& app, Args& a) {
                  "Mesh (.obj .ply .off .drc .gltf .glb) or scene (.json; a .gltf/.glb with "
                  "--out-dir is read as a scene: every mesh its nodes draw)")
       ->required();
-  app.add_option("--kind", a.kind, "outside | inside | general")
+  app.add_option("--kind", a.proxy.kind, proxyGenHelp("--kind"))
       ->check(CLI::IsMember({"outside", "inside", "general"}))
       ->capture_default_str();
-  app.add_option(
-         "--method", a.method,
-         "outside: wrap (default; the tightest: volume ratio 1.01-1.23 at --ratio 0.02 on the "
-         "bundled closed meshes, 1.39 on a thin-legged cow), hull (convex: fastest, but 1.3-2.7), "
-         "convex-parts (a "
-         "proved union of convex pieces, as collision proxies are); "
-         "inside: wrap (default; 0.76-0.98 of the volume at --ratio 0.02), erode (voxel erosion: "
-         "0.76-0.95 at --ratio 0.02 on the bundled closed meshes); general: qem (default), "
-         "cgal-sms, meshopt (no guarantee). See docs/proxy_tightness.md")
+  app.add_option("--method", a.proxy.method, proxyGenHelp("--method"))
       ->check(
           CLI::IsMember({"wrap", "hull", "convex-parts", "erode", "qem", "cgal-sms", "meshopt"}));
-  app.add_option("--parts", a.parts,
-                 "convex-parts: the most convex pieces (default 16; with a face budget one per 12 "
-                 "faces, 2 to 32)")
+  app.add_option("--parts", a.proxy.parts, proxyGenHelp("--parts"))
       ->check(CLI::Range(size_t(1), kMaxConvexParts));
   app.add_option("-o,--output", a.output,
                  "Output mesh (mesh input): .ply, .obj, .off, .drc (lossless), or .glb/.gltf with "
@@ -198,67 +164,33 @@ void addProxyOptions(CLI::App& app, Args& a) {
                  "each with its proof; docs/gltf.md)");
   app.add_option("--out-dir", a.out_dir,
                  "Output directory (scene input): DIR/<mesh>.<kind>.ply, DIR/scene.json");
-  app.add_option(
-         "--alpha", a.alpha,
-         "wrap: alpha as a fraction of the diagonal (default 1/50; in a scene, 1/10 for an open "
-         "mesh such as foliage, see docs/proxies.md)")
+  app.add_option("--alpha", a.proxy.alpha, proxyGenHelp("--alpha"))
       ->check(numberIn(kAlphaRange.lo, kAlphaRange.hi));
-  app.add_option(
-         "--offset", a.offset,
-         "wrap: offset as a fraction of the diagonal (default 1/600; in a scene, 1/100 for an "
-         "open mesh)")
+  app.add_option("--offset", a.proxy.offset, proxyGenHelp("--offset"))
       ->check(numberIn(kOffsetRange.lo, kOffsetRange.hi));
-  app.add_option("--max-faces", a.max_faces,
-                 "Face budget (0 = none). Outside/inside proxies keep their guarantee while "
-                 "reducing; when the method's proxy cannot be reduced to it, coarser sizes, the "
-                 "convex hull (outside), a box (12 faces) and a tetrahedron (4 faces) are tried "
-                 "and the tightest verified one is kept. Without a budget an outside/inside proxy "
-                 "with more faces than the input is reduced to the input's count, as a goal")
+  app.add_option("--max-faces", a.proxy.max_faces, proxyGenHelp("--max-faces"))
       ->check(integerIn(0, kMaxFacesLimit));
-  app.add_option("--budget", a.budget,
-                 "hard: a --max-faces/--ratio that no verified proxy meets ends the run with exit "
-                 "code 1 and nothing written; soft: write the smallest verified proxy anyway "
-                 "(\"budget_reached\": false in the JSON); see docs/budgets.md")
+  app.add_option("--budget", a.proxy.budget, proxyGenHelp("--budget"))
       ->check(CLI::IsMember({"hard", "soft"}))
       ->capture_default_str();
-  app.add_option("--max-seconds", a.max_seconds,
-                 "Time budget per mesh: a wrap, erosion or decimation still running after it is "
-                 "stopped and the mesh fails (exit code 2), nothing is written")
+  app.add_option("--max-seconds", a.proxy.max_seconds, proxyGenHelp("--max-seconds"))
       ->check(numberIn(0.1, kMaxSecondsRange.hi))
       ->capture_default_str();
-  app.add_option("--ratio", a.ratio,
-                 "Faces kept as a fraction of the input: general (default 0.02); outside/inside "
-                 "a face budget relative to each mesh (for scenes), used when --max-faces is 0")
+  app.add_option("--ratio", a.proxy.ratio, proxyGenHelp("--ratio"))
       ->check(numberIn(kRatioRange.lo, kRatioRange.hi));
-  app.add_option("--min-faces", a.min_faces,
-                 "With --ratio (outside/inside): the budget is at least this many faces, so that "
-                 "a scene's small meshes keep proxies about as tight as their wraps (ecosys: "
-                 "--ratio 0.03 --min-faces 64, docs/proxy_tightness.md)")
+  app.add_option("--min-faces", a.proxy.min_faces, proxyGenHelp("--min-faces"))
       ->check(CLI::Range(size_t(4), size_t(kMaxFacesLimit)))
       ->capture_default_str();
-  app.add_option("--erosion", a.erosion,
-                 "erode: erosion distance as a fraction of the diagonal (default 1/75)")
+  app.add_option("--erosion", a.proxy.erosion, proxyGenHelp("--erosion"))
       ->check(numberIn(kErosionRange.lo, kErosionRange.hi));
-  app.add_option("--voxel", a.voxel,
-                 "erode: voxel edge as a fraction of the diagonal (default 1/150; with a face "
-                 "budget, coarser: about 100 voxel faces per budget face)")
+  app.add_option("--voxel", a.proxy.voxel, proxyGenHelp("--voxel"))
       ->check(numberIn(kVoxelRange.lo, kVoxelRange.hi));
-  auto* clearance = app.add_option(
-      "--clearance", a.clearance,
-      "outside/inside: the least distance (scene units) the proxy keeps from the input, so its "
-      "class holds when the input is read in double or placed by a transform; default: "
-      "--clearance-ulps 8 (docs/clearance.md)");
+  auto* clearance = app.add_option("--clearance", a.proxy.clearance, proxyGenHelp("--clearance"));
   clearance->check(numberIn(kClearanceRange.lo, kClearanceRange.hi));
-  app.add_option("--clearance-ulps", a.clearance_ulps,
-                 "outside/inside: the clearance in ulps of float at the input's largest "
-                 "coordinate (default 8: a float or double reading of a text file, and a "
-                 "placement that rounds each coordinate by a few ulps; 0 = none)")
+  app.add_option("--clearance-ulps", a.proxy.clearance_ulps, proxyGenHelp("--clearance-ulps"))
       ->check(numberIn(kClearanceUlpsRange.lo, kClearanceUlpsRange.hi))
       ->excludes(clearance);
-  app.add_flag(
-      "--fill-holes", a.fill_holes,
-      "inside: fill the holes of an open input first; the proxy is then written as class general "
-      "(a ray through a hole can reach it), see docs/proxy_classes.md");
+  app.add_flag("--fill-holes", a.proxy.fill_holes, proxyGenHelp("--fill-holes"));
 }
 
 // Scene input: the cache, shards and their merge, plans for Slurm.

@@ -164,16 +164,10 @@ int runApp(CLI::App& app, int argc, char** argv, const CommonOptions& options,
     int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
     return body();
-  } catch (const Error& e) {
-    std::fprintf(stderr, "%s: error: %s\n", name.c_str(), e.what());
-    return e.exitCode();
-  } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "%s: error: out of memory; the input is too large for this machine\n",
-                 name.c_str());
-    return kExitBadInput;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "%s: error: %s\n", name.c_str(), printableText(e.what()).c_str());
-    return kExitBadInput;
+    const ErrorReport report = errorReport(e);
+    std::fprintf(stderr, "%s: error: %s\n", name.c_str(), report.message.c_str());
+    return report.exit_code;
   }
 }
 

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <new>
 
 namespace proxyvis {
 
@@ -38,6 +39,13 @@ std::string composeMessage(const std::string& file, const std::string& what, con
 
 Error::Error(std::string file, std::string what, std::string why, std::string todo)
     : std::runtime_error(composeMessage(file, what, why, todo)), file_(std::move(file)) {}
+
+ErrorReport errorReport(const std::exception& e) {
+  if (const auto* error = dynamic_cast<const Error*>(&e)) return {error->what(), error->exitCode()};
+  if (dynamic_cast<const std::bad_alloc*>(&e))
+    return {"out of memory; the input is too large for this machine", kExitBadInput};
+  return {printableText(e.what()), kExitBadInput};
+}
 
 void checkFailed(const char* file, int line, const char* expr, const std::string& msg) {
   // One fprintf so that messages from several threads do not interleave.

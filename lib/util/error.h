@@ -2,6 +2,7 @@
 // Errors: bad input is a proxyvis::Error (the user's problem, exit code 2), an output that cannot
 // be written is a WriteError (exit 3); a broken invariant is PV_CHECK (our bug, aborts).
 // lib/ never calls exit(): only apps/ turn errors into exit codes (see util/app_main.h).
+#include <exception>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -43,6 +44,16 @@ class CheckFailed : public Error {
   using Error::Error;
   int exitCode() const override { return kExitCheckFailed; }
 };
+
+// What a program reports for an exception that ends its work (util/app_main.h's runApp prints
+// "<program>: error: <message>" and returns exit_code; the Python module raises proxyvis.Error
+// with both): an Error's message and code; out of memory as one line naming it, code 2; any
+// other std::exception's text (non-printable bytes as \xNN), code 2.
+struct ErrorReport {
+  std::string message;
+  int exit_code = kExitBadInput;
+};
+ErrorReport errorReport(const std::exception& e);
 
 [[noreturn]] void checkFailed(const char* file, int line, const char* expr, const std::string& msg);
 

@@ -39,29 +39,6 @@ Error unknownExtension(const fs::path& path) {
                "use .obj, .ply, .off, .drc, .gltf or .glb");
 }
 
-// What every loader output must satisfy before anyone uses it.
-void checkLoaded(const TriMesh& mesh, const std::string& file) {
-  for (size_t i = 0; i < mesh.vertices.size(); ++i) {
-    if (!isFinite(mesh.vertices[i]))
-      throw Error(file, "vertex " + std::to_string(i) + " has a NaN or infinite coordinate",
-                  "positions must be finite numbers", "fix or re-export the mesh");
-  }
-  const size_t n = mesh.vertices.size();
-  for (size_t f = 0; f < mesh.triangles.size(); ++f) {
-    for (uint32_t i : mesh.triangles[f]) {
-      if (i >= n)
-        throw Error(file, "vertex index out of range",
-                    "triangle " + std::to_string(f) + " references vertex " + std::to_string(i) +
-                        " but there are " + std::to_string(n),
-                    "the file is corrupt; re-export it");
-    }
-  }
-  if (mesh.triangles.empty())
-    throw Error(file, "no triangles",
-                "the file holds " + std::to_string(n) + " vertices and no faces",
-                "a mesh file with at least one face is needed");
-}
-
 }  // namespace
 
 namespace detail {
@@ -85,6 +62,28 @@ bool isGltfPath(const fs::path& path) {
 
 bool isSupportedMeshExtension(const fs::path& path) {
   return !formatOf(path).empty();
+}
+
+void checkMeshContent(const TriMesh& mesh, const std::string& file) {
+  for (size_t i = 0; i < mesh.vertices.size(); ++i) {
+    if (!isFinite(mesh.vertices[i]))
+      throw Error(file, "vertex " + std::to_string(i) + " has a NaN or infinite coordinate",
+                  "positions must be finite numbers", "fix or re-export the mesh");
+  }
+  const size_t n = mesh.vertices.size();
+  for (size_t f = 0; f < mesh.triangles.size(); ++f) {
+    for (uint32_t i : mesh.triangles[f]) {
+      if (i >= n)
+        throw Error(file, "vertex index out of range",
+                    "triangle " + std::to_string(f) + " references vertex " + std::to_string(i) +
+                        " but there are " + std::to_string(n),
+                    "the file is corrupt; re-export it");
+    }
+  }
+  if (mesh.triangles.empty())
+    throw Error(file, "no triangles",
+                "the file holds " + std::to_string(n) + " vertices and no faces",
+                "a mesh file with at least one face is needed");
 }
 
 TriMesh loadMesh(const fs::path& path, const GltfPick& pick) {
@@ -116,7 +115,7 @@ TriMesh parseMeshBytesIn(std::string bytes, const fs::path& path, const fs::path
     if (format == "off") detail::blankOffComments(bytes);
     detail::readWithOpenMesh(bytes, format, file, mesh);
   }
-  checkLoaded(mesh, file);
+  checkMeshContent(mesh, file);
   return mesh;
 }
 

@@ -54,6 +54,11 @@ struct GltfPick {
   bool surfaces_only = false;  // leave out emissive primitives (a glTF scene's lights)
 };
 
+// What every loaded mesh satisfies before anyone uses it (loadMesh checks it; so does whatever
+// makes a TriMesh from other data, e.g. the Python module's arrays): finite positions, vertex
+// indices in range, at least one triangle. Throws Error naming `file` otherwise.
+void checkMeshContent(const TriMesh& mesh, const std::string& file);
+
 // Loads a triangle mesh; polygons are fan-triangulated. Vertex order is kept.
 TriMesh loadMesh(const std::filesystem::path& path, const GltfPick& pick = {});
 
