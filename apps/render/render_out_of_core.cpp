@@ -54,6 +54,7 @@ nlohmann::json summaryJson(const OutOfCoreRenderRequest& o, const SceneDesc& des
       {"in_core_bytes", scene.inCoreBytes()},
       {"proxy_bytes", scene.proxyBytes()},
       {"batch_passes", settings.batch_passes},
+      {"page_cache", settings.cold_reads ? "cold" : "warm"},
       {"batches", s.batches},
       {"loads", s.cache.loads},
       {"loads_per_frame", s.cache.loads},
@@ -102,6 +103,9 @@ void addOutOfCoreFlags(CLI::App& app, OutOfCoreFlags& f) {
                  "loaded (0: the whole frame)")
       ->check(CLI::Range(0, 1 << 20))
       ->capture_default_str();
+  app.add_flag("--cold-reads", f.cold_reads,
+               "Out of core: drop each original's file from the page cache before it is loaded "
+               "(that file only), so loads read from the disk");
   app.add_option("--load-q", f.load_q,
                  "Out of core, proxies-roulette: the probability that a mesh with an outside "
                  "proxy is loaded and its queue traced in a batch, or 'learned': per batch and "
@@ -140,6 +144,7 @@ int runOutOfCoreRender(OutOfCoreRenderRequest& o) {
   settings.batch_passes = o.out_of_core.batch_passes;
   applyLoadQ(o.out_of_core.load_q, settings);
   settings.q_min = o.render.q_min;
+  settings.cold_reads = o.out_of_core.cold_reads;
   settings.budget_bytes = budget.resolve(scene->inCoreBytes());
   settings.quiet = o.common.quiet;
   const OutOfCoreResult result = renderOutOfCore(*scene, settings);

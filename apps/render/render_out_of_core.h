@@ -17,7 +17,8 @@ namespace proxyvis {
 struct OutOfCoreFlags {
   std::string geometry_budget;  // empty: in core
   std::string policy = "exact-batched";
-  int batch_passes = 0;        // 0: the whole frame in one batch
+  int batch_passes = 0;  // 0: the whole frame in one batch
+  bool cold_reads = false;
   std::string load_q = "0.5";  // proxies-roulette's probability of tracing a mesh's queue, or
                                // "learned"
 };

@@ -68,7 +68,9 @@ class OutOfCoreRun {
         tiling_(scene.camera().width(), scene.camera().height(), settings.tile_size),
         pixels_(size_t(tiling_.width) * size_t(tiling_.height)),
         cache_(expectedBytes(scene), settings.budget_bytes,
-               [&scene](uint32_t m) { return scene.loadOriginal(m); }),
+               [&scene, cold = settings.cold_reads](uint32_t m) {
+                 return scene.loadOriginal(m, cold);
+               }),
         queues_(scene.desc().meshes.size()),
         learner_(scene.desc().meshes.size(), settings.q_min) {}
 

@@ -43,9 +43,10 @@ struct OutOfCoreSettings {
   uint64_t seed = 0;
   int batch_passes = 0;  // passes whose segments are queued together; 0: the whole frame
   uint64_t budget_bytes = 0;
-  double load_q = 0.5;   // proxies-roulette: the probability a mesh's queue is traced in a batch
-  bool learn_q = false;  // proxies-roulette: q per batch and mesh learned (load_q unused)
-  double q_min = 0.05;   // the learned q's floor
+  double load_q = 0.5;      // proxies-roulette: the probability a mesh's queue is traced in a batch
+  bool cold_reads = false;  // every load reads its file from the disk, not the page cache
+  bool learn_q = false;     // proxies-roulette: q per batch and mesh learned (load_q unused)
+  double q_min = 0.05;      // the learned q's floor
   int tile_size = 16;
   bool quiet = false;
 };

@@ -8,6 +8,7 @@
 #include "proxies/check/class_trust.h"
 #include "scene/transform.h"
 #include "util/error.h"
+#include "util/page_cache.h"
 #include "util/stopwatch.h"
 
 namespace proxyvis {
@@ -33,7 +34,8 @@ uint64_t OutOfCoreScene::inCoreBytes() const {
   return total;
 }
 
-GeometryLoad OutOfCoreScene::loadOriginal(uint32_t mesh) const {
+GeometryLoad OutOfCoreScene::loadOriginal(uint32_t mesh, bool cold) const {
+  if (cold) dropFromPageCache(desc_.meshes[mesh].file);
   const Stopwatch read;
   const uint64_t file_bytes = fileBytes(desc_.meshes[mesh].file);
   const TriMesh original = loadSceneMesh(desc_.meshes[mesh]);

@@ -63,7 +63,9 @@ class OutOfCoreScene {
 
   // Reads, decodes and builds mesh `mesh`'s original for its objects (world space as in the
   // in-core scene). Throws Error naming the file if it cannot be read any more.
-  GeometryLoad loadOriginal(uint32_t mesh) const;
+  // `cold`: the file's cached pages are dropped first (util/page_cache.h), so it is read from
+  // the disk.
+  GeometryLoad loadOriginal(uint32_t mesh, bool cold = false) const;
   // Builds mesh `mesh`'s objects from its original, already read (the scan's second half).
   GeometryLoad buildOriginal(uint32_t mesh, const TriMesh& original) const;
 

@@ -39,16 +39,17 @@ void Row::finish() {
 }
 
 std::string imageName(const Row& r) {
-  return fmt::format("{}_{}spp_{}", outOfCorePolicyName(r.policy), r.spp,
-                     r.batch_passes > 0 ? fmt::format("batch{}", r.batch_passes) : "frame");
+  return fmt::format("{}_{}spp_{}{}", outOfCorePolicyName(r.policy), r.spp,
+                     r.batch_passes > 0 ? fmt::format("batch{}", r.batch_passes) : "frame",
+                     r.cold_reads ? "_cold" : "");
 }
 
 namespace {
 
-const Row* baselineOf(const std::vector<Row>& rows, int spp) {
+const Row* baselineOf(const std::vector<Row>& rows, int spp, bool cold) {
   const Row* best = nullptr;
   for (const Row& b : rows)
-    if (b.spp == spp && b.policy == OutOfCorePolicy::kExactBatched &&
+    if (b.spp == spp && b.cold_reads == cold && b.policy == OutOfCorePolicy::kExactBatched &&
         (!best || b.efficiency > best->efficiency))
       best = &b;
   return best;
@@ -61,7 +62,7 @@ void scoreRows(std::vector<Row>& rows) {
     r.efficiency = r.mse > 0 && r.seconds > 0 ? 1 / (r.mse * r.seconds) : 0;
   }
   for (Row& r : rows) {
-    const Row* base = baselineOf(rows, r.spp);
+    const Row* base = baselineOf(rows, r.spp, r.cold_reads);
     r.baseline = base == &r;
     r.relative_efficiency = base && base->efficiency > 0 ? r.efficiency / base->efficiency : 0;
   }
@@ -111,11 +112,13 @@ std::vector<Ceiling> ceilings(const std::vector<Row>& rows, size_t pixels, doubl
     if (std::find(spps.begin(), spps.end(), r.spp) == spps.end()) spps.push_back(r.spp);
   std::sort(spps.begin(), spps.end());
   for (int spp : spps) {
-    const Row* base = baselineOf(rows, spp);
+    // Warm reads: the ceiling of the setting the targets name.
+    const Row* base = baselineOf(rows, spp, false);
     if (!base || base->efficiency <= 0) continue;
     std::optional<Ceiling> best;
     for (const Row& r : rows) {
-      if (r.spp != spp || r.policy != OutOfCorePolicy::kProxiesExact || r.mse <= 0) continue;
+      if (r.spp != spp || r.cold_reads || r.policy != OutOfCorePolicy::kProxiesExact || r.mse <= 0)
+        continue;
       Ceiling c = oracle(r, pixels, q_min);
       c.baseline_seconds = base->seconds;
       c.baseline_mse = base->mse;
@@ -135,6 +138,7 @@ nlohmann::json rowJson(const Row& r) {
           {"batch_passes", r.batch_passes},
           {"seeds", r.seeds},
           {"geometry_budget_bytes", r.budget_bytes},
+          {"page_cache", r.cold_reads ? "cold" : "warm"},
           {"load_q", r.load_q},
           {"mean_load_q", r.q_draws > 0 ? r.q_sum / r.q_draws : 1.0},
           {"loads_per_frame", r.loads},
@@ -177,14 +181,15 @@ nlohmann::json ceilingJson(const Ceiling& c) {
 }
 
 TextTable studyTable(const std::vector<Row>& rows) {
-  TextTable t{{"spp", "policy", "passes per batch", "load q", "loads / frame", "MB read", "load s",
-               "peak RSS MiB", "seconds", "MSE", "efficiency"},
-              "rllrrrrrrrr",
+  TextTable t{{"spp", "policy", "passes per batch", "page cache", "load q", "loads / frame",
+               "MB read", "load s", "peak RSS MiB", "seconds", "MSE", "efficiency"},
+              "rlllrrrrrrrr",
               {}};
   for (const Row& r : rows)
     t.rows.push_back(
         {std::to_string(r.spp), outOfCorePolicyName(r.policy),
          r.batch_passes > 0 ? std::to_string(r.batch_passes) : "frame",
+         r.cold_reads ? "cold" : "warm",
          r.q_draws > 0 ? fmt::format("{} (mean {:.2f})", r.load_q, r.q_sum / r.q_draws) : r.load_q,
          fmt::format("{:.1f}", r.loads), fmt::format("{:.1f}", 1e-6 * r.bytes_read),
          fmt::format("{:.2f}", r.load_seconds),

@@ -17,6 +17,7 @@ struct Row {
   OutOfCorePolicy policy{};
   int spp = 0, batch_passes = 0, seeds = 0;
   uint64_t budget_bytes = 0;
+  bool cold_reads = false;
   std::string load_q = "-";  // proxies-roulette: the fixed q, or "learned"
   // Sums over the seeds until finish(), then means (peak RSS: the largest).
   double mse = 0, seconds = 0, load_seconds = 0, read_seconds = 0, build_seconds = 0;
@@ -33,11 +34,12 @@ struct Row {
   void finish();
 };
 
-// "<policy>_<spp>spp_batch<passes or frame>": the row's image without extension.
+// "<policy>_<spp>spp_<batch<passes> or frame>[_cold]": the row's image without extension.
 std::string imageName(const Row& r);
 
 // Efficiency 1/(MSE x seconds) of every row, relative to the most efficient exact-batched row of
-// the same spp (marked baseline: the best batch for exact, as the comparison demands).
+// the same spp and page cache (marked baseline: the best batch for exact, as the comparison
+// demands).
 void scoreRows(std::vector<Row>& rows);
 
 // The oracle ceiling at one spp: the efficiency, relative to the best exact-batched row, of a

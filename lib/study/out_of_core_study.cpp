@@ -94,31 +94,35 @@ class OutOfCoreStudy {
   void renderRows() {
     for (int spp : o_.spp_list)
       for (int passes : plan_.batch_passes)
-        for (OutOfCorePolicy p : plan_.policies) {
-          OocRow r;
-          r.policy = p;
-          r.spp = spp;
-          r.batch_passes = passes;
-          r.budget_bytes = budget_;
-          rows_.push_back(r);
-        }
+        for (bool cold : {false, true})
+          for (OutOfCorePolicy p : plan_.policies) {
+            if (cold && !flags_.cold_reads) continue;
+            OocRow r;
+            r.cold_reads = cold;
+            r.policy = p;
+            r.spp = spp;
+            r.batch_passes = passes;
+            r.budget_bytes = budget_;
+            rows_.push_back(r);
+          }
     images_.resize(rows_.size());
     for (int seed = 0; seed < o_.seeds; ++seed)
       for (size_t i = 0; i < rows_.size(); ++i) {
         OocRow& row = rows_[i];
         OutOfCoreSettings s = settingsFor(row.policy, row.spp, row.batch_passes);
         s.seed = hashKeys(o_.common.seed, uint64_t(seed));
+        s.cold_reads = row.cold_reads;
         const OutOfCoreResult r = renderMeasured(scene_, s);
         row.load_q = row.policy == OutOfCorePolicy::kProxiesRoulette ? loadQText(s) : "-";
         if (!o_.common.quiet)
           std::fprintf(
               stderr,
-              "render-compare: %s, %d spp, %s, seed %d/%d: %.2f s, %llu loads (%.2f s), "
+              "render-compare: %s, %d spp, %s%s, seed %d/%d: %.2f s, %llu loads (%.2f s), "
               "peak RSS %.0f MiB\n",
               outOfCorePolicyName(row.policy), row.spp,
               row.batch_passes > 0 ? fmt::format("{} passes per batch", row.batch_passes).c_str()
                                    : "one batch",
-              seed + 1, o_.seeds, r.stats.seconds,
+              row.cold_reads ? ", cold reads" : "", seed + 1, o_.seeds, r.stats.seconds,
               static_cast<unsigned long long>(r.stats.cache.loads), r.stats.cache.loadSeconds(),
               double(r.stats.peak_rss_bytes) / double(1 << 20));
         row.add(r.stats, 0);
@@ -184,7 +188,9 @@ std::vector<std::string> studyNotes(const std::vector<OocRow>& rows,
                                     const OutOfCoreScene& scene, uint64_t budget,
                                     size_t image_bytes) {
   std::vector<std::string> notes{
-      "Measured on this machine, warm page cache: each row is the mean over its seeds of the "
+      "Measured on this machine (warm page cache, or cold reads where the row says so: each "
+      "original's file dropped from the page cache before it loads): each row is the mean over its "
+      "seeds of the "
       "render's wall time (the scene's scan, the same for every row, left out), the seeds of all "
       "rows interleaved. Rows compare at equal samples; efficiency = 1/(MSE x seconds), relative "
       "to the most efficient exact-batched row at the same spp (marked baseline)."};
@@ -228,6 +234,9 @@ void addOutOfCoreStudyFlags(CLI::App& app, OutOfCoreStudyFlags& f) {
                  "With --geometry-budget: passes per batch, a list (0: the whole frame); every "
                  "policy runs at each, and the best exact-batched one is the baseline")
       ->capture_default_str();
+  app.add_flag("--cold-reads", f.cold_reads,
+               "With --geometry-budget: every configuration also with cold reads (each original's "
+               "file dropped from the page cache before it loads), beside the warm rows");
   app.add_option("--load-q", f.load_q,
                  "With --geometry-budget: proxies-roulette's probability of loading a mesh and "
                  "tracing its queue in a batch, or 'learned' (per batch and mesh, from earlier "

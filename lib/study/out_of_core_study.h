@@ -20,8 +20,9 @@ struct OutOfCoreStudyFlags {
   std::string policies = "exact-batched,proxies-exact,proxies-roulette";
   std::string batch_passes = "0";  // a list: each is a configuration (0: the whole frame)
   std::string load_q = "0.5";      // or "learned"
+  bool cold_reads = false;         // every configuration also with cold reads, beside the warm
 };
-// Adds --geometry-budget, --ooc-policies, --batch-passes and --load-q.
+// Adds --geometry-budget, --ooc-policies, --batch-passes, --load-q and --cold-reads.
 void addOutOfCoreStudyFlags(CLI::App& app, OutOfCoreStudyFlags& flags);
 
 int runOutOfCoreStudy(CompareOptions& options, const OutOfCoreStudyFlags& flags,
