@@ -42,6 +42,7 @@ PKGS=(
   slurm-wlm munge  # scripts/slurm: plans as job arrays; a single-node cluster for its tests
   openmpi-bin libopenmpi-dev  # data-parallel rendering (lib/distributed, mpirun)
   strace  # the data-parallel tests check which files each rank opens
+  pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module (docs/python.md)
 )
 
 # Only for ./setup.sh fuzz and test-sanitize: clang with libFuzzer and the sanitizer runtimes.
@@ -167,6 +168,7 @@ changed_labels() {
       lib/plan/* | lib/study/*) labels+=(plan study apps bad_inputs slurm); continue ;;
       lib/* | tests/*) area=${f#*/}; area=${area%%/*} ;;
       proxies/*) area=proxies ;;
+      apps/python/*) labels+=(python); continue ;;
       apps/*) labels+=(apps bad_inputs); continue ;;
       docs/* | README.md) area=docs ;;
       *) continue ;;
