@@ -80,6 +80,7 @@ nlohmann::json summaryJson(const OutOfCoreRenderRequest& o, const SceneDesc& des
                                     : nlohmann::json(settings.load_q)},
       {"mean_load_q", s.q_draws ? s.q_sum / double(s.q_draws) : 1.0},
       {"skipped_queues", s.skipped_queues},
+      {"roulette_added_variance", s.roulette_added_variance},
       {"build", buildText()},
       {"version", versionText()},
   };

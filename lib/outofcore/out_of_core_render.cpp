@@ -284,7 +284,7 @@ class OutOfCoreRun {
                             ++local;
                             const bool v = !originals.occluded(samples_[item].segment);
                             const bool v_proxy = (queue[i] & kSelfPair) != 0;
-                            wrong_[item] = v != v_proxy;
+                            if (has_proxy_answer) wrong_[item] = v != v_proxy;
                             if (!weighted || v == v_proxy) {
                               if (!v) blocked_[item] = 1;
                             } else {
@@ -297,13 +297,23 @@ class OutOfCoreRun {
       ++stats_.traced_queues;
       if (has_proxy_answer) {
         // Summed in queue order: the same bits at any thread count.
-        double w2 = 0;
+        double w2 = 0, signed_sum = 0;
         for (uint32_t entry : queue) {
           const uint32_t item = entry & kItemMask;
           if (!wrong_[item]) continue;
           wrong_[item] = 0;
           const Vec3f& w = samples_[item].weight;
           w2 += double(w.x) * w.x + double(w.y) * w.y + double(w.z) * w.z;
+          // v - v': -1 for a self pair (v' = 1), +1 otherwise (v' = 0).
+          signed_sum += ((entry & kSelfPair) ? -1.0 : 1.0) * (double(w.x) + w.y + w.z);
+        }
+        if (weighted) {
+          // This queue's skip would have moved the image mean by -S (S its wrong segments'
+          // share of the mean); traced with probability q, its term (1[traced]/q - 1) S has
+          // variance (1/q - 1) S^2, estimated without bias from the traced queues alone by
+          // dividing by q.
+          const double s = signed_sum / (3.0 * double(pixels_) * double(settings_.spp));
+          stats_.roulette_added_variance += (1 / q - 1) * s * s / q;
         }
         learner_.observe(m, queue.size(), w2, loaded, load_seconds, trace_clock.seconds());
         stats_.proxy_queues.push_back({m, w2, load_clock.seconds(), loaded});

@@ -74,10 +74,14 @@ struct OutOfCoreStats {
   uint64_t blocked_by_inside = 0;  // of those, blocked by an inside proxy
   uint64_t original_traces = 0;    // segment traces against loaded originals
   uint64_t skipped_queues = 0;     // proxies-roulette: (batch, mesh) queues not traced
-  double q_sum = 0;                // proxies-roulette: the sum of q over its draws
-  uint64_t q_draws = 0;            //   and their count (the mean q: q_sum / q_draws)
-  uint64_t primary_queued = 0;     // (ray, mesh) pairs of the primary rays
-  uint64_t traced_queues = 0;      // (batch, mesh) shadow queues traced
+  // proxies-roulette: an unbiased estimate of the variance its draws added to the image's mean
+  // (over pixels and channels), from the traced queues; exact where no segment is answered
+  // wrongly on two meshes (docs/out_of_core.md, "Variance").
+  double roulette_added_variance = 0;
+  double q_sum = 0;             // proxies-roulette: the sum of q over its draws
+  uint64_t q_draws = 0;         //   and their count (the mean q: q_sum / q_draws)
+  uint64_t primary_queued = 0;  // (ray, mesh) pairs of the primary rays
+  uint64_t traced_queues = 0;   // (batch, mesh) shadow queues traced
   // The oracle ceiling's inputs (proxy policies): every traced (batch, mesh) queue of a mesh
   // with an outside proxy.
   std::vector<ProxyQueueRecord> proxy_queues;
