@@ -21,6 +21,7 @@ void Row::add(const OutOfCoreStats& s, double image_mse) {
   original_traces += double(s.original_traces);
   skipped_queues += double(s.skipped_queues);
   traced_queues += double(s.traced_queues);
+  shadow_segments += double(s.shadow_segments);
   q_sum += s.q_sum;
   q_draws += double(s.q_draws);
   if (policy == OutOfCorePolicy::kProxiesExact)
@@ -34,7 +35,7 @@ void Row::finish() {
   const double n = seeds;
   for (double* v :
        {&mse, &seconds, &load_seconds, &read_seconds, &build_seconds, &loads, &hits, &evictions,
-        &bytes_read, &queued, &original_traces, &skipped_queues, &traced_queues})
+        &bytes_read, &queued, &original_traces, &skipped_queues, &traced_queues, &shadow_segments})
     *v /= n;
 }
 
@@ -148,6 +149,8 @@ nlohmann::json rowJson(const Row& r) {
           {"load_seconds", r.load_seconds},
           {"read_seconds", r.read_seconds},
           {"build_seconds", r.build_seconds},
+          {"shadow_segments", r.shadow_segments},
+          {"shadow_segments_per_second", r.seconds > 0 ? r.shadow_segments / r.seconds : 0.0},
           {"queued", r.queued},
           {"original_traces", r.original_traces},
           {"traced_queues", r.traced_queues},

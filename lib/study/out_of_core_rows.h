@@ -22,7 +22,7 @@ struct Row {
   // Sums over the seeds until finish(), then means (peak RSS: the largest).
   double mse = 0, seconds = 0, load_seconds = 0, read_seconds = 0, build_seconds = 0;
   double loads = 0, hits = 0, evictions = 0, bytes_read = 0, queued = 0, original_traces = 0;
-  double skipped_queues = 0, traced_queues = 0;
+  double skipped_queues = 0, traced_queues = 0, shadow_segments = 0;
   double q_sum = 0, q_draws = 0;  // the mean q of proxies-roulette's draws: q_sum / q_draws
   std::vector<ProxyQueueRecord> proxy_queues;  // proxies-exact: every seed's traced queues
   uint64_t peak_rss_bytes = 0, peak_cache_bytes = 0;
