@@ -25,11 +25,6 @@ namespace {
 
 using Queues = std::vector<std::vector<uint32_t>>;  // per mesh: item indices
 
-// The high bit of a queued item: the pair of a segment and its own object's mesh (whose proxy
-// answer, under roulette, is "not self-shadowed").
-constexpr uint32_t kSelfPair = 1u << 31;
-constexpr uint32_t kItemMask = kSelfPair - 1;
-
 // Per-thread (mesh, item) pairs gathered in parallel, then sorted into per-mesh queues in item
 // order (the order only matters for the trace's memory access, never for an answer).
 struct QueueBuilder {
@@ -110,6 +105,7 @@ class OutOfCoreRun {
     std::vector<Segment> rays(pixels_);
     std::vector<Hit> hits(pixels_);
     std::vector<uint32_t> hit_mesh(pixels_, std::numeric_limits<uint32_t>::max());
+    own_blocked_.assign(pixels_ * size_t(settings_.spp), 0);
     QueueBuilder builder;
     tbb::parallel_for(0, tiling_.count(), [&](int t) {
       thread_local std::vector<LabelEntry> labels;
@@ -134,6 +130,7 @@ class OutOfCoreRun {
           hit_mesh[pixel] = m;
         }
       });
+      ownMeshShadows(m, originals, rays, hits, hit_mesh);
     }
     points_.assign(pixels_, ShadingPoint{});
     const float eps = scene_.epsilon();
@@ -144,69 +141,81 @@ class OutOfCoreRun {
     });
   }
 
-  // Queues segment `item` (from a point on object `self`) on the meshes it must be traced
-  // against; none when the boxes or proxies decide it (`blocked` is then set if an inside proxy
-  // blocks it).
-  void route(const Segment& s, uint32_t self, uint32_t item, QueueBuilder& builder,
+  // While mesh m is resident: every light sample of every pass of the points it now holds (the
+  // nearest hit so far), traced against it. A point's own mesh (its object and that mesh's
+  // other objects) is then never loaded again for its shadows; a nearer hit on a mesh visited
+  // later overwrites the pixel's answers. The shading point and samples are the ones the
+  // batches draw again (the same function of the hit, the seed, the pixel and the pass), and
+  // the trace is against the same built scene, so the answers are the ones a queue would give.
+  void ownMeshShadows(uint32_t m, const TraceScene& originals, const std::vector<Segment>& rays,
+                      const std::vector<Hit>& hits, const std::vector<uint32_t>& hit_mesh) {
+    const std::vector<uint32_t>& queue = queues_[m];
+    const float eps = scene_.epsilon();
+    const size_t spp = size_t(settings_.spp);
+    std::atomic<uint64_t> traces{0};
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, queue.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
+          uint64_t local = 0;
+          for (size_t i = r.begin(); i < r.end(); ++i) {
+            const uint32_t pixel = queue[i];
+            if (hit_mesh[pixel] != m) continue;
+            const Vec3f& albedo = scene_.desc().meshes[m].albedo;
+            const ShadingPoint sp = shadingPointOf(rays[pixel], hits[pixel], eps, albedo);
+            uint8_t* blocked = &own_blocked_[size_t(pixel) * spp];
+            for (size_t pass = 0; pass < spp; ++pass) {
+              PreparedSample ps;
+              prepareSamples(scene_.lights(), sp, settings_.seed, pixel, int(pass), 1, &ps);
+              blocked[pass] = ps.needsVisibility() && originals.occluded(ps.segment);
+              local += ps.needsVisibility();
+            }
+          }
+          traces += local;
+        });
+    stats_.own_mesh_traces += traces;
+  }
+
+  // Queues segment `item` (from a point on a mesh `own_mesh` object) on the other meshes it must
+  // be traced against; none when the boxes or proxies decide it (`blocked` is then set if an
+  // inside proxy blocks it). The own mesh was traced in the primary pass (ownMeshShadows).
+  void route(const Segment& s, uint32_t own_mesh, uint32_t item, QueueBuilder& builder,
              uint8_t& blocked) {
     thread_local std::vector<LabelEntry> labels;
     thread_local std::vector<BoxIndex::BoxEntry> boxes;
     thread_local std::vector<TraceScene::Candidate> candidates;
     thread_local std::vector<uint32_t> groups;
     thread_local std::vector<uint8_t> found;
-    thread_local std::vector<uint32_t> queued;
     if (settings_.policy == OutOfCorePolicy::kExactBatched) {
       labels.clear();
       scene_.objectBoxes().labelsAlong(s, labels);
-      for (const LabelEntry& e : labels) builder.add(e.label, item);
+      for (const LabelEntry& e : labels)
+        if (e.label != own_mesh) builder.add(e.label, item);
       return;
     }
-    // The self-shadowing rule: the shading point's own object is traced as its original when
-    // the segment is in its box (it leaves that object's surface, so it usually is); other
-    // objects, of its mesh or not, only where their proxies cannot decide.
+    // Other meshes only where their proxies cannot decide.
     boxes.clear();
     scene_.objectBoxes().boxesAlong(s, boxes);
     candidates.clear();
     groups.clear();
-    queued.clear();
-    auto queue = [&](uint32_t mesh) {
-      if (std::find(queued.begin(), queued.end(), mesh) != queued.end()) return;
-      queued.push_back(mesh);
-      builder.add(mesh, item);
-    };
-    bool self_box = false;
     for (const BoxIndex::BoxEntry& b : boxes) {
-      if (b.id == self) {
-        self_box = true;
-        continue;
-      }
+      if (b.label == own_mesh) continue;
       size_t g = std::find(groups.begin(), groups.end(), b.label) - groups.begin();
       if (g == groups.size()) groups.push_back(b.label);
       candidates.push_back({b.id, uint32_t(g)});
     }
+    if (candidates.empty()) return;
     found.assign(groups.size(), 0);
     const TraceScene* inside = scene_.insideProxies();
-    if (!candidates.empty() && inside && inside->crossedGroups(s, candidates, found, 1) > 0) {
+    if (inside && inside->crossedGroups(s, candidates, found, 1) > 0) {
       blocked = 1;
       return;
     }
     std::fill(found.begin(), found.end(), 0);
     const TraceScene* outside = scene_.outsideProxies();
-    if (outside && !candidates.empty()) outside->crossedGroups(s, candidates, found, groups.size());
-    // The proxies' answer for the own object's mesh is "not self-shadowed" (kSelfPair) unless
-    // the segment also crosses the outside proxy of another object of that mesh; for another
-    // mesh queued here, "blocked" (it crosses that mesh's outside proxy).
-    const uint32_t self_mesh = scene_.objects()[self].mesh;
-    if (self_box) {
-      bool other_crossed = false;
-      for (size_t g = 0; g < groups.size(); ++g)
-        other_crossed |= groups[g] == self_mesh && found[g];
-      queued.push_back(self_mesh);
-      builder.add(self_mesh, other_crossed ? item : item | kSelfPair);
-    }
-    // A mesh without an outside proxy (none, or an inside one only) cannot be ruled out.
+    if (outside) outside->crossedGroups(s, candidates, found, groups.size());
+    // A mesh whose outside proxy the segment crosses (the proxies' answer: blocked), or without
+    // an outside proxy (none, or an inside one only: it cannot be ruled out).
     for (size_t g = 0; g < groups.size(); ++g)
-      if (found[g] || scene_.meshes()[groups[g]].outside < 0) queue(groups[g]);
+      if (found[g] || scene_.meshes()[groups[g]].outside < 0) builder.add(groups[g], item);
   }
 
   void runBatch(int first_pass, int passes) {
@@ -217,9 +226,10 @@ class OutOfCoreRun {
     factor_.assign(n, 1.0);
     wrong_.assign(n, 0);
     QueueBuilder builder;
-    std::atomic<uint64_t> segments{0}, unqueued{0}, by_inside{0};
+    std::atomic<uint64_t> segments{0}, unqueued{0}, by_inside{0}, by_own{0};
+    const size_t spp = size_t(settings_.spp);
     tbb::parallel_for(0, tiling_.count(), [&](int t) {
-      uint64_t local_segments = 0, local_unqueued = 0, local_inside = 0;
+      uint64_t local_segments = 0, local_unqueued = 0, local_inside = 0, local_own = 0;
       tiling_.forEachPixel(t, [&](int, int, uint32_t pixel) {
         for (int k = 0; k < passes; ++k) {
           const uint32_t item = uint32_t(size_t(k) * pixels_ + pixel);
@@ -228,8 +238,16 @@ class OutOfCoreRun {
                          &ps);
           if (!ps.needsVisibility()) continue;
           ++local_segments;
+          // Blocked by its own mesh, as the primary pass found (ownMeshShadows).
+          if (own_blocked_[size_t(pixel) * spp + size_t(first_pass + k)]) {
+            blocked_[item] = 1;
+            ++local_unqueued;
+            ++local_own;
+            continue;
+          }
           const size_t before = builder.pairs.local().size();
-          route(ps.segment, points_[pixel].object, item, builder, blocked_[item]);
+          route(ps.segment, scene_.objects()[points_[pixel].object].mesh, item, builder,
+                blocked_[item]);
           if (builder.pairs.local().size() == before) {
             ++local_unqueued;
             local_inside += blocked_[item];
@@ -237,7 +255,9 @@ class OutOfCoreRun {
         }
       });
       segments += local_segments, unqueued += local_unqueued, by_inside += local_inside;
+      by_own += local_own;
     });
+    stats_.blocked_by_own_mesh += by_own;
     stats_.shadow_segments += segments;
     stats_.unqueued_segments += unqueued;
     stats_.blocked_by_inside += by_inside;
@@ -260,9 +280,8 @@ class OutOfCoreRun {
         Rng draw(settings_.seed, hashKeys(uint64_t(first_pass), m, 0x6c6f6164u));
         if (!(draw.uniformDouble() < q)) {
           ++stats_.skipped_queues;
-          // The proxies' answer: blocked by another object's original, not by its own.
-          for (uint32_t item : queue)
-            if (!(item & kSelfPair)) blocked_[item] = 1;
+          // The proxies' answer: blocked (every queued segment crosses the mesh's outside proxy).
+          for (uint32_t item : queue) blocked_[item] = 1;
           continue;
         }
       }
@@ -277,18 +296,16 @@ class OutOfCoreRun {
                         [&](const tbb::blocked_range<size_t>& r) {
                           uint64_t local = 0;
                           for (size_t i = r.begin(); i < r.end(); ++i) {
-                            const uint32_t item = queue[i] & kItemMask;
+                            const uint32_t item = queue[i];
                             if (blocked_[item]) continue;
                             ++local;
+                            // The proxies' answer v' is 0 (blocked) for every queued segment.
                             const bool v = !originals.occluded(samples_[item].segment);
-                            const bool v_proxy = (queue[i] & kSelfPair) != 0;
-                            if (has_proxy_answer) wrong_[item] = v != v_proxy;
-                            if (!weighted || v == v_proxy) {
-                              if (!v) blocked_[item] = 1;
-                            } else {
-                              // v' + (v - v') / q: 1/q where v' = 0, 1 - 1/q where v' = 1.
-                              factor_[item] *= v ? 1.0 / q : 1.0 - 1.0 / q;
-                            }
+                            if (has_proxy_answer) wrong_[item] = v;
+                            if (!v)
+                              blocked_[item] = 1;
+                            else if (weighted)
+                              factor_[item] *= 1.0 / q;  // v' + (v - v') / q with v' = 0, v = 1
                           }
                           traces += local;
                         });
@@ -296,14 +313,12 @@ class OutOfCoreRun {
       if (has_proxy_answer) {
         // Summed in queue order: the same bits at any thread count.
         double w2 = 0, signed_sum = 0;
-        for (uint32_t entry : queue) {
-          const uint32_t item = entry & kItemMask;
+        for (uint32_t item : queue) {
           if (!wrong_[item]) continue;
           wrong_[item] = 0;
           const Vec3f& w = samples_[item].weight;
           w2 += double(w.x) * w.x + double(w.y) * w.y + double(w.z) * w.z;
-          // v - v': -1 for a self pair (v' = 1), +1 otherwise (v' = 0).
-          signed_sum += ((entry & kSelfPair) ? -1.0 : 1.0) * (double(w.x) + w.y + w.z);
+          signed_sum += double(w.x) + w.y + w.z;  // v - v' = 1
         }
         if (weighted) {
           // This queue's skip would have moved the image mean by -S (S its wrong segments'
@@ -389,9 +404,10 @@ class OutOfCoreRun {
   std::vector<ShadingPoint> points_;
   std::vector<PreparedSample> samples_;
   std::vector<uint8_t> blocked_;
-  std::vector<double> factor_;       // proxies-roulette: the product of a segment's factors
-  std::vector<uint8_t> wrong_;       // the proxies' answer was wrong for the mesh being traced
-  std::vector<double> square_sums_;  // learned q: per pixel, the sum of its samples' |w v|^2
+  std::vector<double> factor_;        // proxies-roulette: the product of a segment's factors
+  std::vector<uint8_t> own_blocked_;  // per pixel and pass: blocked by its own mesh
+  std::vector<uint8_t> wrong_;        // the proxies' answer was wrong for the mesh being traced
+  std::vector<double> square_sums_;   // learned q: per pixel, the sum of its samples' |w v|^2
   LoadQLearner learner_;
   int passes_done_ = 0;
   Stopwatch shadow_clock_;

@@ -7,15 +7,17 @@
 //
 // Work is batched by mesh, as Pharr et al. (1997) batch rays by geometry: the primary rays are
 // queued on every mesh whose object boxes they enter, then each mesh is loaded once and its
-// queue traced; shadow segments of a batch of passes likewise. Policies decide what queues:
-//   exact-batched  every mesh whose object box a segment enters (the fair exact baseline);
-//   proxies-exact  the mesh of the shading point's own object (the self-shadowing rule traces
-//                  its original), and only the other meshes whose outside proxy the segment
-//                  crosses, or that have none; a segment an inside proxy blocks queues nowhere.
+// queue traced. While a mesh is resident there, the shadow segments of every pass of the points
+// it holds are traced against it: a point's own mesh (the self-shadowing rule traces the
+// original) never needs loading again. The shadow segments of a batch of passes are then queued
+// on the other meshes, each mesh loaded once per batch. Policies decide what queues:
+//   exact-batched  every other mesh whose object box a segment enters (the fair exact baseline);
+//   proxies-exact  only the other meshes whose outside proxy the segment crosses, or that have
+//                  none; a segment an inside proxy blocks queues nowhere.
 //   proxies-roulette  proxies-exact's queues, but a mesh with an outside proxy is loaded and its
 //                  queue traced with probability q per batch (one draw, keyed on the seed, the
-//                  batch and the mesh); otherwise its segments take the proxies' answer (blocked
-//                  where they cross its outside proxy; not self-shadowed by their own object).
+//                  batch and the mesh); otherwise its segments take the proxies' answer
+//                  (blocked: they cross its outside proxy).
 //                  Per segment and mesh the estimate is v' + [traced] (v - v') / q, and a
 //                  segment's visibility the product over its meshes: unbiased, since the draws
 //                  of different meshes are independent. Meshes without an outside proxy are
@@ -68,12 +70,15 @@ std::string loadQText(const OutOfCoreSettings& settings);
 struct OutOfCoreStats {
   GeometryCacheStats cache;
   uint64_t batches = 0;
-  uint64_t shadow_segments = 0;    // segments needing visibility
-  uint64_t queued = 0;             // (segment, mesh) pairs queued
-  uint64_t unqueued_segments = 0;  // decided without a load (by the boxes or the proxies)
-  uint64_t blocked_by_inside = 0;  // of those, blocked by an inside proxy
-  uint64_t original_traces = 0;    // segment traces against loaded originals
-  uint64_t skipped_queues = 0;     // proxies-roulette: (batch, mesh) queues not traced
+  uint64_t shadow_segments = 0;      // segments needing visibility
+  uint64_t queued = 0;               // (segment, mesh) pairs queued
+  uint64_t unqueued_segments = 0;    // decided without a load (by the boxes or the proxies)
+  uint64_t blocked_by_inside = 0;    // of those, blocked by an inside proxy
+  uint64_t blocked_by_own_mesh = 0;  // of those, blocked by their own mesh (primary pass)
+  uint64_t own_mesh_traces = 0;      // segments traced against their own mesh in the primary
+                                     // pass (with those of points a nearer hit replaced)
+  uint64_t original_traces = 0;      // segment traces against loaded originals
+  uint64_t skipped_queues = 0;       // proxies-roulette: (batch, mesh) queues not traced
   // proxies-roulette: an unbiased estimate of the variance its draws added to the image's mean
   // (over pixels and channels), from the traced queues; exact where no segment is answered
   // wrongly on two meshes (docs/out_of_core.md, "Variance").

@@ -332,21 +332,17 @@ int runDataParallelStudy(CompareOptions& o, const DataParallelFlags& flags,
         rankFactsText(facts));
 
     StagedFolder folder(o.out, "render-compare");
-    const std::filesystem::path dir = folder.path();
-    std::filesystem::create_directories(dir / "images");
-    const float exposure = autoExposure(reference.radiance);
-    std::vector<std::string> images{"reference"};
-    writeImagePair(reference.radiance, dir / "images" / "reference", exposure);
-    for (size_t i = 0; i < rows.size(); ++i) {
-      images.push_back(imageName(rows[i]));
-      writeImagePair(first_images[i], dir / "images" / images.back(), exposure);
-    }
-    writeTextAtomically(dir / "report.json", report.dump(2) + "\n");
-    writeTextAtomically(dir / "report.md", md);
-    writeTextAtomically(
-        dir / "report.html",
-        studyPageHtml(fmt::format("{} (data-parallel, {} ranks)", desc.displayName(), comm.size()),
-                      htmlTable(table_cells), {model_note}, images));
+    StudyReportFiles files{
+        report.dump(2) + "\n",
+        md,
+        fmt::format("{} (data-parallel, {} ranks)", desc.displayName(), comm.size()),
+        htmlTable(table_cells),
+        {model_note},
+        &reference.radiance,
+        {}};
+    for (size_t i = 0; i < rows.size(); ++i)
+      files.images.emplace_back(imageName(rows[i]), &first_images[i]);
+    writeStudyReport(folder.path(), files);
     folder.commit();
     printHumanReport(o.common, table + "\n" + model_note + "\n" +
                                    "report: " + (folder.target() / "report.html").string() + "\n");

@@ -304,21 +304,17 @@ int runOutOfCoreStudy(CompareOptions& o, const OutOfCoreStudyFlags& flags,
       double(scene->inCoreBytes()) / double(1 << 20), reference_spp, o.seeds, markdownTable(table));
   for (const std::string& n : notes) md += "\n" + n + "\n";
 
-  const std::filesystem::path dir = folder.path();
-  std::filesystem::create_directories(dir / "images");
-  const float exposure = autoExposure(reference.radiance);
-  std::vector<std::string> images{"reference"};
-  writeImagePair(reference.radiance, dir / "images" / "reference", exposure);
-  for (size_t i = 0; i < rows.size(); ++i) {
-    images.push_back(ooc_study::imageName(rows[i]));
-    writeImagePair(study.firstImage(i), dir / "images" / images.back(), exposure);
-  }
-  writeTextAtomically(dir / "report.json", report.dump(2) + "\n");
-  writeTextAtomically(dir / "report.md", md);
-  writeTextAtomically(dir / "report.html",
-                      studyPageHtml(fmt::format("{} (out of core, geometry budget {})",
-                                                desc.displayName(), flags.geometry_budget),
-                                    htmlTable(table), notes, images));
+  StudyReportFiles files{report.dump(2) + "\n",
+                         md,
+                         fmt::format("{} (out of core, geometry budget {})", desc.displayName(),
+                                     flags.geometry_budget),
+                         htmlTable(table),
+                         notes,
+                         &reference.radiance,
+                         {}};
+  for (size_t i = 0; i < rows.size(); ++i)
+    files.images.emplace_back(ooc_study::imageName(rows[i]), &study.firstImage(i));
+  writeStudyReport(folder.path(), files);
   folder.commit();
   printHumanReport(o.common,
                    markdownTable(table) + "\n" +

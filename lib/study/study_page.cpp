@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "image/image_io.h"
+#include "util/atomic_write.h"
 #include "util/escape_html.h"
 
 namespace proxyvis {
@@ -58,6 +59,20 @@ std::string studyPageHtml(const std::string& title, const std::string& table_htm
         "<figcaption>{0}</figcaption></figure>",
         escapeHtml(name));
   return html + "</p></body></html>\n";
+}
+
+void writeStudyReport(const std::filesystem::path& dir, const StudyReportFiles& f) {
+  std::filesystem::create_directories(dir / "images");
+  const float exposure = autoExposure(*f.reference);
+  std::vector<std::string> names{"reference"};
+  writeImagePair(*f.reference, dir / "images" / "reference", exposure);
+  for (const auto& [name, image] : f.images) {
+    names.push_back(name);
+    writeImagePair(*image, dir / "images" / name, exposure);
+  }
+  writeTextAtomically(dir / "report.json", f.json);
+  writeTextAtomically(dir / "report.md", f.markdown);
+  writeTextAtomically(dir / "report.html", studyPageHtml(f.title, f.table_html, f.notes, names));
 }
 
 }  // namespace proxyvis

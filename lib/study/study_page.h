@@ -5,6 +5,7 @@
 // images beside the reference.
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "util/image.h"
@@ -22,6 +23,17 @@ std::string htmlTable(const TextTable& table);
 
 // `image` as `stem`.exr (full float) and `stem`.png at `exposure`.
 void writeImagePair(const Image& image, const std::filesystem::path& stem, float exposure);
+
+// A study's report in `dir`: report.json, report.md, report.html (studyPageHtml of `title`,
+// `table_html` and `notes`) and images/ with the reference and each named image as EXR + PNG,
+// all at the reference's exposure.
+struct StudyReportFiles {
+  std::string json, markdown, title, table_html;
+  std::vector<std::string> notes;
+  const Image* reference = nullptr;
+  std::vector<std::pair<std::string, const Image*>> images;  // name (no extension), image
+};
+void writeStudyReport(const std::filesystem::path& dir, const StudyReportFiles& files);
 
 // The report page: a heading, the table, the notes (one paragraph each, escaped) and every
 // image of images/ named in `images` (without extension), the reference first.

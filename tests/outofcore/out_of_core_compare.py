@@ -19,27 +19,15 @@ Checks:
 import json
 import os
 import shutil
-import subprocess
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
 from image_diff import differing_pairs  # noqa: E402
+from script_checks import fail, run  # noqa: E402
 
 SIZE = ["--width", "64", "--height", "48", "--seed", "5", "--threads", "2"]
 ROW_KEYS = ("policy", "geometry_budget_bytes", "loads_per_frame", "bytes_read", "load_seconds",
             "peak_rss_bytes", "relative_efficiency", "mse", "seconds", "spp", "batch_passes")
-
-
-def fail(msg):
-    print(f"FAIL: {msg}")
-    sys.exit(1)
-
-
-def run(args, expect=0):
-    p = subprocess.run(args, capture_output=True, text=True, timeout=600)
-    if p.returncode != expect:
-        fail(f"{' '.join(args)}: exit {p.returncode}, expected {expect}\n{p.stdout}\n{p.stderr}")
-    return p
 
 
 def check_rows(report):

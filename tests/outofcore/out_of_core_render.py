@@ -28,25 +28,13 @@ import re
 import json
 import os
 import shutil
-import subprocess
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
 from image_diff import differing_pairs  # noqa: E402
+from script_checks import fail, run  # noqa: E402
 
 SIZE = ["--width", "96", "--height", "72", "--spp", "4", "--seed", "3"]
-
-
-def fail(msg):
-    print(f"FAIL: {msg}")
-    sys.exit(1)
-
-
-def run(args, expect=0):
-    p = subprocess.run(args, capture_output=True, text=True, timeout=600)
-    if p.returncode != expect:
-        fail(f"{' '.join(args)}: exit {p.returncode}, expected {expect}\n{p.stdout}\n{p.stderr}")
-    return p
 
 
 def image_means(paths):
