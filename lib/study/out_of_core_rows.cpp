@@ -157,6 +157,7 @@ nlohmann::json rowJson(const Row& r) {
           {"skipped_queues", r.skipped_queues},
           {"peak_rss_bytes", r.peak_rss_bytes},
           {"peak_cache_bytes", r.peak_cache_bytes},
+          {"rss_before_bytes", r.rss_before_bytes},
           {"seconds", r.seconds},
           {"mse", r.mse},
           {"efficiency", r.efficiency},

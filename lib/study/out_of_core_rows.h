@@ -26,6 +26,7 @@ struct Row {
   double q_sum = 0, q_draws = 0;  // the mean q of proxies-roulette's draws: q_sum / q_draws
   std::vector<ProxyQueueRecord> proxy_queues;  // proxies-exact: every seed's traced queues
   uint64_t peak_rss_bytes = 0, peak_cache_bytes = 0;
+  uint64_t rss_before_bytes = 0;  // resident when its renders started (the largest)
   // Scored.
   double efficiency = 0, relative_efficiency = 0;
   bool baseline = false;

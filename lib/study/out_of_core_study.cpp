@@ -77,9 +77,13 @@ StudyPlanOoc planStudy(CompareOptions& o, const OutOfCoreStudyFlags& flags,
 
 // One render of a configuration, its peak RSS its own: memory the previous render freed is given
 // back to the system and the high-water mark reset first.
-OutOfCoreResult renderMeasured(const OutOfCoreScene& scene, const OutOfCoreSettings& settings) {
+// `rss_before`: what the process held when the render started (the program and its libraries,
+// the resident scene with its proxies, the images the study keeps).
+OutOfCoreResult renderMeasured(const OutOfCoreScene& scene, const OutOfCoreSettings& settings,
+                               uint64_t& rss_before) {
   malloc_trim(0);
   resetPeakRss();
+  rss_before = currentRssBytes();
   return renderOutOfCore(scene, settings);
 }
 
@@ -112,7 +116,9 @@ class OutOfCoreStudy {
         OutOfCoreSettings s = settingsFor(row.policy, row.spp, row.batch_passes);
         s.seed = hashKeys(o_.common.seed, uint64_t(seed));
         s.cold_reads = row.cold_reads;
-        const OutOfCoreResult r = renderMeasured(scene_, s);
+        uint64_t rss_before = 0;
+        const OutOfCoreResult r = renderMeasured(scene_, s, rss_before);
+        row.rss_before_bytes = std::max(row.rss_before_bytes, rss_before);
         row.load_q = row.policy == OutOfCorePolicy::kProxiesRoulette ? loadQText(s) : "-";
         if (!o_.common.quiet)
           std::fprintf(
@@ -207,15 +213,20 @@ std::vector<std::string> studyNotes(const std::vector<OocRow>& rows,
         c.oracle_seconds, c.oracle_mse, c.baseline_seconds, c.baseline_mse, c.queues, c.skipped,
         c.mean_q));
   uint64_t peak = 0;
-  for (const OocRow& r : rows) peak = std::max(peak, r.peak_rss_bytes);
+  uint64_t before = 0;
+  for (const OocRow& r : rows)
+    if (r.peak_rss_bytes > peak) peak = r.peak_rss_bytes, before = r.rss_before_bytes;
   const double mib = double(1 << 20);
   notes.push_back(fmt::format(
       "Memory: peak RSS {:.0f} MiB at most over the rows, each row's own (the high-water mark "
-      "reset before every render); budget {:.1f} MiB of {:.1f} MiB of built originals in core, "
-      "proxies {:.1f} MiB, image buffers {:.1f} MiB; the rest is the process itself and the "
-      "render's queues.",
-      double(peak) / mib, double(budget) / mib, double(scene.inCoreBytes()) / mib,
-      double(scene.proxyBytes()) / mib, double(image_bytes) / mib));
+      "reset before every render). Of it, {:.0f} MiB were resident before that render started "
+      "(the program and its libraries, OpenImageIO's among them; the resident scene with its "
+      "proxies; the images the study keeps), so the render grew it by {:.0f} MiB, against a "
+      "budget of {:.1f} MiB (of {:.1f} MiB of built originals in core), proxies {:.1f} MiB and "
+      "image buffers {:.1f} MiB; the rest is the render's queues and samples.",
+      double(peak) / mib, double(before) / mib, double(peak - std::min(peak, before)) / mib,
+      double(budget) / mib, double(scene.inCoreBytes()) / mib, double(scene.proxyBytes()) / mib,
+      double(image_bytes) / mib));
   return notes;
 }
 

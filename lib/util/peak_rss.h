@@ -14,16 +14,29 @@
 
 namespace proxyvis {
 
-inline uint64_t peakRssBytes() {
+// A "Vm...:" line of /proc/self/status in bytes, or 0 where there is none.
+inline uint64_t procStatusBytes(const char* key) {
+  uint64_t bytes = 0;
   if (FILE* f = std::fopen("/proc/self/status", "r")) {
     char line[256];
     unsigned long long kib = 0;
+    const size_t n = std::strlen(key);
     bool found = false;
     while (!found && std::fgets(line, sizeof line, f))
-      found = std::strncmp(line, "VmHWM:", 6) == 0 && std::sscanf(line + 6, "%llu", &kib) == 1;
+      found = std::strncmp(line, key, n) == 0 && std::sscanf(line + n, "%llu", &kib) == 1;
     std::fclose(f);
-    if (found) return uint64_t(kib) * 1024u;
+    if (found) bytes = uint64_t(kib) * 1024u;
   }
+  return bytes;
+}
+
+// What is resident now (VmRSS), 0 where Linux does not say.
+inline uint64_t currentRssBytes() {
+  return procStatusBytes("VmRSS:");
+}
+
+inline uint64_t peakRssBytes() {
+  if (const uint64_t hwm = procStatusBytes("VmHWM:")) return hwm;
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   return uint64_t(usage.ru_maxrss) * 1024u;
