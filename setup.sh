@@ -8,9 +8,11 @@
 #                       tests (not the benches) + the correctness suite (ctest -LE long: every
 #                       test but those labelled long)
 #   ./setup.sh test-long
-#                       install + build + only the tests labelled long: the local Slurm cluster
-#                       (label slurm_cluster) and headless Chromium (label browser); they check
-#                       orchestration and what a browser shows, not results the suite does not
+#                       install (with Blender and Xvfb) + build + only the tests labelled long:
+#                       the local Slurm cluster (label slurm_cluster), headless Chromium (label
+#                       browser) and the Blender add-on in a real Blender (label blender,
+#                       docs/blender.md); they check orchestration and what a browser or Blender
+#                       shows, not results the suite does not
 #   ./setup.sh test --changed
 #                       install + build + only the tests of the areas whose files changed since
 #                       the last commit (PROXYVIS_CHANGED_BASE=REF: since REF); a quick check
@@ -47,6 +49,11 @@ PKGS=(
 
 # Only for ./setup.sh fuzz and test-sanitize: clang with libFuzzer and the sanitizer runtimes.
 FUZZ_PKGS=(clang-14 libclang-rt-14-dev)
+
+# Only for ./setup.sh test-long: Blender 3.4 (Debian's runs on the system's Python 3.11, so the
+# add-on imports NumPy and build/python/proxyvis) and a virtual X server for its panel's test
+# (xvfb-run needs xauth). About 350 MB with their libraries: not in PKGS.
+LONG_PKGS=(blender xvfb xauth)
 
 install_deps() {
   install_pkgs "${PKGS[@]}"
@@ -179,7 +186,8 @@ changed_labels() {
   printf '%s\n' "${labels[@]}" | sort -u | sed 's/.*/^&$/' | paste -sd'|'
 }
 
-# The tests labelled long (local Slurm cluster, headless Chromium) run only with test-long.
+# The tests labelled long (local Slurm cluster, headless Chromium, Blender) run only with
+# test-long.
 # The suite runs one test more than there are cores: its tests wait now and then (process
 # starts, MPI ranks waiting for each other, deliberate sleeps), and the extra one keeps the
 # cores busy meanwhile (2 cores, same tree: 243 s at -j3 against 257 s at -j2, CPU time equal).
@@ -223,7 +231,7 @@ case "${1:-install}" in
   build) install_deps; build all benches ;;
   demo) install_deps; build proxy-gen proxy-check render-compare; demo ;;
   test) install_deps; install_js_deps; build; run_tests "${2:-}" ;;
-  test-long) install_deps; install_js_deps; build; ctest_run -L long ;;
+  test-long) install_deps; install_pkgs "${LONG_PKGS[@]}"; install_js_deps; build; ctest_run -L long ;;
   fuzz) install_deps; install_pkgs "${FUZZ_PKGS[@]}"; fuzz_build ;;
   test-sanitize) install_deps; install_pkgs "${FUZZ_PKGS[@]}"; install_js_deps; build_sanitize ;;
   bench-deps) install_deps; install_pkgs python3-matplotlib; npm_ci bench/vhacd_compare ;;
