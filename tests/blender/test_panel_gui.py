@@ -86,6 +86,8 @@ def steps():
     win.event_simulate(type="MOUSEMOVE", value="NOTHING", x=region.x + 20, y=region.y + 20)
 
     t.step("start a job from the panel's operator; the panel shows progress and Cancel")
+    settings = bpy.context.scene.proxyvis
+    settings.max_faces = 60  # what the panel shows; its button passes it so
     with override():
         assert bpy.ops.proxyvis.make_proxy("INVOKE_DEFAULT", kind="outside",
                                            max_faces=60) == {"RUNNING_MODAL"}
@@ -106,6 +108,7 @@ def steps():
     assert not [o for o in bpy.data.objects if o.name != "spot"], "objects after cancel"
 
     t.step("again, to the end")
+    settings.max_faces = 200
     with override():
         assert bpy.ops.proxyvis.make_proxy("INVOKE_DEFAULT", kind="outside",
                                            max_faces=200) == {"RUNNING_MODAL"}
@@ -120,7 +123,6 @@ def steps():
     with override():
         assert bpy.ops.proxyvis.check() == {"FINISHED"}
     proxy.display_type = "WIRE"  # the original shows through it in the screenshot
-    bpy.context.scene.proxyvis.max_faces = 200
     yield 0.3
     state["drawn"] = 0
     area.tag_redraw()
