@@ -89,10 +89,7 @@ nlohmann::json summaryJson(const OutOfCoreRenderRequest& o, const SceneDesc& des
 }  // namespace
 
 void addOutOfCoreFlags(CLI::App& app, OutOfCoreFlags& f) {
-  app.add_option("--geometry-budget", f.geometry_budget,
-                 "Render out of core: originals stay on disk and at most this much of them is "
-                 "built in memory at once, in bytes (2G, 500M) or as a share of their in-core "
-                 "size (25%); exact visibility (docs/out_of_core.md)");
+  addOutOfCoreCommonFlags(app, f, "Render out of core", "Out of core: ");
   app.add_option("--ooc-policy", f.policy,
                  "Out of core: exact-batched (segments queued on every mesh whose object box they "
                  "enter), proxies-exact (only where the proxies cannot decide) or "
@@ -103,15 +100,6 @@ void addOutOfCoreFlags(CLI::App& app, OutOfCoreFlags& f) {
                  "Out of core: passes whose segments are queued together before any mesh is "
                  "loaded (0: the whole frame)")
       ->check(CLI::Range(0, 1 << 20))
-      ->capture_default_str();
-  app.add_flag("--cold-reads", f.cold_reads,
-               "Out of core: drop each original's file from the page cache before it is loaded "
-               "(that file only), so loads read from the disk");
-  app.add_option("--load-q", f.load_q,
-                 "Out of core, proxies-roulette: the probability that a mesh with an outside "
-                 "proxy is loaded and its queue traced in a batch, or 'learned': per batch and "
-                 "mesh from earlier batches' load costs and proxy errors (needs several batches: "
-                 "see --batch-passes)")
       ->capture_default_str();
 }
 

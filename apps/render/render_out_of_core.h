@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <string>
 
+#include "outofcore/out_of_core_flags.h"
 #include "render/render_options.h"
 #include "util/app_main.h"
 
@@ -14,15 +15,11 @@ class App;
 
 namespace proxyvis {
 
-struct OutOfCoreFlags {
-  std::string geometry_budget;  // empty: in core
+struct OutOfCoreFlags : OutOfCoreCommonFlags {
   std::string policy = "exact-batched";
   int batch_passes = 0;  // 0: the whole frame in one batch
-  bool cold_reads = false;
-  std::string load_q = "0.5";  // proxies-roulette's probability of tracing a mesh's queue, or
-                               // "learned"
 };
-// Adds --geometry-budget, --ooc-policy, --batch-passes and --load-q.
+// Adds --geometry-budget, --ooc-policy, --batch-passes, --load-q and --cold-reads.
 void addOutOfCoreFlags(CLI::App& app, OutOfCoreFlags& flags);
 
 struct OutOfCoreRenderRequest {

@@ -233,10 +233,7 @@ std::vector<std::string> studyNotes(const std::vector<OocRow>& rows,
 }  // namespace
 
 void addOutOfCoreStudyFlags(CLI::App& app, OutOfCoreStudyFlags& f) {
-  app.add_option("--geometry-budget", f.geometry_budget,
-                 "Compare the out-of-core policies: originals stay on disk and at most this much "
-                 "of them is built in memory at once, in bytes (2G, 500M) or as a share of their "
-                 "in-core size (25%) (docs/out_of_core.md)");
+  addOutOfCoreCommonFlags(app, f, "Compare the out-of-core policies", "With --geometry-budget: ");
   app.add_option("--ooc-policies", f.policies,
                  "With --geometry-budget: the policies compared (exact-batched, proxies-exact, "
                  "proxies-roulette)")
@@ -244,14 +241,6 @@ void addOutOfCoreStudyFlags(CLI::App& app, OutOfCoreStudyFlags& f) {
   app.add_option("--batch-passes", f.batch_passes,
                  "With --geometry-budget: passes per batch, a list (0: the whole frame); every "
                  "policy runs at each, and the best exact-batched one is the baseline")
-      ->capture_default_str();
-  app.add_flag("--cold-reads", f.cold_reads,
-               "With --geometry-budget: every configuration also with cold reads (each original's "
-               "file dropped from the page cache before it loads), beside the warm rows");
-  app.add_option("--load-q", f.load_q,
-                 "With --geometry-budget: proxies-roulette's probability of loading a mesh and "
-                 "tracing its queue in a batch, or 'learned' (per batch and mesh, from earlier "
-                 "batches: give --batch-passes below --spp)")
       ->capture_default_str();
 }
 

@@ -7,6 +7,7 @@
 // peak RSS of each, and the oracle ceiling of this setting (docs/out_of_core.md).
 #include <string>
 
+#include "outofcore/out_of_core_flags.h"
 #include "study/compare_options.h"
 
 namespace CLI {
@@ -15,12 +16,9 @@ class App;
 
 namespace proxyvis {
 
-struct OutOfCoreStudyFlags {
-  std::string geometry_budget;  // empty: not this study
+struct OutOfCoreStudyFlags : OutOfCoreCommonFlags {
   std::string policies = "exact-batched,proxies-exact,proxies-roulette";
   std::string batch_passes = "0";  // a list: each is a configuration (0: the whole frame)
-  std::string load_q = "0.5";      // or "learned"
-  bool cold_reads = false;         // every configuration also with cold reads, beside the warm
 };
 // Adds --geometry-budget, --ooc-policies, --batch-passes, --load-q and --cold-reads.
 void addOutOfCoreStudyFlags(CLI::App& app, OutOfCoreStudyFlags& flags);
