@@ -106,6 +106,7 @@ class OutOfCoreRun {
     std::vector<Hit> hits(pixels_);
     std::vector<uint32_t> hit_mesh(pixels_, std::numeric_limits<uint32_t>::max());
     own_blocked_.assign(pixels_ * size_t(settings_.spp), 0);
+    points_.assign(pixels_, ShadingPoint{});  // set by ownMeshShadows, hit by hit
     QueueBuilder builder;
     tbb::parallel_for(0, tiling_.count(), [&](int t) {
       thread_local std::vector<LabelEntry> labels;
@@ -132,21 +133,15 @@ class OutOfCoreRun {
       });
       ownMeshShadows(m, originals, rays, hits, hit_mesh);
     }
-    points_.assign(pixels_, ShadingPoint{});
-    const float eps = scene_.epsilon();
-    tbb::parallel_for(size_t(0), pixels_, [&](size_t p) {
-      if (!hits[p].hit) return;
-      const Vec3f& albedo = scene_.desc().meshes[scene_.objects()[hits[p].user_id].mesh].albedo;
-      points_[p] = shadingPointOf(rays[p], hits[p], eps, albedo);
-    });
   }
 
-  // While mesh m is resident: every light sample of every pass of the points it now holds (the
-  // nearest hit so far), traced against it. A point's own mesh (its object and that mesh's
-  // other objects) is then never loaded again for its shadows; a nearer hit on a mesh visited
-  // later overwrites the pixel's answers. The shading point and samples are the ones the
-  // batches draw again (the same function of the hit, the seed, the pixel and the pass), and
-  // the trace is against the same built scene, so the answers are the ones a queue would give.
+  // While mesh m is resident: the shading point of every pixel whose nearest hit so far is on it,
+  // and every light sample of every pass of that point, traced against it. A point's own mesh (its
+  // object and that mesh's other objects) is then never loaded again for its shadows; a nearer hit
+  // on a mesh visited later overwrites the pixel's point and answers. The shading point and samples
+  // are the ones the batches draw again (the same function of the hit, the seed, the pixel and the
+  // pass), and the trace is against the same built scene, so the answers are the ones a queue would
+  // give.
   void ownMeshShadows(uint32_t m, const TraceScene& originals, const std::vector<Segment>& rays,
                       const std::vector<Hit>& hits, const std::vector<uint32_t>& hit_mesh) {
     const std::vector<uint32_t>& queue = queues_[m];
@@ -160,7 +155,8 @@ class OutOfCoreRun {
             const uint32_t pixel = queue[i];
             if (hit_mesh[pixel] != m) continue;
             const Vec3f& albedo = scene_.desc().meshes[m].albedo;
-            const ShadingPoint sp = shadingPointOf(rays[pixel], hits[pixel], eps, albedo);
+            const ShadingPoint& sp = points_[pixel] =
+                shadingPointOf(rays[pixel], hits[pixel], eps, albedo);
             uint8_t* blocked = &own_blocked_[size_t(pixel) * spp];
             for (size_t pass = 0; pass < spp; ++pass) {
               PreparedSample ps;
@@ -329,7 +325,7 @@ class OutOfCoreRun {
           stats_.roulette_added_variance += (1 / q - 1) * s * s / q;
         }
         learner_.observe(m, queue.size(), w2, loaded, load_seconds, trace_clock.seconds());
-        stats_.proxy_queues.push_back({m, w2, load_clock.seconds(), loaded});
+        stats_.proxy_queues.push_back({w2, load_clock.seconds()});
       }
     }
     stats_.original_traces += traces;

@@ -56,10 +56,8 @@ struct OutOfCoreSettings {
 // A traced queue whose segments have a proxy answer: what skipping it would have added to the
 // image's summed squared error per unit of (1/q - 1), and what tracing it cost.
 struct ProxyQueueRecord {
-  uint32_t mesh = 0;
   double wrong_w2 = 0;  // sum of |w|^2 over its traced segments the proxies answer wrongly
   double seconds = 0;   // measured: its load (if it loaded) and its traces
-  bool loaded = false;
 };
 
 // --load-q: a probability in (0, 1], or "learned". Throws Error naming --load-q otherwise.

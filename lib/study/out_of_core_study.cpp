@@ -107,6 +107,8 @@ class OutOfCoreStudy {
             r.spp = spp;
             r.batch_passes = passes;
             r.budget_bytes = budget_;
+            if (p == OutOfCorePolicy::kProxiesRoulette)
+              r.load_q = loadQText(settingsFor(p, spp, passes));
             rows_.push_back(r);
           }
     images_.resize(rows_.size());
@@ -119,7 +121,6 @@ class OutOfCoreStudy {
         uint64_t rss_before = 0;
         const OutOfCoreResult r = renderMeasured(scene_, s, rss_before);
         row.rss_before_bytes = std::max(row.rss_before_bytes, rss_before);
-        row.load_q = row.policy == OutOfCorePolicy::kProxiesRoulette ? loadQText(s) : "-";
         if (!o_.common.quiet)
           std::fprintf(
               stderr,
@@ -188,6 +189,21 @@ class OutOfCoreStudy {
   std::vector<std::vector<Image>> images_;
 };
 
+// What one ceiling means, in words (the report's notes; stdout repeats the largest spp's).
+std::string ceilingNote(const ooc_study::Ceiling& c) {
+  return fmt::format(
+      "Oracle ceiling at {} spp: {:.2f}x the baseline's efficiency (modelled from measured "
+      "parts, not run): a load-level roulette that knew each (batch, mesh) queue's proxy "
+      "errors and cost, with the q minimising MSE x time per queue, from the proxies-exact "
+      "run ({}): {:.3f} s and MSE {:.3e} against the baseline's {:.3f} s and {:.3e}; of "
+      "{:.1f} queues per frame it skips {:.1f} outright (the proxies right for every segment), "
+      "mean q {:.2f}. Skipped loads would also evict less, which this leaves out.",
+      c.spp, c.relative_efficiency,
+      c.batch_passes > 0 ? fmt::format("{} passes per batch", c.batch_passes) : "one batch",
+      c.oracle_seconds, c.oracle_mse, c.baseline_seconds, c.baseline_mse, c.queues, c.skipped,
+      c.mean_q);
+}
+
 // The report's notes: how it was measured, the ceiling, and the memory against the budget.
 std::vector<std::string> studyNotes(const std::vector<OocRow>& rows,
                                     const std::vector<ooc_study::Ceiling>& ceilings,
@@ -200,18 +216,7 @@ std::vector<std::string> studyNotes(const std::vector<OocRow>& rows,
       "render's wall time (the scene's scan, the same for every row, left out), the seeds of all "
       "rows interleaved. Rows compare at equal samples; efficiency = 1/(MSE x seconds), relative "
       "to the most efficient exact-batched row at the same spp (marked baseline)."};
-  for (const ooc_study::Ceiling& c : ceilings)
-    notes.push_back(fmt::format(
-        "Oracle ceiling at {} spp: {:.2f}x the baseline's efficiency (modelled from measured "
-        "parts, not run): a load-level roulette that knew each (batch, mesh) queue's proxy "
-        "errors and cost, with the q minimising MSE x time per queue, from the proxies-exact "
-        "run ({}): {:.3f} s and MSE {:.3e} against the baseline's {:.3f} s and {:.3e}; of "
-        "{:.1f} queues per frame it skips {:.1f} outright (the proxies right for every segment), "
-        "mean q {:.2f}. Skipped loads would also evict less, which this leaves out.",
-        c.spp, c.relative_efficiency,
-        c.batch_passes > 0 ? fmt::format("{} passes per batch", c.batch_passes) : "one batch",
-        c.oracle_seconds, c.oracle_mse, c.baseline_seconds, c.baseline_mse, c.queues, c.skipped,
-        c.mean_q));
+  for (const ooc_study::Ceiling& c : ceilings) notes.push_back(ceilingNote(c));
   uint64_t peak = 0;
   uint64_t before = 0;
   for (const OocRow& r : rows)
@@ -318,7 +323,7 @@ int runOutOfCoreStudy(CompareOptions& o, const OutOfCoreStudyFlags& flags,
   folder.commit();
   printHumanReport(o.common,
                    markdownTable(table) + "\n" +
-                       (ceilings.empty() ? std::string() : notes[ceilings.size()] + "\n") +
+                       (ceilings.empty() ? std::string() : ceilingNote(ceilings.back()) + "\n") +
                        "HTML report: " + (folder.target() / "report.html").string() + "\n");
   return kExitOk;
 }
