@@ -255,10 +255,7 @@ int main(int argc, char** argv) {
                               "drop one of them");
       return proxyvis::runOutOfCoreStudy(options, out_of_core, given);
     }
-    for (const char* flag : {"--ooc-policies", "--batch-passes", "--load-q"})
-      if (app.count(flag) > 0)
-        throw proxyvis::Error("", std::string(flag) + " needs --geometry-budget", {},
-                              "give --geometry-budget, or drop it");
+    proxyvis::refuseOutOfCoreFlagsAlone(app, out_of_core, {"--ooc-policies", "--batch-passes"});
     if (data_parallel.enabled) {
       if (!plan_dir.empty())
         throw proxyvis::Error("", "--plan is not available with --data-parallel", {},

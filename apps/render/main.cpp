@@ -145,6 +145,8 @@ int main(int argc, char** argv) {
   proxyvis::addOptions(app, options);
   return proxyvis::runApp(app, argc, argv, options.common, [&] {
     proxyvis::refuseDataParallelFlagsAlone(app, options.data_parallel);
+    proxyvis::refuseOutOfCoreFlagsAlone(app, options.out_of_core,
+                                        {"--ooc-policy", "--batch-passes"});
     return proxyvis::runRender(options);
   });
 }

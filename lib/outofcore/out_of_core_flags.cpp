@@ -2,6 +2,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "util/error.h"
+
 namespace proxyvis {
 
 void addOutOfCoreCommonFlags(CLI::App& app, OutOfCoreCommonFlags& f, const std::string& budget_lead,
@@ -22,6 +24,18 @@ void addOutOfCoreCommonFlags(CLI::App& app, OutOfCoreCommonFlags& f, const std::
                lead +
                    "drop each original's file from the page cache before it is loaded (that file "
                    "only), so loads read from the disk");
+}
+
+void refuseOutOfCoreFlagsAlone(const CLI::App& app, const OutOfCoreCommonFlags& flags,
+                               std::initializer_list<const char*> more) {
+  if (!flags.geometry_budget.empty()) return;
+  auto refuse = [&](const char* name) {
+    if (app.count(name) > 0)
+      throw Error("", std::string(name) + " needs --geometry-budget",
+                  "it only acts on the out-of-core renderer", "give --geometry-budget, or drop it");
+  };
+  for (const char* name : {"--load-q", "--cold-reads"}) refuse(name);
+  for (const char* name : more) refuse(name);
 }
 
 }  // namespace proxyvis

@@ -121,6 +121,7 @@ def main():
         (["--geometry-budget", "50%", "--batch-passes", "x"], "--batch-passes"),
         (["--geometry-budget", "lots"], "--geometry-budget"),
         (["--ooc-policies", "proxies-exact"], "--ooc-policies"),
+        (["--cold-reads"], "--cold-reads"),
         (["--geometry-budget", "50%", "--ooc-policies", "fast"], "unknown policy"),
     ]
     for extra, words in cases:

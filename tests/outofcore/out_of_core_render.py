@@ -204,6 +204,11 @@ def main():
         p = run(args, expect=2)
         if words not in p.stderr or os.path.exists(out):
             fail(f"{extra}: {p.stderr}")
+    # The out-of-core flags without a budget would act on nothing: refused.
+    for flag in (["--ooc-policy", "proxies-exact"], ["--load-q", "0.3"], ["--cold-reads"]):
+        p = run([render, scene, "--spp", "1", "-o", out, "--quiet", *flag], expect=2)
+        if "needs --geometry-budget" not in p.stderr or os.path.exists(out):
+            fail(f"{flag} without a budget: {p.stderr}")
     print("ok: errors exit 2 with one line and write nothing")
 
 
