@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <utility>
+
 #include "metrics/log_plot.h"
 #include "util/escape_html.h"
 
@@ -13,21 +15,45 @@ constexpr const char* kColumns[] = {
     "light", "segments", "P(V'=0)", "P(MH')", "P(HM')",           "V(1-V)", "c_p|0",
     "c_p|1", "c_o|0",    "c_o|1",   "c_s",    "roulette regions", "ceiling"};
 
+// The per-light table's lines: each light by its index, then the whole scene as "all".
+std::vector<std::pair<std::string, const CeilingSummary*>> tableLines(const CeilingResult& r) {
+  std::vector<std::pair<std::string, const CeilingSummary*>> lines;
+  for (size_t i = 0; i < r.lights.size(); ++i) lines.emplace_back(std::to_string(i), &r.lights[i]);
+  lines.emplace_back("all", &r.scene);
+  return lines;
+}
+
 // The cells of one table line, formatted (costs in ns).
-std::vector<std::string> cells(const ReportCeilingLight& l) {
-  return {l.light,
+std::vector<std::string> cells(const std::string& light, const CeilingSummary& l) {
+  return {light,
           fmt::format("{:.0f}", l.segments),
           fmt::format("{:.3f}", l.p_blocked),
           fmt::format("{:.4f}", l.p_mh),
           fmt::format("{:.4f}", l.p_hm),
           fmt::format("{:.4f}", l.visibility_var),
-          fmt::format("{:.1f}", l.cost_proxy[0]),
-          fmt::format("{:.1f}", l.cost_proxy[1]),
-          fmt::format("{:.1f}", l.cost_original[0]),
-          fmt::format("{:.1f}", l.cost_original[1]),
-          fmt::format("{:.1f}", l.cost_shading),
+          fmt::format("{:.1f}", l.costs.proxy[0]),
+          fmt::format("{:.1f}", l.costs.proxy[1]),
+          fmt::format("{:.1f}", l.costs.original[0]),
+          fmt::format("{:.1f}", l.costs.original[1]),
+          fmt::format("{:.1f}", l.costs.per_sample),
           fmt::format("{} of {}", l.regions_roulette, l.regions),
           fmt::format("{:.3f}×", l.ceiling)};
+}
+
+// One line of meta.ceiling.lights.
+nlohmann::json lightJson(const std::string& light, const CeilingSummary& l) {
+  return {{"light", light},
+          {"segments", l.segments},
+          {"p_proxy_blocked", l.p_blocked},
+          {"p_mh", l.p_mh},
+          {"p_hm", l.p_hm},
+          {"var_exact", l.visibility_var},
+          {"cost_proxy", {l.costs.proxy[0], l.costs.proxy[1]}},
+          {"cost_original", {l.costs.original[0], l.costs.original[1]}},
+          {"cost_per_sample", l.costs.per_sample},
+          {"regions", l.regions},
+          {"regions_roulette", l.regions_roulette},
+          {"ceiling", l.ceiling}};
 }
 
 std::string measuredText(const ReportCeiling& c) {
@@ -50,44 +76,34 @@ std::string markdownCell(const std::string& text) {
 
 }  // namespace
 
-void to_json(nlohmann::json& j, const ReportCeilingLight& l) {
-  j = {{"light", l.light},
-       {"segments", l.segments},
-       {"p_proxy_blocked", l.p_blocked},
-       {"p_mh", l.p_mh},
-       {"p_hm", l.p_hm},
-       {"var_exact", l.visibility_var},
-       {"cost_proxy", {l.cost_proxy[0], l.cost_proxy[1]}},
-       {"cost_original", {l.cost_original[0], l.cost_original[1]}},
-       {"cost_per_sample", l.cost_shading},
-       {"regions", l.regions},
-       {"regions_roulette", l.regions_roulette},
-       {"ceiling", l.ceiling}};
-}
-
 void to_json(nlohmann::json& j, const ReportCeiling& c) {
-  j = {{"value", c.value},
-       {"explanation", c.explanation},
+  nlohmann::json lights = nlohmann::json::array();
+  for (const auto& [light, summary] : tableLines(c.result))
+    lights.push_back(lightJson(light, *summary));
+  j = {{"value", c.value()},
+       {"explanation", c.result.explanation},
        {"model", c.model},
        {"passes", c.passes},
        {"seconds", c.seconds},
        {"run_share", c.run_share},
        {"exact_mse_1spp", c.exact_mse_1spp},
        {"cost_unit", "ns"},
-       {"lights", c.lights}};
+       {"lights", lights}};
 }
 
 std::string ceilingMarkdown(const ReportCeiling& c) {
-  std::string out = fmt::format("\n## Ceiling: {:.3f}× exact\n\n{}\n\n", c.value, c.explanation);
+  std::string out =
+      fmt::format("\n## Ceiling: {:.3f}× exact\n\n{}\n\n", c.value(), c.result.explanation);
   std::string header = "|", rule = "|";
   for (const char* col : kColumns) {
     header += fmt::format(" {} |", markdownCell(col));
     rule += rule == "|" ? "---|" : "---:|";  // the light's name left, numbers right
   }
   out += header + "\n" + rule + "\n";
-  for (const ReportCeilingLight& l : c.lights) {
+  for (const auto& [light, summary] : tableLines(c.result)) {
     out += "|";
-    for (const std::string& cell : cells(l)) out += fmt::format(" {} |", markdownCell(cell));
+    for (const std::string& cell : cells(light, *summary))
+      out += fmt::format(" {} |", markdownCell(cell));
     out += "\n";
   }
   return out + "\n" + measuredText(c) + " " + c.model + "\n";
@@ -97,12 +113,13 @@ std::string ceilingHtml(const ReportCeiling& c) {
   std::string out = fmt::format(
       "<h2>Ceiling: <span class=\"num\">{:.3f}×</span> exact</h2>\n<p>{}</p>\n"
       "<div class=\"scroll\"><table class=\"ceiling\"><tr>",
-      c.value, escapeHtml(c.explanation));
+      c.value(), escapeHtml(c.result.explanation));
   for (const char* col : kColumns) out += "<th>" + escapeHtml(col) + "</th>";
   out += "</tr>\n";
-  for (const ReportCeilingLight& l : c.lights) {
+  for (const auto& [light, summary] : tableLines(c.result)) {
     out += "<tr>";
-    for (const std::string& cell : cells(l)) out += "<td>" + escapeHtml(cell) + "</td>";
+    for (const std::string& cell : cells(light, *summary))
+      out += "<td>" + escapeHtml(cell) + "</td>";
     out += "</tr>\n";
   }
   return out + "</table></div>\n<p class=\"desc\">" + escapeHtml(measuredText(c) + " " + c.model) +

@@ -32,25 +32,6 @@ constexpr const char* kModel =
     "learning, probes and bookkeeping of real "
     "estimators are not counted; variances and error rates come from the passes above.";
 
-ReportCeilingLight toReport(const std::string& name, const CeilingSummary& s) {
-  ReportCeilingLight l;
-  l.light = name;
-  l.segments = s.segments;
-  l.p_blocked = s.p_blocked;
-  l.p_mh = s.p_mh;
-  l.p_hm = s.p_hm;
-  l.visibility_var = s.visibility_var;
-  for (int i = 0; i < 2; ++i) {
-    l.cost_proxy[i] = s.costs.proxy[i];
-    l.cost_original[i] = s.costs.original[i];
-  }
-  l.cost_shading = s.costs.per_sample;
-  l.regions = s.regions;
-  l.regions_roulette = s.regions_roulette;
-  l.ceiling = s.ceiling;
-  return l;
-}
-
 }  // namespace
 
 bool ceilingNeedsOwnRender(const CompareOptions& o) {
@@ -91,21 +72,15 @@ ReportCeiling finishCeiling(const CeilingUnitMeasurement& unit,
   input.proxy_class = proxy_class;
   input.q_min = o.render.q_min;
   input.uses_proxies = uses_proxies;
-  const CeilingResult result = computeCeiling(input);
-
   ReportCeiling c;
-  c.value = result.scene.ceiling;
-  c.explanation = result.explanation;
+  c.result = computeCeiling(input);
   c.model = kModel;
   c.passes = m.passes;
   c.seconds = unit.seconds;
-  c.exact_mse_1spp = m.passes > 0 ? result.scene.var_exact / m.passes / unit.pixels : 0;
-  for (size_t i = 0; i < result.lights.size(); ++i)
-    c.lights.push_back(toReport(std::to_string(i), result.lights[i]));
-  c.lights.push_back(toReport("all", result.scene));
+  c.exact_mse_1spp = m.passes > 0 ? c.result.scene.var_exact / m.passes / unit.pixels : 0;
   if (!o.common.quiet)
-    std::fprintf(stderr, "render-compare: ceiling %.3fx exact (%d passes, %.2f s): %s\n", c.value,
-                 c.passes, c.seconds, c.explanation.c_str());
+    std::fprintf(stderr, "render-compare: ceiling %.3fx exact (%d passes, %.2f s): %s\n", c.value(),
+                 c.passes, c.seconds, c.result.explanation.c_str());
   return c;
 }
 
@@ -124,7 +99,7 @@ void from_json(const nlohmann::json& j, CeilingUnitMeasurement& unit) {
 
 void applyCeiling(Report& report, const ReportCeiling& ceiling) {
   report.ceiling = ceiling;
-  for (ReportRow& r : report.rows) r.ceiling = ceiling.value;
+  for (ReportRow& r : report.rows) r.ceiling = ceiling.value();
 }
 
 }  // namespace proxyvis

@@ -13,16 +13,12 @@ namespace {
 
 ReportCeiling sampleCeiling() {
   ReportCeiling c;
-  c.value = 1.25;
-  c.explanation = "First <sentence>. Second one.";
+  c.result.explanation = "First <sentence>. Second one.";
   c.model = "Model.";
   c.passes = 8;
-  ReportCeilingLight all;
-  all.light = "all";
-  all.regions = 4;
-  all.regions_roulette = 1;
-  all.ceiling = 1.25;
-  c.lights = {all};
+  c.result.scene.regions = 4;
+  c.result.scene.regions_roulette = 1;
+  c.result.scene.ceiling = 1.25;  // the scene's line, "all"; no per-light lines
   return c;
 }
 
