@@ -2,8 +2,8 @@
 
 #include <fmt/core.h>
 
-#include "mesh/io/internal/sha256_sidecar.h"
 #include "mesh/io/mesh_io.h"
+#include "mesh/io/sha256_sidecar.h"
 #include "proxies/shared/parity_solid.h"
 #include "util/error.h"
 #include "util/input_file.h"
@@ -70,11 +70,6 @@ Generated generate(const std::string& bytes, const SceneMeshDesc& mesh, ProxyGen
 
 }  // namespace
 
-void stageProxyBytes(OutputSet& outputs, const std::string& bytes, const fs::path& out) {
-  outputs.add(out, [&](const fs::path& tmp) { writeFileBytes(tmp, bytes, out.string()); });
-  outputs.addText(detail::sidecarPathOf(out), detail::sidecarLine(out, bytes));
-}
-
 ProxyRef proxyRefFor(const ProxyReport& report, ProxyClass kind, const fs::path& out,
                      const std::string& proxy_bytes) {
   ProxyRef ref;
@@ -117,7 +112,7 @@ SceneMeshProxy proxyForSceneMesh(const SceneMeshDesc& mesh, const ProxyGenOption
   }
   // The bytes are hashed for the cache key and parsed from memory on a miss: read once.
   const std::string bytes = readTextFile(mesh.file);
-  detail::verifySidecar(mesh.file, bytes);
+  verifySidecar(mesh.file, bytes);
   std::string key;
   std::optional<CachedProxy> entry;
   if (cache) {
@@ -153,7 +148,7 @@ SceneMeshProxy proxyForSceneMesh(const SceneMeshDesc& mesh, const ProxyGenOption
     }
   } else if (!entry->report.skipped) {
     OutputSet outputs;
-    stageProxyBytes(outputs, entry->proxy_bytes, out);
+    addEncodedMeshOutput(outputs, entry->proxy_bytes, out);
     outputs.commit();
   }
   result.report = std::move(entry->report);

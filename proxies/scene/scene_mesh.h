@@ -38,10 +38,6 @@ struct SceneMeshProxy {
 SceneMeshProxy proxyForSceneMesh(const SceneMeshDesc& mesh, const ProxyGenOptions& options,
                                  const std::filesystem::path& out, const ProxyCache* cache);
 
-// Stages the proxy file `out` with `bytes` and its .sha256 sidecar, as saveMesh writes them.
-void stageProxyBytes(OutputSet& outputs, const std::string& bytes,
-                     const std::filesystem::path& out);
-
 // The scene's entry for the proxy in file `out` (content `proxy_bytes`) whose generator report
 // is `report`: its class as written, with the file's hash when the class was proven.
 ProxyRef proxyRefFor(const ProxyReport& report, ProxyClass kind, const std::filesystem::path& out,

@@ -4,6 +4,7 @@
 
 #include <map>
 
+#include "mesh/io/mesh_io.h"
 #include "proxies/pipeline/proxy_outputs.h"
 #include "proxies/pipeline/report_fields.h"
 #include "proxies/scene/output_paths.h"
@@ -195,7 +196,7 @@ int mergeShards(const MergeRequest& r, const CommonOptions& common) {
   // proxies first, then the scene that lists them and the report, as the whole run.
   OutputSet proxies(MissingFolders::kCreate);
   for (size_t i = 0; i < n_meshes; ++i)
-    if (proxy_bytes[i]) stageProxyBytes(proxies, *proxy_bytes[i], proxy_files[i]);
+    if (proxy_bytes[i]) addEncodedMeshOutput(proxies, *proxy_bytes[i], proxy_files[i]);
   proxies.commit();
   const SceneRunInfo info{r.scene, r.kind, scene_out, r.cache_dir};
   SceneResult result = finishScene(scene, outcomes, std::vector<bool>(n_meshes, true), info);

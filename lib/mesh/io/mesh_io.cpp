@@ -11,7 +11,7 @@
 #include "mesh/io/internal/header_check.h"
 #include "mesh/io/internal/mesh_file.h"
 #include "mesh/io/internal/openmesh_formats.h"
-#include "mesh/io/internal/sha256_sidecar.h"
+#include "mesh/io/sha256_sidecar.h"
 #include "util/atomic_write.h"
 #include "util/error.h"
 #include "util/input_file.h"
@@ -167,7 +167,7 @@ void addEncodedMeshOutput(OutputSet& outputs, const std::string& bytes, const fs
   // A stream or device target (/dev/null, a FIFO) is no file to verify later: no sidecar.
   outputs.addText(path, bytes);
   if (resolveOutputTarget(path).kind == OutputTarget::Kind::kFile)
-    outputs.addText(detail::sidecarPathOf(path), detail::sidecarLine(path, bytes));
+    outputs.addText(sidecarPathOf(path), sidecarLine(path, bytes));
 }
 
 void addMeshOutput(OutputSet& outputs, const TriMesh& mesh, const fs::path& path,

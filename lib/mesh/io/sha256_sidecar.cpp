@@ -1,4 +1,4 @@
-#include "mesh/io/internal/sha256_sidecar.h"
+#include "mesh/io/sha256_sidecar.h"
 
 #include <cctype>
 #include <system_error>
@@ -9,7 +9,7 @@
 #include "util/input_file.h"
 #include "util/sha256.h"
 
-namespace proxyvis::detail {
+namespace proxyvis {
 namespace fs = std::filesystem;
 
 namespace {
@@ -29,8 +29,8 @@ std::string recordedHash(const fs::path& sidecar, const std::string& text) {
   std::string hash = text.substr(0, 64);
   for (char& c : hash) {
     if (!std::isxdigit(static_cast<unsigned char>(c)))
-      throw malformed(sidecar,
-                      "'" + printableExcerpt(text, 64) + "' does not start with 64 hex digits");
+      throw malformed(sidecar, "'" + detail::printableExcerpt(text, 64) +
+                                   "' does not start with 64 hex digits");
     c = char(std::tolower(static_cast<unsigned char>(c)));
   }
   if (text[64] != ' ' || (text[65] != ' ' && text[65] != '*'))
@@ -66,4 +66,4 @@ void verifySidecar(const fs::path& mesh, const std::string& bytes) {
         "or delete the sidecar if the change was intended");
 }
 
-}  // namespace proxyvis::detail
+}  // namespace proxyvis
