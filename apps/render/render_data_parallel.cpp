@@ -64,6 +64,7 @@ DataParallelSettings dataParallelSettings(const DataParallelRenderRequest& o, Fo
   settings.q_min = o.render.q_min;
   settings.forward_cost_us = o.data_parallel.forward_cost_us;
   settings.local_cost_us = o.data_parallel.local_cost_us;
+  settings.proxy_route = o.data_parallel.proxyRoute();
   settings.network = network.fabric;
   settings.emulate = network.emulate;
   settings.quiet = o.common.quiet;
@@ -132,6 +133,7 @@ int runDataParallelRender(DataParallelRenderRequest& o) {
                     "forwarding decides visibility exactly or by roulette",
                     "use --estimator exact or roulette");
       forwarding = parseForwarding(o.data_parallel.forwarding);
+      o.data_parallel.checkProxyRoute(forwarding == Forwarding::kProxies);
       if (root)
         checkOutputs({o.scene.string()},
                      {{"-o", o.output.string()}, {"--json", o.common.json_path}});

@@ -54,6 +54,13 @@ void addDataParallelFlags(CLI::App& app, DataParallelFlags& flags, bool list) {
                  "A custom fabric's bandwidth, in GB/s (replaces the preset's)")
       ->check(numberIn(1e-6, 1e6))
       ->group(group);
+  app.add_option("--proxy-route", flags.proxy_route,
+                 "With --forwarding proxies: 'measured' routes each region's segments (screen "
+                 "tile x light) the cheaper way, through the proxies or through the instance "
+                 "boxes alone, from costs measured in earlier rounds (images unchanged); "
+                 "'always' routes every segment through the proxies (default: measured, or "
+                 "always when --forward-cost-us and --local-cost-us both fix roulette's costs)")
+      ->group(group);
   app.add_flag("--emulate-network", flags.emulate_network,
                "Make the exchange take what --network charges (each message leaves no earlier "
                "than alpha + bytes/beta after the previous one; the count exchange likewise), so "
@@ -65,11 +72,25 @@ void refuseDataParallelFlagsAlone(const CLI::App& app, const DataParallelFlags& 
   if (flags.enabled) return;
   for (const char* name :
        {"--forwarding", "--passes-per-round", "--forward-cost-us", "--local-cost-us", "--network",
-        "--network-alpha-us", "--network-beta-gbps", "--emulate-network"})
+        "--network-alpha-us", "--network-beta-gbps", "--emulate-network", "--proxy-route"})
     if (app.count(name) > 0)
       throw Error("", std::string(name) + " needs --data-parallel",
                   "it only acts on the data-parallel renderer",
                   "add --data-parallel (under mpirun)");
+}
+
+ProxyRoute DataParallelFlags::proxyRoute() const {
+  if (!proxy_route.empty()) return parseProxyRoute(proxy_route);
+  // Measured route costs would make a roulette render with fixed costs depend on timing.
+  return forward_cost_us >= 0 && local_cost_us >= 0 ? ProxyRoute::kAlways : ProxyRoute::kMeasured;
+}
+
+void DataParallelFlags::checkProxyRoute(bool proxies_forwarding) const {
+  proxyRoute();
+  if (!proxy_route.empty() && !proxies_forwarding)
+    throw Error("", "--proxy-route does not act without --forwarding proxies",
+                "the box policies route every segment by their boxes",
+                "add --forwarding proxies, or leave --proxy-route out");
 }
 
 JobNetwork resolveNetwork(const DataParallelFlags& flags, const MpiComm& comm) {
@@ -159,6 +180,11 @@ nlohmann::json dataParallelRow(const std::string& estimator, Forwarding forwardi
                         {"blocked_by_inside_proxy", s.blocked_by_inside},
                         {"undecided", s.undecided},
                         {"forwarded_segments", s.forwarded_segments},
+                        {"proxy_route", forwarding == Forwarding::kProxies
+                                            ? nlohmann::json(proxyRouteName(s.proxy_route))
+                                            : nlohmann::json(nullptr)},
+                        {"routed_by_proxies", s.routed_by_proxies},
+                        {"routed_by_instance_boxes", s.routed_by_boxes},
                         {"mean_q", s.mean_q},
                         {"rank_peak_rss_bytes", s.rank_peak_rss_bytes},
                         {"seconds", s.seconds},

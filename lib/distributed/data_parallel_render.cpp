@@ -12,7 +12,10 @@
 #include <cstring>
 #include <limits>
 
+#include "distributed/forwarding_round.h"
 #include "distributed/roulette_forwarding.h"
+#include "distributed/round_model.h"
+#include "distributed/route_choice.h"
 #include "render/integrator_steps.h"
 #include "util/progress.h"
 #include "util/rng.h"
@@ -22,43 +25,14 @@ namespace proxyvis {
 
 namespace {
 
-// The stream of roulette's forwarding choice for (pixel, pass): apart from the light sample's.
+// The streams of roulette's forwarding choice and of the route's choice for (pixel, pass): apart
+// from the light sample's.
 constexpr uint64_t kRouletteStream = 7;
-
-enum : uint8_t { kNoVisibility = 0, kDecided = 1, kPending = 2 };
-// How a segment was decided before any forward.
-enum Outcome : uint8_t { kBlockedLocally, kBlockedByInside, kNoRemoteRank, kUndecided };
+constexpr uint64_t kRouteStream = 8;
 
 struct PixelSums : SampleSums {
   uint32_t forwards = 0;
 };
-
-// The entries of one round: light samples of `count` passes for every pixel this rank shades.
-struct RoundEntries {
-  std::vector<PreparedSample> samples;
-  std::vector<uint8_t> state;
-  std::vector<double> estimate;  // V~ once decided
-  std::vector<double> weight;    // what a visible answer is worth: 1, or 1/q under roulette
-  std::vector<uint8_t> outcome;  // Outcome, once the local trace and the route are known
-  std::vector<uint8_t> forwarded;
-  std::vector<uint16_t> forwards;    // ranks asked so far
-  std::vector<uint16_t> candidates;  // (ranks - 1) slots per entry
-  std::vector<uint8_t> num_candidates, next;
-  std::vector<uint32_t> region;
-};
-
-// A forwarded segment's answer: 1 if this rank's own originals block it. `context` is the scene.
-void answerRequests(void* context, const uint8_t* requests, size_t count, uint8_t* answers) {
-  const auto* scene = static_cast<const DistributedScene*>(context);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 256),
-                    [&](const tbb::blocked_range<size_t>& range) {
-                      for (size_t i = range.begin(); i != range.end(); ++i) {
-                        Segment s;
-                        std::memcpy(&s, requests + i * sizeof(Segment), sizeof(Segment));
-                        answers[i] = scene->ownOccluded(s) ? 1 : 0;
-                      }
-                    });
-}
 
 // Summed over ranks at the end.
 enum Count : size_t {
@@ -71,6 +45,8 @@ enum Count : size_t {
   kMessages,
   kForwards,
   kShaded,
+  kRoutedProxies,
+  kRoutedBoxes,
   kNumCounts
 };
 
@@ -91,6 +67,7 @@ class RankRender {
         num_lights_(scene.lights().numLights()),
         slots_(std::max(1, ranks_ - 1)),
         learner_(size_t(tiling_.count()) * num_lights_, settings.q_min),
+        routes_(size_t(tiling_.count()) * num_lights_, settings.proxy_route),
         cpu_start_(processCpuSeconds()) {
     stats_.ranks = ranks_;
   }
@@ -108,8 +85,10 @@ class RankRender {
       prepareRound(start, count, q);
       forwardPending();
       addRound(count, q);
+      const double forward_us = forwardCostUs();
       learner_.setMeasuredCosts(my_segments_ ? 1e6 * computeCpu() / double(my_segments_) : 1.0,
-                                forwardCostUs());
+                                forward_us);
+      routes_.update(forward_us, tbb::this_task_arena::max_concurrency());
       progress.update();
     }
     progress.done();
@@ -196,17 +175,7 @@ class RankRender {
   void prepareRound(int start, int count, const std::vector<double>& q) {
     RoundEntries& r = round_;
     const size_t n = owned_.size() * size_t(count);
-    r.samples.assign(n, {});
-    r.state.assign(n, kNoVisibility);
-    r.estimate.assign(n, 0.0);
-    r.weight.assign(n, 1.0);
-    r.outcome.assign(n, kBlockedLocally);
-    r.forwarded.assign(n, 0);
-    r.forwards.assign(n, 0);
-    r.candidates.assign(n * size_t(slots_), 0);
-    r.num_candidates.assign(n, 0);
-    r.next.assign(n, 0);
-    r.region.assign(n, 0);
+    r.reset(n, size_t(slots_));
     tbb::parallel_for(tbb::blocked_range<size_t>(0, owned_.size(), 64),
                       [&](const tbb::blocked_range<size_t>& range) {
                         Scratch scratch;
@@ -232,7 +201,19 @@ class RankRender {
     r.state[e] = kDecided;
     if (scene_.locallyOccluded(ps.segment)) return;  // V = 0
     Route& route = scratch.route;
-    scene_.route(settings_.forwarding, ps.segment, scratch.labels, route);
+    Forwarding policy = settings_.forwarding;
+    const uint64_t key = hashKeys(pixel, uint64_t(pass), kRouteStream);
+    if (policy == Forwarding::kProxies) {
+      r.via_proxies[e] = routes_.useProxies(r.region[e], key) ? 1 : 0;
+      if (!r.via_proxies[e]) policy = Forwarding::kInstanceBoxes;
+    }
+    if (settings_.forwarding == Forwarding::kProxies && RouteChoice::timed(key)) {
+      const double t0 = steadySeconds();
+      scene_.route(policy, ps.segment, scratch.labels, route);
+      r.route_seconds[e] = float(steadySeconds() - t0);
+    } else {
+      scene_.route(policy, ps.segment, scratch.labels, route);
+    }
     if (route.blocked_by_inside) {  // V = 0, proved by an inside proxy
       r.outcome[e] = kBlockedByInside;
       return;
@@ -350,6 +331,8 @@ class RankRender {
       }
       learner_.add(r.region[e], r.estimate[e], undecided, r.forwarded[e] != 0, r.forwards[e],
                    r.forwarded[e] && r.estimate[e] > 0);
+      if (settings_.forwarding == Forwarding::kProxies && r.outcome[e] != kBlockedLocally)
+        routes_.add(r.region[e], r.via_proxies[e] != 0, r.route_seconds[e], r.forwards[e]);
     }
   }
 
@@ -393,6 +376,8 @@ class RankRender {
     DataParallelStats stats = stats_;
     counts_[kForwards] = my_forwards_;
     counts_[kShaded] = owned_.size();
+    counts_[kRoutedProxies] = routes_.routedByProxies();
+    counts_[kRoutedBoxes] = routes_.routedByBoxes();
     std::vector<uint64_t> totals(counts_.begin(), counts_.end());
     comm_.sum(totals);
     stats.shadow_segments = totals[kSegments];
@@ -404,6 +389,9 @@ class RankRender {
     stats.forward_messages = totals[kMessages];
     stats.forwards = totals[kForwards];
     stats.pixels_shaded = totals[kShaded];
+    stats.routed_by_proxies = totals[kRoutedProxies];
+    stats.routed_by_boxes = totals[kRoutedBoxes];
+    stats.proxy_route = settings_.proxy_route;
     std::vector<uint64_t> per_rank(size_t(ranks_) * 2, 0);
     per_rank[size_t(rank_)] = peakRssBytes();
     per_rank[size_t(ranks_ + rank_)] = owned_.size();
@@ -430,36 +418,11 @@ class RankRender {
     return stats;
   }
 
-  // Every rank's per-round loads, summed into one table (each rank fills its own rows), priced
-  // on the fabric; the emulated waits.
+  // The alpha-beta model of the run from every rank's per-round loads; the emulated waits.
   void modelRun(DataParallelStats& stats) {
-    constexpr size_t kFields = 7;
-    const size_t rounds = loads_.size();
-    std::vector<double> table(size_t(ranks_) * rounds * kFields + size_t(ranks_), 0.0);
-    for (size_t k = 0; k < rounds; ++k) {
-      double* row = &table[(size_t(rank_) * rounds + k) * kFields];
-      const RoundLoad& l = loads_[k];
-      const double fields[kFields] = {l.request.compute_seconds, double(l.request.messages),
-                                      double(l.request.bytes),   double(l.request.items),
-                                      l.answer.compute_seconds,  double(l.answer.messages),
-                                      double(l.answer.bytes)};
-      std::copy(fields, fields + kFields, row);
-    }
-    table[size_t(ranks_) * rounds * kFields + size_t(rank_)] = tail_wall_;
-    comm_.sum(table);
-    auto loads =
-        std::vector<std::vector<RoundLoad>>(size_t(ranks_), std::vector<RoundLoad>(rounds));
-    double tail = 0;
-    for (size_t r = 0; r < size_t(ranks_); ++r) {
-      for (size_t k = 0; k < rounds; ++k) {
-        const double* row = &table[(r * rounds + k) * kFields];
-        loads[r][k].request = {row[0], uint64_t(row[1]), uint64_t(row[2]), uint64_t(row[3])};
-        loads[r][k].answer = {row[4], uint64_t(row[5]), uint64_t(row[6]), 0};
-      }
-      tail = std::max(tail, table[size_t(ranks_) * rounds * kFields + r]);
-    }
     stats.network = settings_.network;
-    stats.modelled = modelTime(settings_.network, loads, tail, reduction_seconds_);
+    stats.modelled =
+        modelAcrossRanks(settings_.network, loads_, tail_wall_, reduction_seconds_, comm_);
     std::vector<double> wait = {emulated_wait_};
     comm_.max(wait);
     stats.max_emulated_wait_seconds = wait[0];
@@ -476,6 +439,7 @@ class RankRender {
   const size_t num_lights_;
   const int slots_;  // candidate ranks per entry
   RouletteForwarding learner_;
+  RouteChoice routes_;
   const Stopwatch clock_;
   const double cpu_start_;
   double mpi_cpu_ = 0, exchange_seconds_ = 0, compute_seconds_ = 0;

@@ -8,8 +8,9 @@
 //   2. light samples exactly as the single-process renderer draws them (keyed on seed, pixel,
 //      pass), in rounds of a few passes;
 //   3. each shadow segment is traced against the rank's own and replicated originals; if they
-//      leave it unblocked, the forwarding policy names the remote ranks that may block it, and it
-//      is sent to them one at a time, nearest first, in batches (one message per rank pair and
+//      leave it unblocked, the forwarding policy names the remote ranks that may block it (under
+//      `proxies`, per region the cheaper of the proxies' and the boxes' route: route_choice.h), and
+//      it is sent to them one at a time, nearest first, in batches (one message per rank pair and
 //      round) until one blocks it or none is left. `exact` forwards every such segment;
 //      `roulette` forwards a segment that the proxies left undecided with probability q (learned
 //      per screen tile x light from earlier rounds) and weighs the answer by 1/q, otherwise takes
@@ -23,6 +24,7 @@
 #include "distributed/distributed_scene.h"
 #include "distributed/mpi_comm.h"
 #include "distributed/network_fabric.h"
+#include "distributed/route_choice.h"
 #include "util/image.h"
 #include "util/peak_rss.h"
 
@@ -31,6 +33,9 @@ namespace proxyvis {
 struct DataParallelSettings {
   Forwarding forwarding = Forwarding::kProxies;
   bool roulette = false;  // false: exact
+  // Under kProxies: per region, the cheaper of the proxies' and the instance boxes' route
+  // (measured; route_choice.h), or the proxies' route for every segment.
+  ProxyRoute proxy_route = ProxyRoute::kMeasured;
   int spp = 16;
   uint64_t seed = 0;
   int tile_size = 16;        // screen tiles: replicated hits are shaded by the tile's rank
@@ -57,11 +62,14 @@ struct DataParallelStats {
   uint64_t blocked_by_inside = 0;   // by an inside proxy, without a forward
   uint64_t undecided = 0;           // unblocked here with at least one remote rank to ask
   uint64_t forwarded_segments = 0;  // undecided segments that were sent (roulette: some)
-  uint64_t forwards = 0;            // segment messages items sent (one per segment and rank asked)
-  uint64_t forward_bytes = 0;       // requests and answers, all ranks
-  uint64_t forward_messages = 0;    // non-empty messages, all ranks
-  uint64_t rounds = 0;              // exchange rounds
-  uint64_t max_rank_forwards = 0;   // forwards sent by the busiest rank
+  uint64_t routed_by_proxies = 0;   // kProxies: segments routed through the proxies
+  uint64_t routed_by_boxes = 0;     // kProxies: segments the route choice sent by instance boxes
+  ProxyRoute proxy_route = ProxyRoute::kMeasured;  // the settings' choice
+  uint64_t forwards = 0;           // segment messages items sent (one per segment and rank asked)
+  uint64_t forward_bytes = 0;      // requests and answers, all ranks
+  uint64_t forward_messages = 0;   // non-empty messages, all ranks
+  uint64_t rounds = 0;             // exchange rounds
+  uint64_t max_rank_forwards = 0;  // forwards sent by the busiest rank
   uint64_t max_rank_forward_bytes = 0, max_rank_forward_messages = 0;  // sent by the busiest
   double seconds = 0;                    // wall time of the render (load excluded), rank 0
   double max_compute_seconds = 0;        // the slowest rank's time outside MPI calls

@@ -61,6 +61,8 @@ DataParallelPlan planStudy(CompareOptions& o, const DataParallelFlags& flags,
         plan.policies.push_back(f);
     }
     if (plan.policies.empty()) throw Error("", "--forwarding is empty", {}, "name a policy");
+    flags.checkProxyRoute(std::find(plan.policies.begin(), plan.policies.end(),
+                                    Forwarding::kProxies) != plan.policies.end());
     if (o.spp_list.empty()) throw Error("", "--spp is empty", {}, "e.g. --spp 16");
     if (comm.rank() == 0) oiioModule();
     plan.desc = loadSceneDesc(o.scene);
@@ -125,6 +127,7 @@ class StudyRenders {
     s.q_min = o_.render.q_min;
     s.forward_cost_us = plan_.cost_us;
     s.local_cost_us = flags_.local_cost_us;
+    s.proxy_route = flags_.proxyRoute();
     s.network = plan_.network.fabric;
     s.quiet = true;
     return s;
