@@ -266,7 +266,7 @@ std::string pageHtml(const View3dPage& page, const PageContent& content) {
     html += "</ul>\n";
   }
   html += "<details><summary>JSON summary</summary><pre>" +
-          escapeHtml(page.summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace)) +
+          escapeHtml(page.json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace)) +
           "</pre></details>\n";
   html += "<details><summary>three.js license</summary><pre>" +
           escapeHtml(std::string(asset("LICENSE"))) + "</pre></details>\n";

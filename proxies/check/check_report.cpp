@@ -50,16 +50,8 @@ HausdorffDistances distances(const PairCheckReport& r) {
 }
 
 nlohmann::json rateJson(const RateEstimate& e) {
-  nlohmann::json j = {{"k", e.k}, {"n", e.n}};
-  if (e.n == 0) {
-    j["value"] = nullptr;
-    j["lo"] = 0.0;
-    j["hi"] = 1.0;
-  } else {
-    j["value"] = e.value;
-    j["lo"] = e.ci.lo;
-    j["hi"] = e.ci.hi;
-  }
+  nlohmann::json j = {{"k", e.k}, {"n", e.n}, {"lo", rateLower(e)}, {"hi", rateUpper(e)}};
+  j["value"] = e.n == 0 ? nlohmann::json(nullptr) : nlohmann::json(e.value);
   return j;
 }
 
@@ -75,26 +67,33 @@ nlohmann::json meshJson(const MeshSummary& m) {
   return j;
 }
 
-// The class the rays never showed and the upper 95 % bound on its rate over all segments.
-struct MissedBound {
-  const char* name = nullptr;
-  double upper = 0;
-};
-std::optional<MissedBound> missedClassBound(const PairCheckReport& r) {
+}  // namespace
+
+double rateLower(const RateEstimate& e) {
+  return e.n == 0 ? 0.0 : e.ci.lo;
+}
+
+double rateUpper(const RateEstimate& e) {
+  return e.n == 0 ? 1.0 : e.ci.hi;
+}
+
+nlohmann::json countsJson(const ClassCounts& c) {
+  return {{"HH", c.hh}, {"HM", c.hm}, {"MH", c.mh}, {"MM", c.mm}};
+}
+
+std::optional<MissedClassBound> missedClassBound(const PairCheckReport& r) {
   switch (r.sampled_class) {
     case SampledClass::kOutside:
-      return MissedBound{"HM'", r.stats.hm.ci.hi};
+      return MissedClassBound{"HM'", r.stats.hm.ci.hi};
     case SampledClass::kInside:
-      return MissedBound{"MH'", r.stats.mh.ci.hi};
+      return MissedClassBound{"MH'", r.stats.mh.ci.hi};
     case SampledClass::kEquivalent:
-      return MissedBound{"HM'+MH'", r.stats.error.ci.hi};
+      return MissedClassBound{"HM'+MH'", r.stats.error.ci.hi};
     case SampledClass::kGeneral:
       return std::nullopt;
   }
   return std::nullopt;
 }
-
-}  // namespace
 
 std::string formatHumanReport(const PairCheckReport& r) {
   const ClassCounts& c = r.sampled.counts;
@@ -178,7 +177,7 @@ nlohmann::json toJson(const PairCheckReport& r) {
   const ClassStats& s = r.stats;
   nlohmann::json j;
   if (!r.label.empty()) j["label"] = r.label;
-  j["counts"] = {{"HH", c.hh}, {"HM", c.hm}, {"MH", c.mh}, {"MM", c.mm}};
+  j["counts"] = countsJson(c);
   j["V_avg"] = valueOrNull(s.v_avg);
   j["f_hit"] = valueOrNull(s.f_hit);
   j["f_miss"] = valueOrNull(s.f_miss);

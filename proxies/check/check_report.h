@@ -2,6 +2,7 @@
 // How proxy-check shows a PairCheckReport: a human table, JSON, and a PLY of the error segments.
 #include <filesystem>
 #include <nlohmann/json_fwd.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,22 @@ std::string formatHumanReport(const PairCheckReport& report);
 // "hausdorff" holds the distances in scene units and as fractions of the original's diagonal
 // (proxies/check/distance_report.h).
 nlohmann::json toJson(const PairCheckReport& report);
+
+// The ends of a rate's 95 % interval as the report writes them: [0, 1] when nothing was counted.
+double rateLower(const RateEstimate& e);
+double rateUpper(const RateEstimate& e);
+
+// {"HH", "HM", "MH", "MM"}: the report's "counts".
+nlohmann::json countsJson(const ClassCounts& counts);
+
+// The error class the segments never showed ("HM'", "MH'" or "HM'+MH'" for an outside, inside
+// or equivalent sampled class) and the upper 95 % bound on its rate over all segments; none for a
+// general sampled class.
+struct MissedClassBound {
+  const char* name = nullptr;
+  double upper = 0;
+};
+std::optional<MissedClassBound> missedClassBound(const PairCheckReport& report);
 
 // ASCII PLY: two vertices and one edge per segment, colored red for HM' and blue for MH';
 // written atomically.

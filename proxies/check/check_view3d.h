@@ -18,7 +18,8 @@ std::optional<ProxyClass> claimedClass(const PairCheckReport& report);
 // The page for one checked pair. Its layers: HM' segments (red; they break an outside claim) and
 // MH' segments (blue; they break an inside claim), each with the count the check made and the
 // kept segments of report.sampled.errors; the layer that breaks the claim is on, the other off.
-// The summary is toJson(report) plus "class" (provenClass) and "class_note".
+// The tables show the report's verdicts, classes and meshes (View3dCheck); below the view,
+// toJson(report) plus "class" (provenClass) and "class_note".
 std::string checkReportHtml(const TriMesh& original, const TriMesh& proxy,
                             const PairCheckReport& report);
 

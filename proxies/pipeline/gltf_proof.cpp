@@ -47,15 +47,13 @@ PairCheckReport classifyProxySegments(const TriMesh& original, const TriMesh& pr
 }
 
 json gltfSegmentEvidence(const PairCheckReport& report) {
-  const json check = toJson(report);
-  const json& intervals = check["intervals"];
   return {{"distribution", "sphere"},
           {"rays", report.rays_requested},
           {"seed", report.seed},
-          {"counts", check["counts"]},
-          {"HM_rate_upper_95", intervals["HM"].value("hi", json())},
-          {"MH_rate_upper_95", intervals["MH"].value("hi", json())},
-          {"sampled_class", check["sampled_class"]}};
+          {"counts", countsJson(report.sampled.counts)},
+          {"HM_rate_upper_95", rateUpper(report.stats.hm)},
+          {"MH_rate_upper_95", rateUpper(report.stats.mh)},
+          {"sampled_class", sampledClassName(report.sampled_class)}};
 }
 
 void proveWrittenProxy(const TriMesh& original, const TriMesh& written, ProxyReport& report,

@@ -78,11 +78,12 @@ View3dPage examplePage(const Pair& pair) {
   mh.visible = false;
   mh.segments.clear();
   page.layers = {mh, hm};
-  page.summary = {{"counts", {{"HH", 10}, {"HM", 7}, {"MH", 0}, {"MM", 83}}},
-                  {"intervals", {{"HM", {{"value", 0.07}, {"lo", 0.03}, {"hi", 0.14}}}}},
-                  {"sampled_class", "general"},
-                  {"exact", "intersecting"},
-                  {"original", {{"file", "<b>original.off</b>"}, {"closed", true}}}};
+  page.check.classes = {
+      {{10, 0.1, 0.05, 0.17}, {7, 0.07, 0.03, 0.14}, {0, 0, 0, 0.04}, {83, 0.83, 0.74, 0.89}}};
+  page.check.sampled_class = "general";
+  page.check.exact = "intersecting";
+  page.check.original = {"<b>original.off</b>", true};
+  page.json = {{"counts", {{"HH", 10}, {"HM", 7}, {"MH", 0}, {"MM", 83}}}};
   return page;
 }
 

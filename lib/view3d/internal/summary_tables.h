@@ -1,6 +1,6 @@
 #pragma once
 // The tables of a 3D view page (summary_tables.cpp): verdicts, the four classes and both meshes,
-// from the page's JSON summary and meshes.
+// from the page's check and meshes.
 #include <string>
 
 #include "view3d/view3d_html.h"
