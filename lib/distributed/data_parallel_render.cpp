@@ -12,6 +12,7 @@
 #include <cstring>
 #include <limits>
 
+#include "distributed/exchange_ledger.h"
 #include "distributed/forwarding_round.h"
 #include "distributed/roulette_forwarding.h"
 #include "distributed/round_model.h"
@@ -35,20 +36,12 @@ struct PixelSums : SampleSums {
 };
 
 // Summed over ranks at the end.
+// clang-format off
 enum Count : size_t {
-  kSegments,
-  kLocal,
-  kInside,
-  kUndecidedCount,
-  kForwarded,
-  kBytes,
-  kMessages,
-  kForwards,
-  kShaded,
-  kRoutedProxies,
-  kRoutedBoxes,
-  kNumCounts
+  kSegments, kLocal, kInside, kUndecidedCount, kForwarded, kBytes,
+  kMessages, kForwards, kShaded, kRoutedProxies, kRoutedBoxes, kNumCounts
 };
+// clang-format on
 
 // One rank's render, phase by phase (the steps of data_parallel_render.h).
 class RankRender {
@@ -85,10 +78,11 @@ class RankRender {
       prepareRound(start, count, q);
       forwardPending();
       addRound(count, q);
-      const double forward_us = forwardCostUs();
+      const double forward_us = ledger_.forwardCostUs(settings_.network);
       learner_.setMeasuredCosts(my_segments_ ? 1e6 * computeCpu() / double(my_segments_) : 1.0,
                                 forward_us);
-      routes_.update(forward_us, tbb::this_task_arena::max_concurrency());
+      const int threads = tbb::this_task_arena::max_concurrency();
+      routes_.update(ledger_.routeForwardCostUs(settings_.network, threads), threads);
       progress.update();
     }
     progress.done();
@@ -124,18 +118,6 @@ class RankRender {
             waitUntilSteady(entered + settings_.network.reductionSeconds(ranks_, bytes));
     });
     reduction_seconds_ += ranks_ > 1 ? settings_.network.reductionSeconds(ranks_, bytes) : 0.0;
-  }
-
-  // Roulette's cost of a forward in microseconds: what the fabric charges for the last round's
-  // messages per forwarded segment (their alpha amortised over the round's batch size) plus this
-  // rank's measured cost of answering one (the remote trace, as another rank pays it).
-  double forwardCostUs() {
-    if (batch_.items == 0) return last_forward_us_;
-    const double network =
-        settings_.network.sendSeconds(batch_.messages, batch_.bytes, batch_.items);
-    const double answer = answered_items_ ? answer_seconds_ / double(answered_items_) : 0.0;
-    last_forward_us_ = 1e6 * (network / double(batch_.items) + answer);
-    return last_forward_us_;
   }
 
   // 1. Primary rays, composited by the closest hit over ranks: the pixels this rank shades.
@@ -246,7 +228,7 @@ class RankRender {
     auto outbox = std::vector<std::vector<uint8_t>>(size_t(ranks_));
     std::vector<std::vector<uint8_t>> replies;
     auto sent = std::vector<std::vector<uint32_t>>(size_t(ranks_));
-    batch_ = {};
+    ledger_.startBatch();
     for (;;) {
       for (auto& o : outbox) o.clear();
       for (auto& s : sent) s.clear();
@@ -264,24 +246,7 @@ class RankRender {
       });
       mpi_cpu_ -= round.answer_cpu_seconds;  // answering is compute
       mpi_wall_ -= round.answer_seconds;
-      exchange_seconds_ += round.seconds;
-      emulated_wait_ += round.emulated_wait_seconds;
-      my_forwards_ += round.items_sent;
-      counts_[kBytes] += round.bytes_sent;
-      counts_[kMessages] += round.messages_sent;
-      answered_items_ += round.items_answered;
-      answer_seconds_ += round.answer_seconds;
-      const double wall = computeWall();
-      RoundLoad load;
-      load.request = {wall - last_round_wall_ - round.answer_seconds,
-                      round.messages_sent - round.answer_messages_sent,
-                      round.bytes_sent - round.answer_bytes_sent, round.items_sent};
-      load.answer = {round.answer_seconds, round.answer_messages_sent, round.answer_bytes_sent, 0};
-      loads_.push_back(load);
-      last_round_wall_ = wall;
-      batch_.messages += round.messages_sent;
-      batch_.bytes += round.bytes_sent;
-      batch_.items += round.items_sent;
+      ledger_.record(round, computeWall());
       ++stats_.rounds;
       if (round.open_total == 0) break;
       pending.clear();
@@ -354,7 +319,7 @@ class RankRender {
       owner.pixels[p] = float(rank_ + 1);
     }
     compute_seconds_ = computeCpu() / double(tbb::this_task_arena::max_concurrency());
-    tail_wall_ = computeWall() - last_round_wall_;
+    tail_wall_ = computeWall() - ledger_.lastRoundWall();
     reduction(sizeof(float) * 6 * num_pixels_, [&] {
       comm_.sum(radiance.pixels, true);
       comm_.sum(visibility.pixels, true);
@@ -374,7 +339,9 @@ class RankRender {
   // Statistics over ranks.
   DataParallelStats reduceStats() {
     DataParallelStats stats = stats_;
-    counts_[kForwards] = my_forwards_;
+    counts_[kForwards] = ledger_.itemsSent();
+    counts_[kBytes] = ledger_.bytesSent();
+    counts_[kMessages] = ledger_.messagesSent();
     counts_[kShaded] = owned_.size();
     counts_[kRoutedProxies] = routes_.routedByProxies();
     counts_[kRoutedBoxes] = routes_.routedByBoxes();
@@ -400,13 +367,13 @@ class RankRender {
     stats.rank_shaded_pixels.assign(per_rank.begin() + ranks_, per_rank.end());
     stats.rank_peak_rss_bytes =
         *std::max_element(stats.rank_rss_bytes.begin(), stats.rank_rss_bytes.end());
-    std::vector<uint64_t> busiest = {my_forwards_, counts_[kBytes], counts_[kMessages]};
+    std::vector<uint64_t> busiest = {ledger_.itemsSent(), counts_[kBytes], counts_[kMessages]};
     comm_.max(busiest);
     stats.max_rank_forwards = busiest[0];
     stats.max_rank_forward_bytes = busiest[1];
     stats.max_rank_forward_messages = busiest[2];
     // The render ends with the image on rank 0; the statistics' reductions are not part of it.
-    std::vector<double> times = {compute_seconds_, exchange_seconds_, render_seconds_};
+    std::vector<double> times = {compute_seconds_, ledger_.exchangeSeconds(), render_seconds_};
     comm_.max(times);
     stats.max_compute_seconds = times[0];
     stats.max_exchange_seconds = times[1];
@@ -422,8 +389,8 @@ class RankRender {
   void modelRun(DataParallelStats& stats) {
     stats.network = settings_.network;
     stats.modelled =
-        modelAcrossRanks(settings_.network, loads_, tail_wall_, reduction_seconds_, comm_);
-    std::vector<double> wait = {emulated_wait_};
+        modelAcrossRanks(settings_.network, ledger_.loads(), tail_wall_, reduction_seconds_, comm_);
+    std::vector<double> wait = {emulated_wait_ + ledger_.emulatedWaitSeconds()};
     comm_.max(wait);
     stats.max_emulated_wait_seconds = wait[0];
     stats.emulated = settings_.emulate && wait[0] > 0;
@@ -442,16 +409,10 @@ class RankRender {
   RouteChoice routes_;
   const Stopwatch clock_;
   const double cpu_start_;
-  double mpi_cpu_ = 0, exchange_seconds_ = 0, compute_seconds_ = 0;
-  double mpi_wall_ = 0, emulated_wait_ = 0, reduction_seconds_ = 0;
-  // The model's per-round loads of this rank, and its work after the last round.
-  std::vector<RoundLoad> loads_;
-  double last_round_wall_ = 0, tail_wall_ = 0, render_seconds_ = 0;
-  // Roulette's forward cost: the current pass round's messages, answers given so far.
-  PhaseLoad batch_;
-  uint64_t answered_items_ = 0;
-  double answer_seconds_ = 0;
-  double last_forward_us_ = 1;
+  double mpi_cpu_ = 0, compute_seconds_ = 0;
+  double mpi_wall_ = 0, emulated_wait_ = 0, reduction_seconds_ = 0;  // emulated: reductions'
+  ExchangeLedger ledger_;
+  double tail_wall_ = 0, render_seconds_ = 0;  // work after the last round; the render's time
 
   std::vector<uint32_t> pixel_tile_;  // per pixel: its screen tile
   std::vector<uint32_t> owned_;       // the pixels this rank shades, ascending
@@ -462,7 +423,7 @@ class RankRender {
   std::array<uint64_t, kNumCounts> counts_{};
   double q_sum_ = 0;
   uint64_t q_count_ = 0;
-  uint64_t my_forwards_ = 0, my_segments_ = 0;
+  uint64_t my_segments_ = 0;
 };
 
 }  // namespace

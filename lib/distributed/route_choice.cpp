@@ -22,7 +22,7 @@ bool RouteChoice::useProxies(uint32_t region, uint64_t key) const {
   if (mode_ == ProxyRoute::kAlways) return true;
   // Bits above the timing sample's, so that exploring and timed segments are independent.
   const uint64_t bits = key >> 16;
-  if (!learned_) return bits % 4 != 0;
+  if (!learned_) return bits % 2 != 0;
   const bool explore = bits % kExploreEvery == 0;
   return (prefer_[region] != 0) != explore;
 }

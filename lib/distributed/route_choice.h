@@ -13,7 +13,7 @@
 // on all. The cheaper route takes the region's segments, except a share (one in kExploreEvery,
 // chosen by a hash of pixel and pass) that takes the other, so that both figures stay current.
 // A region's figures are pulled toward the rank's pooled ones (kPrior segments' worth) while
-// they are few. Before anything is measured, proxies route all but an exploring quarter.
+// they are few. Before anything is measured (the first round), each route takes half.
 // Exact images do not depend on the choice (an answer is the same whichever ranks are asked);
 // under roulette the choice changes which segments are undecided, never the estimate's mean.
 #include <cstddef>
@@ -47,7 +47,8 @@ class RouteChoice {
 
   // One routed segment: which route, its route seconds (< 0: not timed), the forwards it took.
   void add(uint32_t region, bool proxies, double route_seconds, uint32_t forwards);
-  // After a round: the forward cost in microseconds (network share + remote trace, wall) and
+  // After a round: the forward cost in microseconds of wall time (network share + remote trace
+  // CPU time / threads) and
   // the threads the route ran on; recomputes every region's choice.
   void update(double forward_cost_us, int threads);
 

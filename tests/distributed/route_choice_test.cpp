@@ -30,13 +30,13 @@ TEST(RouteChoice, AlwaysRoutesThroughTheProxies) {
   EXPECT_EQ(proxiesShare(c, 0), 1.0);
 }
 
-TEST(RouteChoice, ExploresAQuarterByTheBoxesBeforeLearning) {
+TEST(RouteChoice, SplitsEvenlyBeforeLearning) {
   RouteChoice c(1, ProxyRoute::kMeasured);
-  EXPECT_NEAR(proxiesShare(c, 0), 0.75, 0.02);
+  EXPECT_NEAR(proxiesShare(c, 0), 0.5, 0.02);
   // One route timed is not yet a comparison.
   feed(c, 0, true, 100, 1, 0);
   c.update(1, 1);
-  EXPECT_NEAR(proxiesShare(c, 0), 0.75, 0.02);
+  EXPECT_NEAR(proxiesShare(c, 0), 0.5, 0.02);
 }
 
 TEST(RouteChoice, PicksTheCheaperRoutePerRegion) {
