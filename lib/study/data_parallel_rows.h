@@ -15,14 +15,20 @@ struct Row {
   int spp = 0;
   std::string estimator;
   Forwarding forwarding{};
-  bool emulated = false;  // the run's exchange waited for the emulated fabric
-  double mse = 0, seconds = 0;
-  ModelledTime modelled;                // means over seeds
-  DataParallelStats stats;              // of the first seed; counts summed over seeds below
-  uint64_t segments = 0, forwards = 0;  // summed over seeds
-  uint64_t bytes = 0, messages = 0;     // per render (mean over seeds)
-  uint64_t peak_rss = 0;
+  // The renders' figures over the seeds (addSeed), serialized by dataParallelRow as render's
+  // are: shadow segments, forwards and routed segments summed over the seeds (forwards per
+  // segment is their ratio), bytes and messages per render, seconds and the model means over
+  // the seeds, the largest peak RSS, emulated if a render's exchange waited; the rest is the
+  // first seed's.
+  DataParallelStats stats;
+  double mse = 0;  // mean over the seeds
   double efficiency = 0, modelled_efficiency = 0, relative = 0, modelled_relative = 0;
+
+  // Adds one seed's render (the first one sets the figures that are not summed).
+  void addSeed(const DataParallelStats& s, bool first);
+  // After the last of `seeds` seeds: sums to means where the row gives means.
+  void finishSeeds(int seeds);
+  bool emulated() const { return stats.emulated; }
 };
 
 // "<estimator>_<forwarding>_<spp>spp[_emulated]": the row's images without extension.

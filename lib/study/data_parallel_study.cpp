@@ -107,8 +107,8 @@ class StudyRenders {
                            "render-compare: %s, --forwarding %s, %d spp%s: MSE %.3e, %.3f s "
                            "(modelled on %s: %.3f s)\n",
                            estimator.c_str(), forwardingName(f), spp,
-                           row.emulated ? ", emulated" : "", row.mse, row.seconds,
-                           plan_.network.fabric.name.c_str(), row.modelled.seconds);
+                           row.emulated() ? ", emulated" : "", row.mse, row.stats.seconds,
+                           plan_.network.fabric.name.c_str(), row.stats.modelled.seconds);
             rows.push_back(std::move(row));
           }
         }
@@ -151,28 +151,12 @@ class StudyRenders {
             settingsFor(estimator, f, spp, hashKeys(o_.common.seed, uint64_t(seed)));
         settings.emulate = k == 1;
         const DataParallelResult r = renderDataParallel(scene_, settings, comm_);
-        const DataParallelStats& s = r.stats;
-        if (seed == 0) {
-          row.stats = s;
-          if (root) firsts[k] = r.radiance;
-        }
-        row.emulated = row.emulated || s.emulated;
+        row.addSeed(r.stats, seed == 0);
+        if (seed == 0 && root) firsts[k] = r.radiance;
         if (root) row.mse += meanSquaredError(r.radiance.pixels, reference.pixels);
-        row.seconds += s.seconds;
-        row.modelled += s.modelled;
-        row.segments += s.shadow_segments;
-        row.forwards += s.forwards;
-        row.bytes += s.forward_bytes;
-        row.messages += s.forward_messages;
-        row.peak_rss = std::max(row.peak_rss, s.rank_peak_rss_bytes);
       }
     for (size_t k = 0; k < rows.size(); ++k) {
-      Row& row = rows[k];
-      row.mse /= o_.seeds;
-      row.seconds /= o_.seeds;
-      row.modelled = row.modelled.meanOver(o_.seeds);
-      row.bytes /= uint64_t(o_.seeds);  // per render, as the table and report.json show them
-      row.messages /= uint64_t(o_.seeds);
+      rows[k].finishSeeds(o_.seeds);
       if (root) first_images.push_back(std::move(firsts[k]));
     }
     return rows;
@@ -190,14 +174,14 @@ class StudyRenders {
 // row.
 void scoreRows(std::vector<Row>& rows) {
   for (Row& r : rows) {
-    r.efficiency = r.mse > 0 && r.seconds > 0 ? 1 / (r.mse * r.seconds) : 0;
-    r.modelled_efficiency =
-        r.mse > 0 && r.modelled.seconds > 0 ? 1 / (r.mse * r.modelled.seconds) : 0;
+    const double seconds = r.stats.seconds, modelled = r.stats.modelled.seconds;
+    r.efficiency = r.mse > 0 && seconds > 0 ? 1 / (r.mse * seconds) : 0;
+    r.modelled_efficiency = r.mse > 0 && modelled > 0 ? 1 / (r.mse * modelled) : 0;
   }
   for (Row& r : rows) {
     const Row* base = nullptr;
     for (const Row& b : rows)
-      if (b.spp == r.spp && b.estimator == "exact" && b.emulated == r.emulated &&
+      if (b.spp == r.spp && b.estimator == "exact" && b.emulated() == r.emulated() &&
           (!base || b.forwarding == Forwarding::kInstanceBoxes))
         base = &b;
     if (!base) base = &rows.front();
@@ -214,16 +198,6 @@ nlohmann::json rowsJson(const std::vector<Row>& rows, int seeds, double cost_us)
     j["table"] = "equal-spp";
     j["spp"] = r.spp;
     j["seeds"] = seeds;
-    // Over all seeds (the stats of dataParallelRow are the first seed's).
-    j["shadow_segments"] = r.segments;
-    j["forwards"] = r.forwards;
-    j["forwards_per_shadow_segment"] = r.segments ? double(r.forwards) / double(r.segments) : 0.0;
-    j["forward_bytes"] = r.bytes;
-    j["forward_messages"] = r.messages;
-    j["rank_peak_rss_bytes"] = r.peak_rss;
-    j["seconds"] = r.seconds;
-    j["emulated"] = r.emulated;
-    setModelledKeys(j, r.modelled);
     j["mse"] = r.mse;
     j["efficiency"] = r.efficiency;
     j["relative_efficiency"] = r.relative;
@@ -243,7 +217,7 @@ std::vector<std::string> losingNotes(const std::vector<Row>& rows) {
     if (r.relative >= 1 || r.forwarding != Forwarding::kProxies) continue;
     const Row* base = nullptr;
     for (const Row& b : rows)
-      if (b.spp == r.spp && b.estimator == "exact" && b.emulated == r.emulated &&
+      if (b.spp == r.spp && b.estimator == "exact" && b.emulated() == r.emulated() &&
           b.forwarding == Forwarding::kInstanceBoxes)
         base = &b;
     if (!base) continue;
@@ -251,11 +225,10 @@ std::vector<std::string> losingNotes(const std::vector<Row>& rows) {
         "{} with proxies at {} spp{} measured {:.2f}x instance boxes: the slowest rank's compute "
         "{:.3f} s against {:.3f} s (traces of proxies and answers), its time in exchanges {:.3f} "
         "s against {:.3f} s, for {:.4f} forwards per segment against {:.4f}{}.",
-        r.estimator, r.spp, r.emulated ? " (emulated " + r.stats.network.name + ")" : "",
+        r.estimator, r.spp, r.emulated() ? " (emulated " + r.stats.network.name + ")" : "",
         r.relative, r.stats.max_compute_seconds, base->stats.max_compute_seconds,
         r.stats.max_exchange_seconds, base->stats.max_exchange_seconds,
-        r.segments ? double(r.forwards) / double(r.segments) : 0.0,
-        base->segments ? double(base->forwards) / double(base->segments) : 0.0,
+        r.stats.forwardsPerSegment(), base->stats.forwardsPerSegment(),
         r.mse > base->mse * 1.0001
             ? fmt::format(", and an MSE {:.3g}x the baseline's", r.mse / base->mse)
             : ""));
