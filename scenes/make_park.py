@@ -31,7 +31,6 @@ other proxy bytes; the scenes then record their new sha256. Then verify:
     build/bin/render scenes/park.json --estimator culling --spp 16 -o out/park.png
 """
 import argparse
-import hashlib
 import json
 import math
 import os
@@ -42,6 +41,7 @@ import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from proxyvis_tools.meshes import sha256_file  # noqa: E402
 from splitmix import rand  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -307,11 +307,6 @@ def write_text(path, text):
     os.replace(tmp, path)
 
 
-def sha256(path):
-    with open(path, "rb") as f:
-        return hashlib.sha256(f.read()).hexdigest()
-
-
 def instance_lines(instances, header):
     lines = [f"# {h}" for h in header]
     for p in instances:
@@ -404,7 +399,7 @@ def main():
             shutil.copyfile(src, dst)
             if os.path.exists(src + ".sha256"):
                 shutil.copyfile(src + ".sha256", dst + ".sha256")
-            if e.get("sha256") != sha256(dst):
+            if e.get("sha256") != sha256_file(dst):
                 sys.exit(f"{dst}: sha256 differs from the one proxy-gen recorded")
             proxies[name].append(proxy_entry(kind, name, e, "park/" + os.path.basename(dst)))
     write_scenes(proxies)

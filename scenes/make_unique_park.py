@@ -51,7 +51,6 @@ Prints the total original triangles and the seconds of each stage.
 """
 import argparse
 import array
-import hashlib
 import json
 import math
 import os
@@ -66,74 +65,10 @@ ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
 sys.dont_write_bytecode = True  # no scenes/__pycache__
 import make_park  # noqa: E402  (the layout, lights, lawn and camera of park.json)
+from proxyvis_tools.meshes import read_ascii_ply, read_obj, read_off, sha256_file  # noqa: E402
 
 SEED = make_park.SEED
 PROTO = {name: (path, albedo) for name, path, albedo in make_park.PROTOTYPES}
-
-
-def read_off(path):
-    with open(path) as f:
-        lines = (l.split("#", 1)[0].split() for l in f)
-        lines = [w for w in lines if w]
-    if not lines[0][0].startswith("OFF"):
-        raise ValueError(f"{path}: not an OFF file")
-    head = lines[0][1:] or lines[1]
-    first = 1 if lines[0][1:] else 2
-    nv, nf = int(head[0]), int(head[1])
-    verts = [float(t) for w in lines[first:first + nv] for t in w[:3]]
-    faces = []
-    for w in lines[first + nv:first + nv + nf]:
-        n = int(w[0])
-        idx = [int(t) for t in w[1:1 + n]]  # a colour after the indices is ignored
-        for k in range(1, n - 1):
-            faces.extend((idx[0], idx[k], idx[k + 1]))
-    return verts, faces
-
-
-def read_obj(path):
-    verts, faces = [], []
-    with open(path) as f:
-        for line in f:
-            if line.startswith("v "):
-                verts.extend(float(t) for t in line.split()[1:4])
-            elif line.startswith("f "):
-                idx = []
-                for t in line.split()[1:]:
-                    i = int(t.split("/")[0])
-                    idx.append(i - 1 if i > 0 else len(verts) // 3 + i)
-                for k in range(1, len(idx) - 1):
-                    faces.extend((idx[0], idx[k], idx[k + 1]))
-    return verts, faces
-
-
-def read_ascii_ply(path):
-    with open(path) as f:
-        if f.readline().strip() != "ply" or "ascii" not in f.readline():
-            raise ValueError(f"{path}: not an ASCII PLY")
-        nv = nf = 0
-        vprops = 0
-        element = None
-        for line in f:
-            w = line.split()
-            if w[0] == "element":
-                element = w[1]
-                if element == "vertex":
-                    nv = int(w[2])
-                elif element == "face":
-                    nf = int(w[2])
-            elif w[0] == "property" and element == "vertex":
-                vprops += 1
-            elif w[0] == "end_header":
-                break
-        verts = []
-        for _ in range(nv):
-            verts.extend(float(t) for t in f.readline().split()[:3])
-        faces = []
-        for _ in range(nf):
-            w = [int(t) for t in f.readline().split()]
-            for k in range(2, w[0]):
-                faces.extend((w[1], w[k], w[k + 1]))
-    return verts, faces
 
 
 def load_prototype(name, mesh_info, tmp):
@@ -214,14 +149,6 @@ def write_ply(path, verts, faces_bytes, nfaces):
         f.write(faces_bytes)
 
 
-def sha256(path):
-    h = hashlib.sha256()
-    with open(path, "rb") as f:
-        for chunk in iter(lambda: f.read(1 << 20), b""):
-            h.update(chunk)
-    return h.hexdigest()
-
-
 def write_meshes(cells, kinds, protos, mesh_dir, mesh_info):
     """Each cell's deformed mesh in mesh_dir (Draco, PLY when the conversion fails), reusing the
     files of an earlier run whose key and SHA-256 match (meshes/manifest.json). Returns the
@@ -241,7 +168,7 @@ def write_meshes(cells, kinds, protos, mesh_dir, mesh_info):
         old = manifest.get(name)
         path = None
         if old and old.get("key") == key and os.path.exists(os.path.join(mesh_dir, old["file"])) \
-                and sha256(os.path.join(mesh_dir, old["file"])) == old["sha256"]:
+                and sha256_file(os.path.join(mesh_dir, old["file"])) == old["sha256"]:
             path = os.path.join(mesh_dir, old["file"])
             dbox = (old["bounds"][0], old["bounds"][1])
             reused += 1
@@ -264,7 +191,7 @@ def write_meshes(cells, kinds, protos, mesh_dir, mesh_info):
                 print(f"note: {name}: Draco conversion failed ({r.stderr.strip()}); kept the "
                       "PLY", file=sys.stderr)
             manifest[name] = {"key": key, "file": os.path.basename(path),
-                              "sha256": sha256(path), "bounds": [list(dbox[0]), list(dbox[1])],
+                              "sha256": sha256_file(path), "bounds": [list(dbox[0]), list(dbox[1])],
                               "triangles": len(faces) // 3}
         inst_protos.append((name, dbox))
         files.append(path)
@@ -338,7 +265,7 @@ def main():
         for n in sorted(set(kinds)):
             verts, faces = load_prototype(n, args.mesh_info, tmp)
             protos[n] = (verts, faces, bounds(verts), face_block(faces),
-                         sha256(os.path.join(ROOT, PROTO[n][0])))
+                         sha256_file(os.path.join(ROOT, PROTO[n][0])))
     stages["load prototypes"] = time.time() - t0
 
     t0 = time.time()

@@ -25,10 +25,9 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
-sys.path.insert(0, os.path.join(ROOT, "tests", "mpi"))
-from mpi_support import mpi_env, mpirun_cmd  # noqa: E402
-sys.path.insert(0, os.path.join(ROOT, "scripts"))
-from scene_paths import load_scene_absolute  # noqa: E402
+
+from proxyvis_tools.mpi import mpi_env, mpirun_cmd
+from proxyvis_tools.scenes import load_scene_absolute
 
 
 def without_inside(scene, out_dir):

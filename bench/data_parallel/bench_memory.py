@@ -16,9 +16,7 @@ import subprocess
 import sys
 import tempfile
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(HERE)), "tests", "mpi"))
-from mpi_support import mpi_env, mpirun_cmd  # noqa: E402
+from proxyvis_tools.mpi import mpi_env, mpirun_cmd
 
 
 def single(render, scene, spp, work):

@@ -7,19 +7,13 @@ inside proxy of an open plant, say) keep no proxy and are listed in DIR/failed.t
 usage: make_proxies.py PROXY_GEN SCENE DIR -- PROXY_GEN_ARGS...   (e.g. --kind outside --method hull)
 """
 import concurrent.futures
-import hashlib
 import json
 import os
 import subprocess
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
-from scene_paths import load_scene_absolute  # noqa: E402
-
-
-def sha256(path):
-    with open(path, "rb") as f:
-        return hashlib.sha256(f.read()).hexdigest()
+from proxyvis_tools.meshes import sha256_file
+from proxyvis_tools.scenes import load_scene_absolute
 
 
 def main():
@@ -57,7 +51,7 @@ def main():
             out, rep = ok
             proxy = {"kind": kind, "method": method, "file": os.path.abspath(out)}
             if rep.get("class"):  # an unverified (general) proxy records no class
-                proxy.update({"class": rep["class"], "sha256": sha256(out)})
+                proxy.update({"class": rep["class"], "sha256": sha256_file(out)})
             mesh["proxies"] = [proxy]
     with open(os.path.join(out_dir, "scene.json"), "w") as f:
         json.dump(scene, f, indent=1)

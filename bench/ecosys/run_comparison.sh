@@ -12,6 +12,9 @@ build=${1:-build}
 out=${2:-out/ecosys-proxies}
 passes=${3:-16}
 here=$(dirname "$0")
+# make_proxies.py imports the shared scene and mesh formats from python/proxyvis_tools.
+PYTHONPATH="$here/../../python${PYTHONPATH:+:$PYTHONPATH}"
+export PYTHONPATH
 scene=scenes/ecosys.json
 bench="$build/bin/bench_ecosys_ceiling"
 for exe in "$build/bin/proxy-gen" "$bench"; do

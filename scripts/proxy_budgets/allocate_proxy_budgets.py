@@ -32,9 +32,7 @@ import subprocess
 import sys
 
 from budget_choice import choose
-
-sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from scene_paths import load_scene_absolute  # noqa: E402
+from proxyvis_tools.scenes import instance_counts, load_scene_absolute
 
 PROG = "allocate_proxy_budgets.py"
 RATE_KEY = {"outside": "P_hit_proxy_given_miss_original",
@@ -59,18 +57,6 @@ def run(args, log):
         p = subprocess.run([str(a) for a in args], stdout=out, stderr=subprocess.STDOUT)
     if p.returncode != 0:
         die(1, f"{' '.join(map(str, args[:2]))} ... exited {p.returncode}", f"see {log}")
-
-
-def instance_counts(scene):
-    """Placements per mesh name: 1 for a placed mesh, plus one per line of the instance list."""
-    counts = {m["name"]: int(m.get("place", True)) for m in scene["meshes"]}
-    if scene.get("instances"):
-        with open(scene["instances"]["file"]) as f:
-            for line in f:
-                words = line.split("#")[0].split()
-                if words:
-                    counts[words[0]] = counts.get(words[0], 0) + 1
-    return counts
 
 
 def read_checks(path, kind):

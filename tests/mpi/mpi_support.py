@@ -1,7 +1,6 @@
 """Helpers for the data-parallel tests: mpirun with the flags this machine needs, and a small
 scene whose every object is its own mesh file (so that which rank opens which file is a fact a
 test can check), with outside and inside proxies made by proxy-gen."""
-import hashlib
 import json
 import os
 import shutil
@@ -10,28 +9,8 @@ import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
 from image_diff import differing_pairs  # noqa: E402
-
-
-def mpirun_cmd(ranks):
-    # --oversubscribe: more ranks than cores; --bind-to none: a rank's TBB threads may use any
-    # core. Root is allowed because CI and the sessions run as root.
-    return ["mpirun", "-q", "--allow-run-as-root", "--oversubscribe", "--bind-to", "none",
-            "-np", str(ranks)]
-
-
-def mpi_env():
-    env = dict(os.environ)
-    env.update({
-        "OMPI_ALLOW_RUN_AS_ROOT": "1",
-        "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
-        # Containers forbid the cross-memory attach Open MPI's shared-memory transport tries
-        # first; without this every message prints a warning.
-        "OMPI_MCA_btl_vader_single_copy_mechanism": "none",
-        # A rank waiting for a message spins on its core unless oversubscribed; ctest runs other
-        # tests beside this one, so it yields instead (a 2-rank render: 0.3 s less CPU of 1.2).
-        "OMPI_MCA_mpi_yield_when_idle": "1",
-    })
-    return env
+from proxyvis_tools.meshes import bounds, read_mesh, sha256_file  # noqa: E402
+from proxyvis_tools.mpi import mpi_env, mpirun_cmd  # noqa: E402,F401  (the cases' mpirun)
 
 
 def run(cmd, expect=0, env=None):
@@ -42,27 +21,9 @@ def run(cmd, expect=0, env=None):
     return p
 
 
-def sha256(path):
-    with open(path, "rb") as f:
-        return hashlib.sha256(f.read()).hexdigest()
-
-
-def off_or_obj_bounds(path):
-    lo, hi = [1e30] * 3, [-1e30] * 3
+def read_json(path):
     with open(path) as f:
-        if path.endswith(".off"):
-            tokens = f.read().split()
-            assert tokens[0] == "OFF"
-            nv = int(tokens[1])
-            coords = [float(t) for t in tokens[4:4 + 3 * nv]]
-            verts = [coords[i:i + 3] for i in range(0, len(coords), 3)]
-        else:
-            verts = [[float(x) for x in line.split()[1:4]] for line in f if line.startswith("v ")]
-    for v in verts:
-        for a in range(3):
-            lo[a] = min(lo[a], v[a])
-            hi[a] = max(hi[a], v[a])
-    return lo, hi
+        return json.load(f)
 
 
 def make_unique_scene(folder, data_dir, scenes_dir, proxy_gen, side=3, spacing=1.6,
@@ -91,8 +52,8 @@ def make_unique_scene(folder, data_dir, scenes_dir, proxy_gen, side=3, spacing=1
             if made != out:
                 shutil.copyfile(made, out)
             proxies.append({"kind": kind, "file": os.path.basename(out), "class": kind,
-                            "sha256": sha256(out)})
-        protos[name] = (src, proxies, off_or_obj_bounds(src))
+                            "sha256": sha256_file(out)})
+        protos[name] = (src, proxies, bounds(read_mesh(src)[0]))
     meshes = [{"name": "ground", "file": os.path.abspath(os.path.join(scenes_dir, "meshes", "ground.obj")),
                "albedo": [0.7, 0.7, 0.7], "make_proxy": False,
                "transform": {"scale": spacing * side * 1.5}}]
