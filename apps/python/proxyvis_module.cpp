@@ -11,8 +11,10 @@
 #include <pybind11/stl.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
+#include <initializer_list>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -85,6 +87,18 @@ std::string wrapped(const std::string& text, const std::string& indent, size_t w
 // One parameter of a docstring: its name, then the program's help text indented below it.
 std::string param(const std::string& name, const std::string& help) {
   return "    " + name + "\n" + wrapped(help, "        ");
+}
+
+// The parameters named after proxy-gen's flags ("max_faces" is --max-faces), each with the
+// flag's help text.
+std::string proxyGenParams(std::initializer_list<std::string> names) {
+  std::string out;
+  for (std::string name : names) {
+    std::string flag = "--" + name;
+    std::replace(flag.begin(), flag.end(), '_', '-');
+    out += param(name, proxyGenHelp(flag));
+  }
+  return out;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -246,28 +260,18 @@ std::string proxyDoc() {
   out += param("V, F",
                "The mesh: vertices (n x 3 real numbers; float64 read in place) and "
                "triangles (m x 3 integer indices; int32 read in place).");
-  out += param("kind", proxyGenHelp("--kind"));
-  out += param("method", proxyGenHelp("--method"));
-  out += param("max_faces", proxyGenHelp("--max-faces"));
-  out += param("ratio", proxyGenHelp("--ratio"));
+  out += proxyGenParams({"kind", "method", "max_faces", "ratio"});
   out += param("threads", "Worker threads (0 = all cores); the result is the same at any count");
   out += param("seed", "Random seed; the same seed gives the same result at any thread count");
   out += param("quiet",
                "No progress bar (proxy-gen's bar of its stages, on stderr when it is a "
                "terminal)");
-  out += param("alpha", proxyGenHelp("--alpha"));
-  out += param("offset", proxyGenHelp("--offset"));
-  out += param("parts", proxyGenHelp("--parts"));
+  out += proxyGenParams({"alpha", "offset", "parts"});
   out += param("budget", proxyGenHelp("--budget") +
                              std::string(" (here: a hard budget not met raises proxyvis.Error "
                                          "with exit_code 1)"));
-  out += param("max_seconds", proxyGenHelp("--max-seconds"));
-  out += param("min_faces", proxyGenHelp("--min-faces"));
-  out += param("erosion", proxyGenHelp("--erosion"));
-  out += param("voxel", proxyGenHelp("--voxel"));
-  out += param("clearance", proxyGenHelp("--clearance"));
-  out += param("clearance_ulps", proxyGenHelp("--clearance-ulps"));
-  out += param("fill_holes", proxyGenHelp("--fill-holes"));
+  out += proxyGenParams({"max_seconds", "min_faces", "erosion", "voxel", "clearance",
+                         "clearance_ulps", "fill_holes"});
   out += "\n" + wrapped(
                     "The class is proved for the float32 vertices the programs trace and, "
                     "for outside/inside proxies, also for the float64 numbers of V where "
