@@ -14,11 +14,9 @@ import traceback
 
 import bpy
 import numpy as np
+from proxyvis_tools.reports import FILE_KEYS, without
 
 ADDON = "proxyvis_blender"
-# Keys of the programs' reports that are measured times or name files (tests/python/conftest.py).
-TIMING_KEYS = {"seconds", "exact_seconds", "seconds_proxy", "seconds_original", "cost_ratio"}
-FILE_KEYS = TIMING_KEYS | {"path", "output", "output_sha256", "file"}
 
 
 def arguments():
@@ -169,14 +167,6 @@ def error_text(stderr, program, path):
     lines = [ln for ln in stderr.splitlines() if ln.startswith(prefix)]
     assert lines, f"no '{prefix}' line in:\n{stderr}"
     return lines[-1][len(prefix):]
-
-
-def without(report, keys):
-    if isinstance(report, dict):
-        return {k: without(v, keys) for k, v in report.items() if k not in keys}
-    if isinstance(report, list):
-        return [without(v, keys) for v in report]
-    return report
 
 
 def read_ply_arrays(path):

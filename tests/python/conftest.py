@@ -1,8 +1,9 @@
 """Shared fixtures of the Python module's tests (docs/python.md).
 
-The module comes from PYTHONPATH (build/python), the programs to compare with from PROXYVIS_BIN
+The module comes from PYTHONPATH (build/python; with python/ for proxyvis_tools.reports, the
+keys a comparison leaves out), the programs to compare with from PROXYVIS_BIN
 (default build/bin), the bundled meshes from PROXYVIS_DATA (default data/). ctest sets all three;
-by hand, from the checkout:  PYTHONPATH=build/python python3 -m pytest -q tests/python
+by hand, from the checkout:  PYTHONPATH=build/python:python python3 -m pytest -q tests/python
 """
 import json
 import os
@@ -14,9 +15,6 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 BIN = os.environ.get("PROXYVIS_BIN", os.path.join(ROOT, "build", "bin"))
 DATA = os.environ.get("PROXYVIS_DATA", os.path.join(ROOT, "data"))
 
-# Keys of the programs' reports that are measured times or name files: everything else must be
-# equal between a program and the module for the same mesh and options.
-TIMING_KEYS = {"seconds", "exact_seconds", "seconds_proxy", "seconds_original", "cost_ratio"}
 
 
 def data(name):
@@ -36,15 +34,6 @@ def run_json(program, *args, tmp_path):
     out = tmp_path / f"{program}.json"
     run(program, *args, "--json", out, "-q")
     return json.loads(out.read_text())
-
-
-def without(report, keys):
-    """REPORT without KEYS at its top level and in its nested dicts."""
-    if isinstance(report, dict):
-        return {k: without(v, keys) for k, v in report.items() if k not in keys}
-    if isinstance(report, list):
-        return [without(v, keys) for v in report]
-    return report
 
 
 @pytest.fixture(scope="session")

@@ -4,7 +4,8 @@ import numpy as np
 import pytest
 
 import proxyvis
-from conftest import TIMING_KEYS, data, run_json, without
+from conftest import data, run_json
+from proxyvis_tools.reports import TIMING_KEYS, without
 
 FILE_KEYS = TIMING_KEYS | {"file"}
 
