@@ -30,6 +30,14 @@ dp_flags(dp_network_beta_text "--network-beta-gbps fast" "--network-beta-gbps")
 dp_flags(dp_network_unbatched_alpha "--network unbatched-20us --network-alpha-us 2"
   "has no alpha or beta to replace")
 dp_flags(dp_network_shm_alpha_alone "--network-alpha-us 2" "needs --network-beta-gbps too")
+dp_flags(dp_proxy_route_unknown "--proxy-route sometimes" "--proxy-route: unknown choice 'sometimes'")
+dp_flags(dp_proxy_route_without_proxies "--forwarding instance-boxes --proxy-route always"
+  "--proxy-route does not act without --forwarding proxies")
+bad_render_flags(dp_proxy_route_alone "--proxy-route always" "--proxy-route needs --data-parallel"
+  TIMEOUT 30)
+dp_case(dp_compare_proxy_route_without_proxies render-compare
+  "${rs} --data-parallel --forwarding domain-bounds,instance-boxes --proxy-route measured --out @OUT@/report"
+  REGEX "--proxy-route does not act" OUTPUTS @OUT@/report TIMEOUT 30)
 dp_case(dp_garbage_mesh render
   "@CORPUS@/render_garbage_mesh.json --data-parallel -o @OUT@/x.exr --json @OUT@/x.json"
   REGEX "render_garbage\\.obj" INPUTS @CORPUS@/render_garbage_mesh.json @CORPUS@/render_garbage.obj
