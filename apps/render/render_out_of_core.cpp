@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 #include <CLI/CLI.hpp>
+#include <algorithm>
 
 #include "image/image_io.h"
 #include "image/oiio_module.h"
@@ -16,6 +17,7 @@
 #include "util/error.h"
 #include "util/output_path.h"
 #include "util/output_set.h"
+#include "util/peak_rss.h"
 #include "util/rng.h"
 
 namespace proxyvis {
@@ -34,7 +36,7 @@ Image outOfCoreExr(const OutOfCoreResult& r) {
 
 nlohmann::json summaryJson(const OutOfCoreRenderRequest& o, const SceneDesc& desc,
                            const OutOfCoreScene& scene, const OutOfCoreSettings& settings,
-                           const OutOfCoreResult& r) {
+                           const OutOfCoreResult& r, uint64_t scan_peak) {
   const OutOfCoreStats& s = r.stats;
   return {
       {"program", "render"},
@@ -65,7 +67,31 @@ nlohmann::json summaryJson(const OutOfCoreRenderRequest& o, const SceneDesc& des
       {"read_seconds", s.cache.read_seconds},
       {"build_seconds", s.cache.build_seconds},
       {"peak_cache_bytes", s.cache.peak_resident_bytes},
-      {"peak_rss_bytes", s.peak_rss_bytes},
+      // The process's peak: the scan's or the render's.
+      {"peak_rss_bytes", std::max(scan_peak, s.peak_rss_bytes)},
+      {"scan_peak_rss_bytes", scan_peak},
+      {"render_peak_rss_bytes", s.peak_rss_bytes},
+      {"rss_before_bytes", s.rss_before_bytes},
+      {"peak_rss_growth_bytes", s.peak_rss_growth_bytes},
+      {"rss_growth",
+       {{"primary_bytes", s.primary_rss_growth_bytes},
+        {"route_bytes", s.route_rss_growth_bytes},
+        {"trace_bytes", s.trace_rss_growth_bytes},
+        {"load_bytes", s.load_rss_growth_bytes},
+        {"load_over_built", s.load_growth_over_built}}},
+      {"queue_bytes", s.queue_bytes},
+      {"primary_queue_bytes", s.primary_queue_bytes},
+      {"queue_cap_bytes", s.queue_cap_bytes},
+      {"capped_batches", s.capped_batches},
+      // The memory bound (docs/out_of_core.md, "Memory"): budget + proxies + image + overhead,
+      // against the render's measured peak growth plus the proxies resident before it.
+      {"image_bytes", s.image_bytes},
+      {"overhead_bytes", s.overhead_bytes},
+      {"rss_bound_bytes", s.rss_bound_bytes},
+      {"bounded_peak_bytes", s.bounded_peak_bytes},
+      {"within_rss_bound", s.withinRssBound()},
+      {"peak_loading_bytes", s.cache.peak_loading_bytes},
+      {"built_bytes", scene.builtBytes()},
       {"scan_seconds", scene.scanSeconds()},
       {"seconds", s.seconds},
       {"primary_seconds", s.primary_seconds},
@@ -136,6 +162,8 @@ int runOutOfCoreRender(OutOfCoreRenderRequest& o) {
   settings.cold_reads = o.out_of_core.cold_reads;
   settings.budget_bytes = budget.resolve(scene->inCoreBytes());
   settings.quiet = o.common.quiet;
+  // The process's peak so far: the scan's (each original read and built alone) and the libraries'.
+  const uint64_t scan_peak = peakRssBytes();
   const OutOfCoreResult result = renderOutOfCore(*scene, settings);
 
   RenderMetadata meta{"render",      outOfCorePolicyName(settings.policy),
@@ -148,7 +176,7 @@ int runOutOfCoreRender(OutOfCoreRenderRequest& o) {
   const RenderImageFile file = renderImageFile(
       format, result.radiance, [&] { return outOfCoreExr(result); },
       {"R", "G", "B", "visibility.Y"}, renderAttributes(desc, meta));
-  const nlohmann::json summary = summaryJson(o, desc, *scene, settings, result);
+  const nlohmann::json summary = summaryJson(o, desc, *scene, settings, result, scan_peak);
   OutputSet outputs(MissingFolders::kCreate);
   outputs.add(o.output,
               [&](const std::filesystem::path& tmp) { writeImage(file.image, tmp, file.write); });
@@ -163,13 +191,18 @@ int runOutOfCoreRender(OutOfCoreRenderRequest& o) {
           "  geometry budget {} = {:.1f} MiB of {:.1f} MiB in core; {} loads ({:.1f} MB "
           "read, {:.2f} s reading and building), {} hits, {} evictions, {} queues skipped\n"
           "  shadow segments {}: {} queued on meshes, {} decided without a load ({} "
-          "blocked by inside proxies); peak RSS {:.1f} MiB\n",
+          "blocked by inside proxies); peak RSS {:.1f} MiB\n"
+          "  memory: the render grew RSS by {:.1f} MiB; with the proxies {:.1f} MiB against "
+          "budget + proxies + image + overhead = {:.1f} MiB ({})\n",
           o.output.string(), outOfCorePolicyName(settings.policy), result.spp, s.seconds,
           scene->scanSeconds(), o.out_of_core.geometry_budget,
           double(s.budget_bytes) / double(1 << 20), double(scene->inCoreBytes()) / double(1 << 20),
           s.cache.loads, 1e-6 * double(s.cache.bytes_read), s.cache.loadSeconds(), s.cache.hits,
           s.cache.evictions, s.skipped_queues, s.shadow_segments, s.queued, s.unqueued_segments,
-          s.blocked_by_inside, double(s.peak_rss_bytes) / double(1 << 20)));
+          s.blocked_by_inside, double(std::max(scan_peak, s.peak_rss_bytes)) / double(1 << 20),
+          double(s.peak_rss_growth_bytes) / double(1 << 20),
+          double(s.bounded_peak_bytes) / double(1 << 20),
+          double(s.rss_bound_bytes) / double(1 << 20), s.withinRssBound() ? "within" : "over"));
   return kExitOk;
 }
 

@@ -5,8 +5,9 @@
 namespace proxyvis {
 
 GeometryCache::GeometryCache(std::vector<uint64_t> expected_bytes, uint64_t budget_bytes,
-                             Loader loader)
+                             Loader loader, std::vector<uint64_t> load_peak_bytes)
     : expected_(std::move(expected_bytes)),
+      load_peak_(load_peak_bytes.empty() ? expected_ : std::move(load_peak_bytes)),
       budget_(budget_bytes),
       loader_(std::move(loader)),
       entries_(expected_.size()) {}
@@ -28,7 +29,9 @@ const TraceScene& GeometryCache::acquire(uint32_t mesh) {
     lru_.splice(lru_.begin(), lru_, e.lru);
     return *e.scene;
   }
-  while (!lru_.empty() && stats_.resident_bytes + expected_[mesh] > budget_) evictOne();
+  const uint64_t peak = std::max(load_peak_[mesh], expected_[mesh]);
+  while (!lru_.empty() && stats_.resident_bytes + peak > budget_) evictOne();
+  stats_.peak_loading_bytes = std::max(stats_.peak_loading_bytes, stats_.resident_bytes + peak);
   GeometryLoad load = loader_(mesh);
   ++stats_.loads;
   stats_.bytes_read += load.file_bytes;

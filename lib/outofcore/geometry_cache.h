@@ -30,19 +30,25 @@ struct GeometryCacheStats {
   uint64_t bytes_read = 0;  // file bytes of every load
   double read_seconds = 0, build_seconds = 0;
   uint64_t resident_bytes = 0, peak_resident_bytes = 0;
+  // The resident entries plus the load in progress, at most (the budget holds this).
+  uint64_t peak_loading_bytes = 0;
   double loadSeconds() const { return read_seconds + build_seconds; }
 };
 
 class GeometryCache {
  public:
   using Loader = std::function<GeometryLoad(uint32_t mesh)>;
-  // `expected_bytes[m]`: mesh m's built bytes as measured when the scene was scanned (its entry
-  // is evicted for by that figure before it loads, so the resident bytes never exceed the budget
-  // plus an entry's scratch while it builds); `budget_bytes`: what the entries may hold together.
-  GeometryCache(std::vector<uint64_t> expected_bytes, uint64_t budget_bytes, Loader loader);
+  // `expected_bytes[m]`: mesh m's built bytes as measured when the scene was scanned (what its
+  // entry holds once resident); `load_peak_bytes[m]`: what loading it takes at its peak (its
+  // decoded triangles and build scratch beside the scene being built; empty: the built bytes).
+  // Before a load, entries are evicted until the resident ones plus the load's peak fit the
+  // budget, so the resident bytes and a load in progress together never exceed it.
+  // `budget_bytes`: what the entries (and a load) may hold together.
+  GeometryCache(std::vector<uint64_t> expected_bytes, uint64_t budget_bytes, Loader loader,
+                std::vector<uint64_t> load_peak_bytes = {});
 
-  // The scene of `mesh`, loaded on a miss after evicting least recently used entries until it
-  // fits (an entry larger than the whole budget is loaded alone). Valid until the next call.
+  // The scene of `mesh`, loaded on a miss after evicting least recently used entries until its
+  // load fits (a load larger than the whole budget is made alone). Valid until the next call.
   const TraceScene& acquire(uint32_t mesh);
   bool resident(uint32_t mesh) const { return entries_[mesh].scene != nullptr; }
   uint64_t budgetBytes() const { return budget_; }
@@ -56,7 +62,7 @@ class GeometryCache {
   };
   void evictOne();
 
-  std::vector<uint64_t> expected_;
+  std::vector<uint64_t> expected_, load_peak_;
   uint64_t budget_;
   Loader loader_;
   std::vector<Entry> entries_;

@@ -49,9 +49,31 @@ struct OutOfCoreSettings {
   bool cold_reads = false;  // every load reads its file from the disk, not the page cache
   bool learn_q = false;     // proxies-roulette: q per batch and mesh learned (load_q unused)
   double q_min = 0.05;      // the learned q's floor
+  // The most a batch's samples and queues may take (bytes): a batch stops adding passes before
+  // it would go over (it holds one pass at least). 0: the memory bound's queue share.
+  uint64_t queue_cap_bytes = 0;
   int tile_size = 16;
   bool quiet = false;
 };
+
+// The frame's per-pixel buffers, kept for the whole render: each pixel's shading point, its
+// sums, its own-mesh answers (a bit per pass), the output image (RGB and visibility) and, with
+// learned q, its squared sums.
+uint64_t imageBytes(size_t pixels, const OutOfCoreSettings& settings);
+
+// What a render's memory is held to (docs/out_of_core.md, "Memory"): the budget, the proxies
+// and the image, plus a stated overhead of kOverheadShare of their sum for everything else (a
+// batch's samples and queues, the primary pass's queue, the allocator's slack). The queue cap is
+// kQueueShare of the sum, part of the overhead.
+inline constexpr double kOverheadShare = 0.10;
+inline constexpr double kQueueShare = 0.05;
+struct OutOfCoreMemoryBound {
+  uint64_t overhead_bytes = 0;   // kOverheadShare x (budget + proxies + image)
+  uint64_t bound_bytes = 0;      // budget + proxies + image + overhead
+  uint64_t queue_cap_bytes = 0;  // kQueueShare x (budget + proxies + image)
+};
+OutOfCoreMemoryBound outOfCoreMemoryBound(uint64_t budget_bytes, uint64_t proxy_bytes,
+                                          uint64_t image_bytes);
 
 // A traced queue whose segments have a proxy answer: what skipping it would have added to the
 // image's summed squared error per unit of (1/q - 1), and what tracing it cost.
@@ -89,7 +111,28 @@ struct OutOfCoreStats {
   // with an outside proxy.
   std::vector<ProxyQueueRecord> proxy_queues;
   uint64_t budget_bytes = 0;
+  // Memory, measured (RSS; docs/out_of_core.md, "Memory"). The render starts by handing the
+  // heap's freed memory back and resetting the high-water mark: `rss_before_bytes` is what was
+  // resident then (the program, the resident scene with its proxies), `peak_rss_bytes` the
+  // render's peak, and the growths are over rss_before_bytes.
+  uint64_t rss_before_bytes = 0;
   uint64_t peak_rss_bytes = 0;
+  uint64_t peak_rss_growth_bytes = 0;
+  uint64_t primary_rss_growth_bytes = 0;  // the primary pass, its loads included
+  uint64_t route_rss_growth_bytes = 0;    // a batch's samples and queues, before its loads
+  uint64_t trace_rss_growth_bytes = 0;    // a batch's loads and traces
+  uint64_t load_rss_growth_bytes = 0;     // the most one load (read, decode, build) grew RSS by
+  double load_growth_over_built = 0;      // the largest such growth over the mesh's built bytes
+  uint64_t queue_bytes = 0;  // the largest shadow batch's flags, factors and queues (capacity)
+  uint64_t primary_queue_bytes = 0;                  // the primary rays' queues (capacity)
+  uint64_t image_bytes = 0;                          // imageBytes()
+  uint64_t queue_cap_bytes = 0;                      // the cap the batches kept to
+  uint64_t capped_batches = 0;                       // batches the cap ended before --batch-passes
+  uint64_t proxy_bytes = 0;                          // the scene's resident proxies (built)
+  uint64_t overhead_bytes = 0, rss_bound_bytes = 0;  // outOfCoreMemoryBound()
+  // The render's peak growth plus the proxies (resident before it began): what the bound holds.
+  uint64_t bounded_peak_bytes = 0;
+  bool withinRssBound() const { return bounded_peak_bytes <= rss_bound_bytes; }
   double seconds = 0, primary_seconds = 0, shadow_seconds = 0;
 };
 

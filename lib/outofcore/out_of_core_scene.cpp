@@ -2,6 +2,8 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "mesh/io/mesh_io.h"
@@ -28,10 +30,17 @@ OutOfCoreScene::OutOfCoreScene(const SceneDesc& desc)
     : desc_(desc), camera_(desc_.camera), lights_(desc_.lights) {}
 OutOfCoreScene::~OutOfCoreScene() = default;
 
-uint64_t OutOfCoreScene::inCoreBytes() const {
+uint64_t OutOfCoreScene::builtBytes() const {
   uint64_t total = 0;
   for (const OutOfCoreMesh& m : meshes_) total += m.built_bytes;
   return total;
+}
+
+uint64_t OutOfCoreScene::inCoreBytes() const {
+  uint64_t scratch = 0;
+  for (const OutOfCoreMesh& m : meshes_)
+    scratch = std::max(scratch, m.load_peak_bytes - std::min(m.load_peak_bytes, m.built_bytes));
+  return builtBytes() + scratch;
 }
 
 GeometryLoad OutOfCoreScene::loadOriginal(uint32_t mesh, bool cold) const {
@@ -157,6 +166,7 @@ class OutOfCoreSceneLoader {
         load = s_.buildOriginal(uint32_t(m), original);
       }
       s_.meshes_[m].built_bytes = load.bytes;
+      s_.meshes_[m].load_peak_bytes = uint64_t(std::ceil(kLoadPeakOverBuilt * double(load.bytes)));
       all.extend(load.scene->bounds());
     }
     // With each mesh's proxy settled (the objects' proxy fields follow it).

@@ -28,6 +28,15 @@ void Row::add(const OutOfCoreStats& s, double image_mse) {
     proxy_queues.insert(proxy_queues.end(), s.proxy_queues.begin(), s.proxy_queues.end());
   peak_rss_bytes = std::max(peak_rss_bytes, s.peak_rss_bytes);
   peak_cache_bytes = std::max(peak_cache_bytes, s.cache.peak_resident_bytes);
+  rss_before_bytes = std::max(rss_before_bytes, s.rss_before_bytes);
+  peak_rss_growth_bytes = std::max(peak_rss_growth_bytes, s.peak_rss_growth_bytes);
+  bounded_peak_bytes = std::max(bounded_peak_bytes, s.bounded_peak_bytes);
+  rss_bound_bytes = s.rss_bound_bytes;
+  proxy_bytes = s.proxy_bytes;
+  image_bytes = s.image_bytes;
+  overhead_bytes = s.overhead_bytes;
+  queue_cap_bytes = s.queue_cap_bytes;
+  within_rss_bound = within_rss_bound && s.withinRssBound();
 }
 
 void Row::finish() {
@@ -158,6 +167,14 @@ nlohmann::json rowJson(const Row& r) {
           {"peak_rss_bytes", r.peak_rss_bytes},
           {"peak_cache_bytes", r.peak_cache_bytes},
           {"rss_before_bytes", r.rss_before_bytes},
+          {"peak_rss_growth_bytes", r.peak_rss_growth_bytes},
+          {"proxy_bytes", r.proxy_bytes},
+          {"image_bytes", r.image_bytes},
+          {"overhead_bytes", r.overhead_bytes},
+          {"queue_cap_bytes", r.queue_cap_bytes},
+          {"rss_bound_bytes", r.rss_bound_bytes},
+          {"bounded_peak_bytes", r.bounded_peak_bytes},
+          {"within_rss_bound", r.within_rss_bound},
           {"seconds", r.seconds},
           {"mse", r.mse},
           {"efficiency", r.efficiency},
@@ -185,10 +202,11 @@ nlohmann::json ceilingJson(const Ceiling& c) {
 }
 
 TextTable studyTable(const std::vector<Row>& rows) {
-  TextTable t{{"spp", "policy", "passes per batch", "page cache", "load q", "loads / frame",
-               "MB read", "load s", "peak RSS MiB", "seconds", "MSE", "efficiency"},
-              "rlllrrrrrrrr",
-              {}};
+  TextTable t{
+      {"spp", "policy", "passes per batch", "page cache", "load q", "loads / frame", "MB read",
+       "load s", "peak RSS MiB", "held / bound MiB", "seconds", "MSE", "efficiency"},
+      "rlllrrrrrrrrr",
+      {}};
   for (const Row& r : rows)
     t.rows.push_back(
         {std::to_string(r.spp), outOfCorePolicyName(r.policy),
@@ -198,6 +216,9 @@ TextTable studyTable(const std::vector<Row>& rows) {
          fmt::format("{:.1f}", r.loads), fmt::format("{:.1f}", 1e-6 * r.bytes_read),
          fmt::format("{:.2f}", r.load_seconds),
          fmt::format("{:.0f}", double(r.peak_rss_bytes) / double(1 << 20)),
+         fmt::format("{:.1f} / {:.1f}{}", double(r.bounded_peak_bytes) / double(1 << 20),
+                     double(r.rss_bound_bytes) / double(1 << 20),
+                     r.within_rss_bound ? "" : " (over)"),
          fmt::format("{:.3f}", r.seconds), fmt::format("{:.3e}", r.mse),
          fmt::format("{:.2f}x{}", r.relative_efficiency, r.baseline ? " (baseline)" : "")});
   return t;

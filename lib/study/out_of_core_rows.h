@@ -27,6 +27,11 @@ struct Row {
   std::vector<ProxyQueueRecord> proxy_queues;  // proxies-exact: every seed's traced queues
   uint64_t peak_rss_bytes = 0, peak_cache_bytes = 0;
   uint64_t rss_before_bytes = 0;  // resident when its renders started (the largest)
+  // The memory bound (outOfCoreMemoryBound) and what it holds: the largest render's growth plus
+  // the proxies; within only if every seed's render was.
+  uint64_t peak_rss_growth_bytes = 0, bounded_peak_bytes = 0, rss_bound_bytes = 0;
+  uint64_t proxy_bytes = 0, image_bytes = 0, overhead_bytes = 0, queue_cap_bytes = 0;
+  bool within_rss_bound = true;
   // Scored.
   double efficiency = 0, relative_efficiency = 0;
   bool baseline = false;

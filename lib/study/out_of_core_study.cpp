@@ -1,7 +1,6 @@
 #include "study/out_of_core_study.h"
 
 #include <fmt/format.h>
-#include <malloc.h>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -17,7 +16,6 @@
 #include "util/atomic_write.h"
 #include "util/build_info.h"
 #include "util/output_path.h"
-#include "util/peak_rss.h"
 #include "util/rng.h"
 #include "util/staged_folder.h"
 
@@ -75,18 +73,6 @@ StudyPlanOoc planStudy(CompareOptions& o, const OutOfCoreStudyFlags& flags,
   return plan;
 }
 
-// One render of a configuration, its peak RSS its own: memory the previous render freed is given
-// back to the system and the high-water mark reset first.
-// `rss_before`: what the process held when the render started (the program and its libraries,
-// the resident scene with its proxies, the images the study keeps).
-OutOfCoreResult renderMeasured(const OutOfCoreScene& scene, const OutOfCoreSettings& settings,
-                               uint64_t& rss_before) {
-  malloc_trim(0);
-  resetPeakRss();
-  rss_before = currentRssBytes();
-  return renderOutOfCore(scene, settings);
-}
-
 class OutOfCoreStudy {
  public:
   OutOfCoreStudy(const CompareOptions& o, const OutOfCoreStudyFlags& flags,
@@ -118,9 +104,9 @@ class OutOfCoreStudy {
         OutOfCoreSettings s = settingsFor(row.policy, row.spp, row.batch_passes);
         s.seed = hashKeys(o_.common.seed, uint64_t(seed));
         s.cold_reads = row.cold_reads;
-        uint64_t rss_before = 0;
-        const OutOfCoreResult r = renderMeasured(scene_, s, rss_before);
-        row.rss_before_bytes = std::max(row.rss_before_bytes, rss_before);
+        // Its peak RSS its own: the render hands the heap's freed memory back and resets the
+        // high-water mark before it starts (util/peak_rss.h).
+        const OutOfCoreResult r = renderOutOfCore(scene_, s);
         if (!o_.common.quiet)
           std::fprintf(
               stderr,
@@ -207,8 +193,7 @@ std::string ceilingNote(const ooc_study::Ceiling& c) {
 // The report's notes: how it was measured, the ceiling, and the memory against the budget.
 std::vector<std::string> studyNotes(const std::vector<OocRow>& rows,
                                     const std::vector<ooc_study::Ceiling>& ceilings,
-                                    const OutOfCoreScene& scene, uint64_t budget,
-                                    size_t image_bytes) {
+                                    const OutOfCoreScene& scene, uint64_t budget) {
   std::vector<std::string> notes{
       "Measured on this machine (warm page cache, or cold reads where the row says so: each "
       "original's file dropped from the page cache before it loads): each row is the mean over its "
@@ -217,21 +202,25 @@ std::vector<std::string> studyNotes(const std::vector<OocRow>& rows,
       "rows interleaved. Rows compare at equal samples; efficiency = 1/(MSE x seconds), relative "
       "to the most efficient exact-batched row at the same spp (marked baseline)."};
   for (const ooc_study::Ceiling& c : ceilings) notes.push_back(ceilingNote(c));
-  uint64_t peak = 0;
-  uint64_t before = 0;
+  const OocRow* worst = nullptr;
   for (const OocRow& r : rows)
-    if (r.peak_rss_bytes > peak) peak = r.peak_rss_bytes, before = r.rss_before_bytes;
+    if (!worst || r.bounded_peak_bytes > worst->bounded_peak_bytes) worst = &r;
   const double mib = double(1 << 20);
-  notes.push_back(fmt::format(
-      "Memory: peak RSS {:.0f} MiB at most over the rows, each row's own (the high-water mark "
-      "reset before every render). Of it, {:.0f} MiB were resident before that render started "
-      "(the program and its libraries, OpenImageIO's among them; the resident scene with its "
-      "proxies; the images the study keeps), so the render grew it by {:.0f} MiB, against a "
-      "budget of {:.1f} MiB (of {:.1f} MiB of built originals in core), proxies {:.1f} MiB and "
-      "image buffers {:.1f} MiB; the rest is the render's queues and samples.",
-      double(peak) / mib, double(before) / mib, double(peak - std::min(peak, before)) / mib,
-      double(budget) / mib, double(scene.inCoreBytes()) / mib, double(scene.proxyBytes()) / mib,
-      double(image_bytes) / mib));
+  if (worst)
+    notes.push_back(fmt::format(
+        "Memory (RSS, measured): each render hands the heap's freed memory back and resets the "
+        "high-water mark before it starts. The largest growth over the rows was {:.1f} MiB over "
+        "the {:.0f} MiB resident before that render (the program and its libraries, the resident "
+        "scene, the images the study keeps); with the proxies (resident before, {:.1f} MiB) that "
+        "is {:.1f} MiB against budget {:.1f} + proxies {:.1f} + image {:.1f} + overhead {:.1f} "
+        "(10 %) = {:.1f} MiB: {}. Of {:.1f} MiB of originals in core. {} of {} rows within.",
+        double(worst->peak_rss_growth_bytes) / mib, double(worst->rss_before_bytes) / mib,
+        double(worst->proxy_bytes) / mib, double(worst->bounded_peak_bytes) / mib,
+        double(budget) / mib, double(worst->proxy_bytes) / mib, double(worst->image_bytes) / mib,
+        double(worst->overhead_bytes) / mib, double(worst->rss_bound_bytes) / mib,
+        worst->within_rss_bound ? "within" : "over", double(scene.inCoreBytes()) / mib,
+        std::count_if(rows.begin(), rows.end(), [](const OocRow& r) { return r.within_rss_bound; }),
+        rows.size()));
   return notes;
 }
 
@@ -271,8 +260,7 @@ int runOutOfCoreStudy(CompareOptions& o, const OutOfCoreStudyFlags& flags,
   const size_t pixels = size_t(reference.radiance.width) * size_t(reference.radiance.height);
   const std::vector<ooc_study::Ceiling> ceilings =
       ooc_study::ceilings(rows, pixels, o.render.q_min);
-  const size_t image_bytes = reference.radiance.pixels.size() * sizeof(float) * 4 / 3;
-  const std::vector<std::string> notes = studyNotes(rows, ceilings, *scene, budget, image_bytes);
+  const std::vector<std::string> notes = studyNotes(rows, ceilings, *scene, budget);
 
   const SceneDesc& desc = plan.desc;
   const std::string resolution = fmt::format("{}x{}", desc.camera.width, desc.camera.height);

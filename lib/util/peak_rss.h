@@ -6,7 +6,10 @@
 // /proc/self/clear_refs resets to the current RSS: a study that renders several configurations
 // in one process measures each one's own peak that way. getrusage's ru_maxrss is the fallback
 // (it cannot be reset).
+#include <malloc.h>
 #include <sys/resource.h>
+
+#include <algorithm>
 
 #include <cstdint>
 #include <cstdio>
@@ -50,5 +53,39 @@ inline bool resetPeakRss() {
   const bool ok = std::fputs("5", f) >= 0;
   return std::fclose(f) == 0 && ok;
 }
+
+// Hands the heap's freed memory back to the system (malloc_trim) and resets the peak: a step
+// measured from here has its own peak, counted from what is really resident now (returned).
+inline uint64_t startPeakRssMeasurement() {
+  malloc_trim(0);
+  resetPeakRss();
+  return currentRssBytes();
+}
+
+// The peak RSS of a run measured phase by phase: each phase's peak is the high-water mark since
+// the previous phase ended (reset then), the run's peak the largest of them. `before`: what was
+// resident when the run started (after giving the heap's freed memory back).
+class PeakRssPhases {
+ public:
+  PeakRssPhases() : before_(startPeakRssMeasurement()), peak_(before_) {}
+  uint64_t before() const { return before_; }
+  // Ends the phase: its peak (whole-process where the kernel cannot reset the mark), folded into
+  // the run's; the next phase starts from what is resident now.
+  uint64_t endPhase() {
+    const uint64_t p = peakRssBytes();
+    peak_ = std::max(peak_, p);
+    resetPeakRss();
+    return p;
+  }
+  // The run's peak so far (the current phase included).
+  uint64_t peak() const { return std::max(peak_, peakRssBytes()); }
+  // Growth over `before`, of a peak.
+  uint64_t growth(uint64_t peak_bytes) const {
+    return peak_bytes > before_ ? peak_bytes - before_ : 0;
+  }
+
+ private:
+  uint64_t before_, peak_;
+};
 
 }  // namespace proxyvis

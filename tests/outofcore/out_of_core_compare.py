@@ -78,18 +78,18 @@ def main():
     meshes = len(json.load(open(scene))["meshes"])
 
     out = os.path.join(work, "report")
-    p = run([compare, scene, *SIZE, "--geometry-budget", "50%", "--spp", "4", "--seeds", "2",
+    p = run([compare, scene, *SIZE, "--geometry-budget", "60%", "--spp", "4", "--seeds", "2",
              "--reference-spp", "32", "--batch-passes", "0,1", "--out", out, "--quiet"])
     if "| exact-batched |" not in p.stdout or "HTML report:" not in p.stdout:
         fail(f"stdout lacks the table or the report's path:\n{p.stdout}")
     report = json.load(open(os.path.join(out, "report.json")))
-    if report["mode"] != "out-of-core" or report["geometry_budget"] != "50%":
+    if report["mode"] != "out-of-core" or report["geometry_budget"] != "60%":
         fail(f"mode {report['mode']}, budget {report['geometry_budget']}")
     if not 0 < report["geometry_budget_bytes"] < report["in_core_bytes"]:
-        fail("50 % must be a budget below the scene's in-core bytes")
+        fail("60 % must be a budget below the scene's in-core bytes")
     rows = check_rows(report)
     if max(r["loads_per_frame"] for r in rows) <= meshes:
-        fail(f"at 50 % no row loaded a mesh twice: {[r['loads_per_frame'] for r in rows]}")
+        fail(f"at 60 % no row loaded a mesh twice: {[r['loads_per_frame'] for r in rows]}")
     c = report["ceiling"]
     if not c or not c["relative_efficiency"] > 0 or "model" not in c:
         fail(f"ceiling: {c}")

@@ -21,3 +21,10 @@ add_test(NAME app.render_compare.out_of_core
           ${CMAKE_CURRENT_BINARY_DIR}/out_of_core_compare)
 set_tests_properties(app.render_compare.out_of_core PROPERTIES TIMEOUT 600
   FAIL_REGULAR_EXPRESSION "FAIL:")
+# The render's measured peak RSS growth against budget + proxies + image + 10 %.
+add_test(NAME app.render.out_of_core.memory
+  COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_LIST_DIR}/out_of_core_memory.py
+          $<TARGET_FILE_DIR:render> ${CMAKE_SOURCE_DIR} ${CMAKE_CURRENT_BINARY_DIR}/out_of_core_memory)
+# RSS under the sanitizers is theirs, not the renderer's.
+set_tests_properties(app.render.out_of_core.memory PROPERTIES TIMEOUT 600
+  FAIL_REGULAR_EXPRESSION "FAIL:" LABELS not_sanitized)
