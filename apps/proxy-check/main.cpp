@@ -115,34 +115,27 @@ int runScene(const Options& o) {
   std::vector<ScenePair> checked =
       checkScenePairs(scene, pairOptions(o), o.check.distribution == "scene");
   const size_t pairs = checked.size();
-  nlohmann::json checks = nlohmann::json::array();
+  SceneCheckReport report{scene.path.string(), o.common.seed, o.check.rays, {}};
   std::vector<ErrorSegment> all_errors;
-  bool failed = false;
   for (ScenePair& c : checked) {
     const PairCheckReport& r = c.report;
     printHuman(o, formatHumanReport(r) + "\n");
     printMismatch(r);
     if (r.shortfall)
       std::fprintf(stderr, "proxy-check: warning: %s: %s\n", r.label.c_str(), r.shortfall->c_str());
-    failed = failed || r.failed();
     const ProxyRef& ref = scene.meshes[c.mesh].proxies[c.proxy];
     ProxyRef& record = proven.meshes[c.mesh].proxies[c.proxy];
     record.verified_class = provenClass(r);
     record.sha256 = sha256OfFile(ref.file);
-    checks.push_back(toJson(r));
+    report.checks.push_back(&r);
     all_errors.insert(all_errors.end(), r.sampled.errors.begin(), r.sampled.errors.end());
   }
   if (pairs == 0)
     throw Error(o.inputs[0], "the scene lists no proxies", "there is nothing to check",
                 "generate them with proxy-gen SCENE.json");
   if (!o.write_scene.empty()) saveSceneDesc(proven, o.write_scene);
-  writeOutputs(o, all_errors,
-               {{"scene", scene.path.string()},
-                {"seed", o.common.seed},
-                {"rays", o.check.rays},
-                {"checks", checks},
-                {"ok", !failed}});
-  return failed ? kExitCheckFailed : kExitOk;
+  writeOutputs(o, all_errors, toJson(report));
+  return report.ok() ? kExitOk : kExitCheckFailed;
 }
 
 }  // namespace

@@ -246,6 +246,19 @@ nlohmann::json toJson(const PairCheckReport& r) {
   return j;
 }
 
+bool SceneCheckReport::ok() const {
+  for (const PairCheckReport* r : checks)
+    if (r->failed()) return false;
+  return true;
+}
+
+nlohmann::json toJson(const SceneCheckReport& s) {
+  nlohmann::json checks = nlohmann::json::array();
+  for (const PairCheckReport* r : s.checks) checks.push_back(toJson(*r));
+  return {
+      {"scene", s.scene}, {"seed", s.seed}, {"rays", s.rays}, {"checks", checks}, {"ok", s.ok()}};
+}
+
 void writeErrorSegmentsPly(const std::vector<ErrorSegment>& segments,
                            const std::filesystem::path& path) {
   std::string text =

@@ -22,6 +22,18 @@ std::string formatHumanReport(const PairCheckReport& report);
 // (proxies/check/distance_report.h).
 nlohmann::json toJson(const PairCheckReport& report);
 
+// proxy-check SCENE's report: each checked proxy's report, in the scene's order.
+struct SceneCheckReport {
+  std::string scene;  // the scene file
+  uint64_t seed = 0, rays = 0;
+  std::vector<const PairCheckReport*> checks;
+
+  bool ok() const;  // no check failed
+};
+
+// Keys: scene, seed, rays, checks (toJson of each), ok.
+nlohmann::json toJson(const SceneCheckReport& report);
+
 // The ends of a rate's 95 % interval as the report writes them: [0, 1] when nothing was counted.
 double rateLower(const RateEstimate& e);
 double rateUpper(const RateEstimate& e);
