@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # proxyvis setup: installs the Debian 12 dependencies, builds in Release and runs things.
 #   ./setup.sh          install the dependencies only (idempotent; under a second when present)
+#   ./setup.sh install-later
+#                       install the packages test-long and test-sanitize add (Blender, Xvfb,
+#                       clang 14); CI runs it in the background while the test command compiles
 #   ./setup.sh build    install + configure + build everything (build/): programs, tests, benches
 #   ./setup.sh demo     install + build + the main job on the bundled dragon-plane scene:
 #                       proxy-gen -> proxy-check -> render-compare (MSE table + HTML report)
@@ -20,16 +23,42 @@
 #   ./setup.sh test-sanitize
 #                       install + a second build tree (build-asan) with AddressSanitizer and
 #                       UndefinedBehaviorSanitizer, then the whole test suite under them (long
-#                       tests included, not_sanitized ones left out)
+#                       tests included, not_sanitized ones left out); it builds only what that
+#                       suite runs (scripts/suite_targets.py)
 #   ./setup.sh fuzz     install + clang-14 and libFuzzer, configure build-fuzz/ (ASan + UBSan +
 #                       coverage) and build the fuzz targets of fuzz/ (run them: fuzz/run.sh)
 #   ./setup.sh bench-deps
 #                       install + what the benches need beyond the build: the npm packages of
 #                       bench/vhacd_compare and python3-matplotlib (bench_break_even.py's plots)
+# Each part of a command prints its wall and CPU time ("setup: build all: W s wall, C s CPU").
+# A tree whose suite has never run starts the longest tests first all the same: ctest's per-test
+# times of a whole run are kept in .ci/test-times-*.txt (seed_test_times).
 set -euo pipefail
 cd "$(dirname "$0")"
 BUILD_DIR=${PROXYVIS_BUILD_DIR:-build}
 JOBS=${PROXYVIS_JOBS:-$(nproc)}
+
+# timed NAME COMMAND...: runs COMMAND, then prints "setup: NAME: W s wall, C s CPU" (C: the user
+# + system time of the processes it ran). .ci/run's summary repeats these lines, so a CI log says
+# where each step's time went (packages, npm, configure, compile, tests).
+timed() {
+  local name=$1 t0=$SECONDS c0
+  shift
+  children_cpu
+  c0=$CHILDREN_CPU
+  "$@"
+  children_cpu
+  echo "setup: $name: $((SECONDS - t0)) s wall, $(awk -v a="$c0" -v b="$CHILDREN_CPU" 'BEGIN { printf "%.0f", b - a }') s CPU"
+}
+# CHILDREN_CPU: the CPU seconds (user + system) of this shell's finished children, from the second
+# line of `times`, which must run in this shell (in a $(...) subshell it reports the subshell's).
+children_cpu() {
+  local t
+  t=$(mktemp)
+  times >"$t"
+  CHILDREN_CPU=$(awk 'NR == 2 { s = 0; for (i = 1; i <= 2; i++) { split($i, p, /[ms]/); s += p[1] * 60 + p[2] } print s }' "$t")
+  rm -f "$t"
+}
 
 PKGS=(
   build-essential cmake ninja-build ccache pkg-config git python3
@@ -72,8 +101,14 @@ install_pkgs() {
   local sudo=""
   [ "$(id -u)" -eq 0 ] || sudo="sudo"
   export DEBIAN_FRONTEND=noninteractive
-  $sudo apt-get update -qq
-  $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+  # The package lists once an hour at most (CI's steps install three times in a few minutes).
+  if ! find /var/lib/apt/lists -maxdepth 1 -name '*_InRelease' -mmin -60 2>/dev/null | grep -q .; then
+    timed "apt-get update" $sudo apt-get update -qq
+  fi
+  # Another install running (CI installs the later steps' packages in the background) is waited
+  # for, not an error.
+  timed "apt-get install of ${#missing[@]} packages" $sudo apt-get install -y -qq \
+    --no-install-recommends -o DPkg::Lock::Timeout=900 "${missing[@]}"
 }
 
 # The npm packages the tests run (tests/js/package-lock.json: the Khronos glTF-Validator and the
@@ -87,18 +122,27 @@ npm_ci() {
     return
   fi
   echo "setup: npm ci in $1"
-  (cd "$1" && npm ci --no-audit --no-fund --loglevel=error)
+  timed "npm ci in $1" env -C "$1" npm ci --no-audit --no-fund --loglevel=error
 }
 
 install_js_deps() { npm_ci tests/js; }
 
+# The same in the background, so that the download overlaps the build (18 s of wall time here,
+# 10 s of CPU); wait_js_deps waits for it (and fails if it failed) before the tests start.
+start_js_deps() {
+  command -v npm >/dev/null || install_pkgs nodejs npm
+  npm_ci tests/js &
+  JS_DEPS_PID=$!
+}
+wait_js_deps() { wait "$JS_DEPS_PID"; }
+
 # build [TARGET...]: configure, then build the targets given (default: the programs and the
 # tests; the target `benches` adds bench/). The demo builds only the programs it runs.
 build() {
-  cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release
+  timed configure cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release
   local targets=()
   [ $# -eq 0 ] || targets=(--target "$@")
-  cmake --build "$BUILD_DIR" -j "$JOBS" "${targets[@]}"
+  timed "build ${*:-all}" cmake --build "$BUILD_DIR" -j "$JOBS" "${targets[@]}"
 }
 
 # The sanitizer build: clang 14 (the fuzz build's compiler, so a second compiler checks the code
@@ -133,18 +177,24 @@ build_sanitize() {
     rm -rf "$dir"
   fi
   sanitize_env  # the options the tests run under
-  cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  timed configure cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_C_COMPILER="$cc" \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
     -DCMAKE_CXX_FLAGS="$flags $warn" -DCMAKE_C_FLAGS="$flags $warn" \
     -DCMAKE_EXE_LINKER_FLAGS="$flags" -DCMAKE_SHARED_LINKER_FLAGS="$flags" \
     -DCMAKE_MODULE_LINKER_FLAGS="$flags" \
     -DPROXYVIS_BUILD_BENCH=OFF -DPROXYVIS_PRELOAD_OIIO_MODULE=ON -DPROXYVIS_TESTS_PER_EXECUTABLE=ON
-  cmake --build "$dir" -j "$JOBS"
+  # Only what the suite below runs: the default build less the test executables whose every
+  # ctest entry is left out (scripts/suite_targets.py; today proxy_tight_tests).
+  local list targets
+  list=$(python3 scripts/suite_targets.py "$dir" -LE not_sanitized)
+  mapfile -t targets <<<"$list"
+  timed "build of ${#targets[@]} targets" cmake --build "$dir" -j "$JOBS" --target "${targets[@]}"
   # Tests labelled not_sanitized are too slow under ASan (see their definition for why). One job
   # per core: with one more (as the Release suite runs) a CPU-bound app test with a time limit
   # (proxy_gen_budget.erode_non_manifold_fin_is_general, 75 s of its 120) timed out.
-  ctest --test-dir "$dir" --output-on-failure -j "$JOBS" -LE not_sanitized
+  seed_test_times "$dir" .ci/test-times-sanitize.txt
+  timed ctest ctest --test-dir "$dir" --output-on-failure -j "$JOBS" -LE not_sanitized
 }
 
 # The fuzz build: clang, every library instrumented, no tests/benches, mesh-info (fuzz/run.sh
@@ -212,7 +262,20 @@ run_tests() {
 
 # ctest on the build tree (ctest starts the tests that took longest in earlier runs first).
 ctest_run() {
-  ctest --test-dir "$BUILD_DIR" --output-on-failure -j "${CTEST_JOBS:-$JOBS}" "$@"
+  seed_test_times "$BUILD_DIR" .ci/test-times-release.txt
+  timed ctest ctest --test-dir "$BUILD_DIR" --output-on-failure -j "${CTEST_JOBS:-$JOBS}" "$@"
+}
+
+# seed_test_times DIR FILE: ctest starts the tests that took longest first, by the times of the
+# tree's earlier runs (DIR/Testing/Temporary/CTestCostData.txt); a tree that has run none (a fresh
+# clone, CI) would start them in the order they are defined and could end with a long test running
+# alone. Such a tree starts from FILE, the times of a whole run kept in .ci/ (ctest's own format;
+# refresh it by copying that file after a run). Tests it does not name count as 0 s (start last).
+seed_test_times() {
+  local dest="$1/Testing/Temporary/CTestCostData.txt"
+  [ ! -f "$dest" ] && [ -f "$2" ] || return 0
+  mkdir -p "$(dirname "$dest")"
+  cp "$2" "$dest"
 }
 
 demo() {
@@ -228,12 +291,13 @@ demo() {
 
 case "${1:-install}" in
   install) install_deps ;;
+  install-later) install_pkgs "${LONG_PKGS[@]}" "${FUZZ_PKGS[@]}" ;;
   build) install_deps; build all benches ;;
   demo) install_deps; build proxy-gen proxy-check render-compare; demo ;;
-  test) install_deps; install_js_deps; build; run_tests "${2:-}" ;;
+  test) install_deps; start_js_deps; build; wait_js_deps; run_tests "${2:-}" ;;
   test-long) install_deps; install_pkgs "${LONG_PKGS[@]}"; install_js_deps; build; ctest_run -L long ;;
   fuzz) install_deps; install_pkgs "${FUZZ_PKGS[@]}"; fuzz_build ;;
   test-sanitize) install_deps; install_pkgs "${FUZZ_PKGS[@]}"; install_js_deps; build_sanitize ;;
   bench-deps) install_deps; install_pkgs python3-matplotlib; npm_ci bench/vhacd_compare ;;
-  *) echo "usage: $0 [install|build|demo|test|test-long|test-sanitize|fuzz|bench-deps]" >&2; exit 2 ;;
+  *) echo "usage: $0 [install|install-later|build|demo|test|test-long|test-sanitize|fuzz|bench-deps]" >&2; exit 2 ;;
 esac
