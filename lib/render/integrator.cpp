@@ -1,6 +1,7 @@
 #include "render/integrator_steps.h"
 
 #include "render/internal/integrator.h"
+#include "render/shading_points.h"
 
 #include <tbb/parallel_for.h>
 
@@ -88,8 +89,6 @@ void prepareSamples(const LightSampler& lights, const ShadingPoint& sp, uint64_t
   }
 }
 
-namespace detail {
-
 std::vector<ShadingPoint> shadingPoints(const RenderScene& scene, const Tiling& tiling) {
   std::vector<ShadingPoint> points(size_t(tiling.width) * tiling.height);
   const float eps = scene.epsilon();
@@ -104,7 +103,5 @@ std::vector<ShadingPoint> shadingPoints(const RenderScene& scene, const Tiling& 
   });
   return points;
 }
-
-}  // namespace detail
 
 }  // namespace proxyvis

@@ -1,12 +1,14 @@
 #pragma once
 // The steps of render() (RenderSession) that only the single-process renderer takes: settings
-// checks, every pixel's shading point from its own scene, learning regions and pass budgets. The
-// steps it shares with the data-parallel renderer are public: render/integrator_steps.h.
+// checks, learning regions and pass budgets. The steps it shares with the data-parallel renderer
+// are public (render/integrator_steps.h), and so is every pixel's shading point
+// (render/shading_points.h), which bench/ecosys draws its segments from.
 #include <vector>
 
 #include "render/integrator_steps.h"
 #include "render/render_scene.h"
 #include "render/renderer.h"
+#include "render/shading_points.h"
 
 namespace proxyvis::detail {
 
@@ -17,11 +19,8 @@ using proxyvis::prepareSamples;
 using proxyvis::primaryRay;
 using proxyvis::ShadingPoint;
 using proxyvis::shadingPointOf;
+using proxyvis::shadingPoints;
 using proxyvis::Tiling;
-
-// One primary ray per pixel (primaryRay), traced against the scene's originals. Parallel over
-// tiles.
-std::vector<ShadingPoint> shadingPoints(const RenderScene& scene, const Tiling& tiling);
 
 // The learning region of a query: screen tile x light x whether the shading point's own object
 // uses a proxy. Points on such an object trace their own original in both V and V' (the
