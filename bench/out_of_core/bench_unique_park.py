@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """The out-of-core comparison on the unique sculpture park: render-compare --geometry-budget at
 each budget, the policies interleaved seed by seed inside each run, one table per budget
-(time, loads, bytes, peak RSS, MSE, efficiency 1/(MSE x time) relative to the best batched exact)
+(time, loads, bytes, peak RSS, the render's RSS growth + proxies against budget + proxies + image
++ 10 %, MSE, efficiency 1/(MSE x time) relative to the best batched exact)
 and the oracle ceiling. Never fails on speed.
 
   bench_unique_park.py [--count 100] [--budgets 10%,25%,50%] [--spp 8] [--seeds 3]
@@ -57,15 +58,17 @@ def main():
               f"{report['geometry_budget_bytes'] / mib:.1f} of {report['in_core_bytes'] / mib:.1f}"
               f" MiB, proxies {report['proxy_bytes'] / mib:.1f} MiB, {a.size}, {a.spp} spp, "
               f"{report['seeds']} seeds (scan {report['scan_seconds']:.1f} s)\n")
-        print("| policy | batch | cache | q | loads | MB read | load s | peak RSS MiB | time s | "
-              "rays/s | MSE | efficiency |")
-        print("|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+        print("| policy | batch | cache | q | loads | MB read | load s | peak RSS MiB | "
+              "held / bound MiB | time s | rays/s | MSE | efficiency |")
+        print("|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
         for r in report["rows"]:
             rays = r["shadow_segments"] / r["seconds"] if r.get("shadow_segments") else 0
             print(f"| {r['policy']} | {r['batch_passes'] or 'frame'} | {r['page_cache']} | "
                   f"{r['load_q']} ({r['mean_load_q']:.2f}) | {r['loads_per_frame']:.1f} | "
                   f"{r['bytes_read'] / 1e6:.1f} | {r['load_seconds']:.2f} | "
-                  f"{r['peak_rss_bytes'] / mib:.0f} | {r['seconds']:.2f} | {rays:.3g} | "
+                  f"{r['peak_rss_bytes'] / mib:.0f} | {r['bounded_peak_bytes'] / mib:.1f} / "
+                  f"{r['rss_bound_bytes'] / mib:.1f}{'' if r['within_rss_bound'] else ' (over)'} | "
+                  f"{r['seconds']:.2f} | {rays:.3g} | "
                   f"{r['mse']:.3e} | {r['relative_efficiency']:.2f}x"
                   f"{' (baseline)' if r['baseline'] else ''} |")
         c = report["ceiling"]

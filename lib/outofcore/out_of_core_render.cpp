@@ -56,6 +56,15 @@ class QueueBuilder {
       for (const auto& l : local) b += l.capacity() * sizeof(uint32_t);
     return b;
   }
+  // Every queued item once, in order.
+  std::vector<uint32_t> items() const {
+    std::vector<uint32_t> all;
+    for (const auto& local : lists_)
+      for (const auto& l : local) all.insert(all.end(), l.begin(), l.end());
+    std::sort(all.begin(), all.end());
+    all.erase(std::unique(all.begin(), all.end()), all.end());
+    return all;
+  }
   // Mesh m's queue in item order.
   std::vector<uint32_t> take(uint32_t m) {
     size_t n = 0;
@@ -184,6 +193,17 @@ class OutOfCoreRun {
     return ps;
   }
   uint8_t& flags(uint32_t item) { return flags_[item / pixels_][item % pixels_]; }
+  // proxies-roulette: a sample's factor, 1 for one never queued (no slot).
+  float factorOf(uint32_t item) const {
+    const auto it = std::lower_bound(weighted_items_.begin(), weighted_items_.end(), item);
+    return it != weighted_items_.end() && *it == item
+               ? factors_[size_t(it - weighted_items_.begin())]
+               : 1.0f;
+  }
+  float& factorSlot(uint32_t item) {
+    const auto it = std::lower_bound(weighted_items_.begin(), weighted_items_.end(), item);
+    return factors_[size_t(it - weighted_items_.begin())];  // queued: it has a slot
+  }
   bool ownBlocked(uint32_t pixel, int pass) const {
     return (own_blocked_[size_t(pixel) * own_words_ + size_t(pass) / 64] >> (pass % 64)) & 1u;
   }
@@ -315,7 +335,6 @@ class OutOfCoreRun {
   // the batch, its segments queued on the meshes they need.
   void routePass(int first_pass, int k, QueueBuilder& builder) {
     flags_.emplace_back(pixels_, uint8_t(0));
-    if (settings_.policy == OutOfCorePolicy::kProxiesRoulette) factors_.emplace_back(pixels_, 1.0f);
     std::vector<uint8_t>& flags = flags_.back();
     const int pass = first_pass + k;
     std::atomic<uint64_t> segments{0}, unqueued{0}, by_inside{0}, by_own{0};
@@ -356,10 +375,14 @@ class OutOfCoreRun {
   int runBatch(int first_pass, int max_passes) {
     ++stats_.batches;
     flags_.clear();
+    weighted_items_.clear();
     factors_.clear();
     QueueBuilder builder(scene_.desc().meshes.size());
-    const uint64_t item_bytes =
-        1 + (settings_.policy == OutOfCorePolicy::kProxiesRoulette ? sizeof(float) : 0);
+    // A flag byte per sample; for proxies-roulette, a slot (item and factor) per queued sample.
+    const uint64_t item_bytes = 1;
+    const uint64_t pair_bytes =
+        kPairBytes +
+        (settings_.policy == OutOfCorePolicy::kProxiesRoulette ? 2 * sizeof(uint32_t) : 0);
     int passes = 0;
     uint64_t pairs = 0, batch_bytes = 0;
     std::vector<uint64_t> counts;
@@ -367,17 +390,21 @@ class OutOfCoreRun {
       routePass(first_pass, passes, builder);
       ++passes;
       counts = builder.counts(pairs);
-      const uint64_t bytes = uint64_t(passes) * pixels_ * item_bytes + pairs * kPairBytes;
+      const uint64_t bytes = uint64_t(passes) * pixels_ * item_bytes + pairs * pair_bytes;
       const uint64_t pass_bytes = bytes - batch_bytes;
       batch_bytes = bytes;
       if (bytes + pass_bytes > stats_.queue_cap_bytes) break;
     }
     stats_.queued += pairs;
     if (passes < max_passes) ++stats_.capped_batches;
+    if (settings_.policy == OutOfCorePolicy::kProxiesRoulette) {
+      weighted_items_ = builder.items();
+      factors_.assign(weighted_items_.size(), 1.0f);
+    }
     {
       uint64_t bytes = builder.bytes();
       for (const auto& f : flags_) bytes += f.capacity();
-      for (const auto& f : factors_) bytes += f.capacity() * sizeof(float);
+      bytes += weighted_items_.capacity() * sizeof(uint32_t) + factors_.capacity() * sizeof(float);
       stats_.queue_bytes = std::max(stats_.queue_bytes, bytes);
     }
     phase_growth_ = &stats_.route_rss_growth_bytes;
@@ -428,7 +455,7 @@ class OutOfCoreRun {
                             if (!v)
                               f |= kBlocked;
                             else if (weighted)  // v' + (v - v') / q with v' = 0, v = 1
-                              factors_[item / pixels_][item % pixels_] *= inverse_q;
+                              factorSlot(item) *= inverse_q;
                           }
                           traces += local;
                         });
@@ -469,7 +496,7 @@ class OutOfCoreRun {
         // The product of the roulette's factors, multiplied in the meshes' visit order, which
         // depends on the batches alone (never on the threads).
         const double v = (flags_[size_t(k)][pixel] & kBlocked) ? 0.0
-                         : roulette                            ? double(factors_[size_t(k)][pixel])
+                         : roulette                            ? double(factorOf(item))
                                                                : 1.0;
         sums.add(ps.weight, v);
         if (settings_.learn_q) {
@@ -543,8 +570,9 @@ class OutOfCoreRun {
   // proxies-roulette the product of its factors 1/q (a float: exact for q = 1/2^k, otherwise
   // within float rounding of the product).
   std::vector<std::vector<uint8_t>> flags_;
-  std::vector<std::vector<float>> factors_;
-  std::vector<double> square_sums_;  // learned q: per pixel, the sum of its samples' |w v|^2
+  std::vector<uint32_t> weighted_items_;  // proxies-roulette: the batch's queued samples, sorted
+  std::vector<float> factors_;            // and the product of each one's factors 1/q
+  std::vector<double> square_sums_;       // learned q: per pixel, the sum of its samples' |w v|^2
   LoadQLearner learner_;
   int passes_done_ = 0;
   Stopwatch shadow_clock_;
