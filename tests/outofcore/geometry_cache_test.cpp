@@ -92,5 +92,27 @@ TEST(GeometryCache, AnEntryLargerThanTheBudgetIsLoadedAlone) {
   EXPECT_EQ(cache.stats().evictions, 1u);
 }
 
+// A load's peak (its build scratch) is evicted for too: the resident entries and the load in
+// progress fit the budget together.
+TEST(GeometryCache, EvictsForALoadsPeakNotJustItsEntry) {
+  BoxScenes boxes;
+  const uint64_t one = boxes.load(0).bytes;
+  boxes.loaded.clear();
+  // Entries of `one` whose loads need twice that; room for three entries' bytes.
+  GeometryCache cache(
+      std::vector<uint64_t>(4, one), 3 * one, [&](uint32_t m) { return boxes.load(m); },
+      std::vector<uint64_t>(4, 2 * one));
+  cache.acquire(0);
+  cache.acquire(1);  // 1 resident + a load of 2 fit 3
+  EXPECT_EQ(cache.stats().evictions, 0u);
+  cache.acquire(2);  // 2 resident + 2 do not: 0 goes, though 3 entries' bytes would fit
+  EXPECT_EQ(cache.stats().evictions, 1u);
+  EXPECT_FALSE(cache.resident(0));
+  EXPECT_TRUE(cache.resident(1));
+  EXPECT_TRUE(cache.resident(2));
+  EXPECT_LE(cache.stats().peak_loading_bytes, cache.budgetBytes());
+  EXPECT_EQ(cache.stats().peak_loading_bytes, 3 * one);
+}
+
 }  // namespace
 }  // namespace proxyvis
