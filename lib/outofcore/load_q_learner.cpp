@@ -30,4 +30,18 @@ double LoadQLearner::q(uint32_t mesh, size_t items, bool resident, double varian
   return std::clamp(std::sqrt(wrong * seconds / (cost * variance_spp2)), q_min_, 1.0);
 }
 
+double frameVarianceSpp2(const std::vector<SampleSums>& sums,
+                         const std::vector<double>& square_sums, int passes, int spp) {
+  if (passes < 2) return 0;
+  const double n = passes;
+  double sum = 0;
+  for (size_t p = 0; p < sums.size(); ++p) {
+    const Vec3d mean = sums[p].radiance / n;
+    const double var =
+        (square_sums[p] / n - (mean.x * mean.x + mean.y * mean.y + mean.z * mean.z)) * n / (n - 1);
+    sum += std::max(0.0, var);
+  }
+  return sum * double(spp);
+}
+
 }  // namespace proxyvis

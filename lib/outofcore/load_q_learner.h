@@ -13,7 +13,15 @@
 #include <cstdint>
 #include <vector>
 
+#include "render/integrator_steps.h"
+
 namespace proxyvis {
+
+// The frame's variance as LoadQLearner::q wants it (the sum over pixels and channels of the
+// pixel mean's variance, times spp^2): spp x the per-sample variance, from `passes` passes'
+// pixel sums and sums of squared |w v| (square_sums); 0 before two passes.
+double frameVarianceSpp2(const std::vector<SampleSums>& sums,
+                         const std::vector<double>& square_sums, int passes, int spp);
 
 class LoadQLearner {
  public:

@@ -146,5 +146,8 @@ struct OutOfCoreResult {
 // Throws Error for settings it cannot run with, a budget below the largest mesh's built bytes,
 // or an original that can no longer be read (naming its file; nothing is written).
 OutOfCoreResult renderOutOfCore(const OutOfCoreScene& scene, const OutOfCoreSettings& settings);
+// The settings renderOutOfCore refuses for `scene` (throws Error): bad numbers, a policy that
+// needs proxies the scene lacks, a budget below the largest mesh's load.
+void checkOutOfCoreSettings(const OutOfCoreScene& scene, const OutOfCoreSettings& settings);
 
 }  // namespace proxyvis
