@@ -23,8 +23,7 @@ struct DataParallelFlags {
   std::string network = "shm";                           // --network: a preset of network_fabric.h
   double network_alpha_us = -1, network_beta_gbps = -1;  // < 0: the preset's
   bool emulate_network = false;
-  std::string proxy_route;  // --proxy-route; empty: measured, or always when roulette's costs
-                            // are both fixed (the image then stays bit-reproducible)
+  std::string proxy_route;  // --proxy-route; empty: always
 
   // The route choice --forwarding proxies uses (throws Error for an unknown name).
   ProxyRoute proxyRoute() const;

@@ -35,7 +35,7 @@ struct DataParallelSettings {
   bool roulette = false;  // false: exact
   // Under kProxies: per region, the cheaper of the proxies' and the instance boxes' route
   // (measured; route_choice.h), or the proxies' route for every segment.
-  ProxyRoute proxy_route = ProxyRoute::kMeasured;
+  ProxyRoute proxy_route = ProxyRoute::kAlways;
   int spp = 16;
   uint64_t seed = 0;
   int tile_size = 16;        // screen tiles: replicated hits are shaded by the tile's rank
@@ -64,7 +64,7 @@ struct DataParallelStats {
   uint64_t forwarded_segments = 0;  // undecided segments that were sent (roulette: some)
   uint64_t routed_by_proxies = 0;   // kProxies: segments routed through the proxies
   uint64_t routed_by_boxes = 0;     // kProxies: segments the route choice sent by instance boxes
-  ProxyRoute proxy_route = ProxyRoute::kMeasured;  // the settings' choice
+  ProxyRoute proxy_route = ProxyRoute::kAlways;  // the settings' choice
   uint64_t forwards = 0;           // segment messages items sent (one per segment and rank asked)
   uint64_t forward_bytes = 0;      // requests and answers, all ranks
   uint64_t forward_messages = 0;   // non-empty messages, all ranks
