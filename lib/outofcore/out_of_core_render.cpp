@@ -6,6 +6,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <limits>
@@ -35,9 +36,9 @@ class OutOfCoreRun {
         pixels_(size_t(tiling_.width) * size_t(tiling_.height)),
         own_words_((size_t(settings.spp) + 63) / 64),
         cache_(
-            perMesh(scene, &OutOfCoreMesh::built_bytes), settings.budget_bytes,
+            scene.perMesh(&OutOfCoreMesh::built_bytes), settings.budget_bytes,
             [this](uint32_t m) { return measuredLoad(m); },
-            perMesh(scene, &OutOfCoreMesh::load_peak_bytes)),
+            scene.perMesh(&OutOfCoreMesh::load_peak_bytes)),
         learner_(scene.desc().meshes.size(), settings.q_min) {
     stats_.image_bytes = imageBytes(pixels_, settings);
     const OutOfCoreMemoryBound bound =
@@ -96,13 +97,6 @@ class OutOfCoreRun {
           std::max(stats_.load_growth_over_built, double(growth) / double(built));
     *phase_growth_ = std::max(*phase_growth_, rss_.growth(peak));
     return load;
-  }
-
-  // Per mesh, one figure of its scan (OutOfCoreMesh::built_bytes or load_peak_bytes).
-  static std::vector<uint64_t> perMesh(const OutOfCoreScene& scene, uint64_t OutOfCoreMesh::*f) {
-    std::vector<uint64_t> out;
-    for (const OutOfCoreMesh& m : scene.meshes()) out.push_back(m.*f);
-    return out;
   }
 
   // Pixel `pixel`'s primary ray (the same function of the pixel as in every renderer).
@@ -207,36 +201,35 @@ class OutOfCoreRun {
     flags_.emplace_back(pixels_, uint8_t(0));
     std::vector<uint8_t>& flags = flags_.back();
     const int pass = first_pass + k;
-    std::atomic<uint64_t> segments{0}, unqueued{0}, by_inside{0}, by_own{0};
+    enum { kSegments, kUnqueued, kInside, kOwn };  // the counts
+    std::array<std::atomic<uint64_t>, 4> n{};
     tbb::parallel_for(0, tiling_.count(), [&](int t) {
-      uint64_t local_segments = 0, local_unqueued = 0, local_inside = 0, local_own = 0;
+      std::array<uint64_t, 4> local{};
       tiling_.forEachPixel(t, [&](int, int, uint32_t pixel) {
         const uint32_t item = uint32_t(size_t(k) * pixels_ + pixel);
         PreparedSample ps;
         prepareSamples(scene_.lights(), points_[pixel], settings_.seed, pixel, pass, 1, &ps);
         if (!ps.needsVisibility()) return;
-        ++local_segments;
+        ++local[kSegments];
         // Blocked by its own mesh, as the primary pass found (ownMeshShadows).
         if (ownBlocked(pixel, pass)) {
           flags[pixel] = kBlocked;
-          ++local_unqueued;
-          ++local_own;
+          ++local[kUnqueued], ++local[kOwn];
           return;
         }
         if (queueSegment(scene_, settings_.policy, ps.segment,
                          scene_.objects()[points_[pixel].object].mesh, item, builder,
                          flags[pixel]) == 0) {
-          ++local_unqueued;
-          local_inside += flags[pixel] & kBlocked;
+          ++local[kUnqueued];
+          local[kInside] += flags[pixel] & kBlocked;
         }
       });
-      segments += local_segments, unqueued += local_unqueued, by_inside += local_inside;
-      by_own += local_own;
+      for (size_t i = 0; i < local.size(); ++i) n[i] += local[i];
     });
-    stats_.blocked_by_own_mesh += by_own;
-    stats_.shadow_segments += segments;
-    stats_.unqueued_segments += unqueued;
-    stats_.blocked_by_inside += by_inside;
+    stats_.blocked_by_own_mesh += n[kOwn];
+    stats_.shadow_segments += n[kSegments];
+    stats_.unqueued_segments += n[kUnqueued];
+    stats_.blocked_by_inside += n[kInside];
   }
 
   // One batch from pass `first_pass`, of at most `max_passes` passes: passes are drawn and routed

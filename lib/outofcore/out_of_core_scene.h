@@ -69,6 +69,12 @@ class OutOfCoreScene {
   // The originals' built bytes together: what the in-core renderer's scene of them takes once
   // built.
   uint64_t builtBytes() const;
+  // Per mesh, one figure of its scan (e.g. &OutOfCoreMesh::built_bytes).
+  std::vector<uint64_t> perMesh(uint64_t OutOfCoreMesh::*figure) const {
+    std::vector<uint64_t> out;
+    for (const OutOfCoreMesh& m : meshes_) out.push_back(m.*figure);
+    return out;
+  }
   // What holding every original takes: each built, and the largest load's scratch (its
   // load_peak_bytes over its built bytes) while the last one loads. A budget's share ("25%") is
   // of this, so that 100 % loads every mesh once.
