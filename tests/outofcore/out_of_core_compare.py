@@ -18,12 +18,12 @@ Checks:
 """
 import json
 import os
-import shutil
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
 from image_diff import differing_pairs  # noqa: E402
 from script_checks import fail, run  # noqa: E402
+from unique_park import make_park  # noqa: E402
 
 SIZE = ["--width", "64", "--height", "48", "--seed", "5", "--threads", "2"]
 ROW_KEYS = ("policy", "geometry_budget_bytes", "loads_per_frame", "bytes_read", "load_seconds",
@@ -67,14 +67,7 @@ def check_rows(report):
 def main():
     bin_dir, source, work = sys.argv[1:4]
     compare = os.path.join(bin_dir, "render-compare")
-    shutil.rmtree(work, ignore_errors=True)
-    os.makedirs(work)
-    park = os.path.join(work, "park")
-    run([sys.executable, os.path.join(source, "scenes", "make_unique_park.py"), "--count", "3",
-         "--prototypes", "spot", "--out", park, "--ratio", "0.01",
-         "--proxy-gen", os.path.join(bin_dir, "proxy-gen"),
-         "--mesh-info", os.path.join(bin_dir, "mesh-info")])
-    scene = os.path.join(park, "unique-park.json")
+    scene = make_park(bin_dir, source, work, 3, "spot")
     meshes = len(json.load(open(scene))["meshes"])
 
     out = os.path.join(work, "report")

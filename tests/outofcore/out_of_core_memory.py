@@ -22,12 +22,12 @@ Checks:
 """
 import json
 import os
-import shutil
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
 from image_diff import differing_pairs  # noqa: E402
 from script_checks import fail, run  # noqa: E402
+from unique_park import make_park  # noqa: E402
 
 WIDTH, HEIGHT = 256, 192
 # The frame's per-pixel buffers at up to 64 spp: shading point (44 bytes), sums (40), own-mesh
@@ -53,13 +53,7 @@ def peak_of(args):
 def main():
     bin_dir, source, work = sys.argv[1:4]
     render = os.path.join(bin_dir, "render")
-    shutil.rmtree(work, ignore_errors=True)
-    os.makedirs(work)
-    park = os.path.join(work, "park")
-    run([sys.executable, os.path.join(source, "scenes", "make_unique_park.py"), "--count", "4",
-         "--prototypes", "dragon", "--out", park, "--no-proxies",
-         "--mesh-info", os.path.join(bin_dir, "mesh-info")])
-    scene = os.path.join(park, "unique-park.json")
+    scene = make_park(bin_dir, source, work, 4, "dragon", proxies=False)
     size = ["--width", str(WIDTH), "--height", str(HEIGHT), "--seed", "7", "--threads", "2",
             "--quiet"]
 

@@ -33,6 +33,7 @@ import sys
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
 from image_diff import differing_pairs  # noqa: E402
 from script_checks import fail, run  # noqa: E402
+from unique_park import make_park  # noqa: E402
 
 SIZE = ["--width", "96", "--height", "72", "--spp", "4", "--seed", "3"]
 
@@ -108,15 +109,8 @@ def main():
     bin_dir, source, work = sys.argv[1:4]
     quick = "--quick" in sys.argv[4:]
     render = os.path.join(bin_dir, "render")
-    shutil.rmtree(work, ignore_errors=True)
-    os.makedirs(work)
-    park = os.path.join(work, "park")
-    run([sys.executable, os.path.join(source, "scenes", "make_unique_park.py"), "--count",
-         "2" if quick else "4",
-         "--prototypes", "spot", "--out", park, "--ratio", "0.01",
-         "--proxy-gen", os.path.join(bin_dir, "proxy-gen"),
-         "--mesh-info", os.path.join(bin_dir, "mesh-info")])
-    scene = os.path.join(park, "unique-park.json")
+    scene = make_park(bin_dir, source, work, 2 if quick else 4, "spot")
+    park = os.path.dirname(scene)
 
     ref = os.path.join(work, "ref.exr")
     run([render, scene, *SIZE, "-o", ref, "--quiet", "--threads", "2"])
