@@ -312,9 +312,7 @@ class RankRender {
     for (size_t i = 0; i < owned_.size(); ++i) {
       const size_t p = owned_[i];
       const PixelSums& s = sums_[i];
-      for (int c = 0; c < 3; ++c)
-        radiance.pixels[p * 3 + size_t(c)] = s.radianceMean(c, settings_.spp);
-      visibility.pixels[p] = s.visibilityMean();
+      s.writeMeans(settings_.spp, &radiance.pixels[p * 3], &visibility.pixels[p]);
       forwards.pixels[p] = float(s.forwards);
       owner.pixels[p] = float(rank_ + 1);
     }

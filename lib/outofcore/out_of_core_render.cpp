@@ -40,14 +40,7 @@ class OutOfCoreRun {
             [this](uint32_t m) { return measuredLoad(m); },
             scene.perMesh(&OutOfCoreMesh::load_peak_bytes)),
         learner_(scene.desc().meshes.size(), settings.q_min) {
-    stats_.image_bytes = imageBytes(pixels_, settings);
-    const OutOfCoreMemoryBound bound =
-        outOfCoreMemoryBound(settings.budget_bytes, scene.proxyBytes(), stats_.image_bytes);
-    stats_.proxy_bytes = scene.proxyBytes();
-    stats_.overhead_bytes = bound.overhead_bytes;
-    stats_.rss_bound_bytes = bound.bound_bytes;
-    stats_.queue_cap_bytes =
-        settings.queue_cap_bytes ? settings.queue_cap_bytes : bound.queue_cap_bytes;
+    setMemoryBound(stats_, pixels_, settings, scene.proxyBytes());
   }
 
   OutOfCoreResult run() {
@@ -408,11 +401,8 @@ class OutOfCoreRun {
     r.spp = settings_.spp;
     r.radiance = Image{w, h, 3, std::vector<float>(pixels_ * 3)};
     r.visibility = Image{w, h, 1, std::vector<float>(pixels_)};
-    for (size_t i = 0; i < pixels_; ++i) {
-      for (int c = 0; c < 3; ++c)
-        r.radiance.pixels[i * 3 + c] = sums_[i].radianceMean(c, settings_.spp);
-      r.visibility.pixels[i] = sums_[i].visibilityMean();
-    }
+    for (size_t i = 0; i < pixels_; ++i)
+      sums_[i].writeMeans(settings_.spp, &r.radiance.pixels[i * 3], &r.visibility.pixels[i]);
     stats_.cache = cache_.stats();
     stats_.budget_bytes = settings_.budget_bytes;
     stats_.rss_before_bytes = rss_.before();

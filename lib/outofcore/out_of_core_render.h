@@ -74,6 +74,11 @@ struct OutOfCoreMemoryBound {
 };
 OutOfCoreMemoryBound outOfCoreMemoryBound(uint64_t budget_bytes, uint64_t proxy_bytes,
                                           uint64_t image_bytes);
+struct OutOfCoreStats;
+// The memory figures a render of `pixels` pixels states in `stats` before it starts: image and
+// proxy bytes, overhead, bound and queue cap (settings.queue_cap_bytes when given).
+void setMemoryBound(OutOfCoreStats& stats, size_t pixels, const OutOfCoreSettings& settings,
+                    uint64_t proxy_bytes);
 
 // A traced queue whose segments have a proxy answer: what skipping it would have added to the
 // image's summed squared error per unit of (1/q - 1), and what tracing it cost.

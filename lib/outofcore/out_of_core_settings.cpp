@@ -63,6 +63,18 @@ OutOfCoreMemoryBound outOfCoreMemoryBound(uint64_t budget_bytes, uint64_t proxy_
   return b;
 }
 
+void setMemoryBound(OutOfCoreStats& stats, size_t pixels, const OutOfCoreSettings& settings,
+                    uint64_t proxy_bytes) {
+  stats.image_bytes = imageBytes(pixels, settings);
+  stats.proxy_bytes = proxy_bytes;
+  const OutOfCoreMemoryBound bound =
+      outOfCoreMemoryBound(settings.budget_bytes, proxy_bytes, stats.image_bytes);
+  stats.overhead_bytes = bound.overhead_bytes;
+  stats.rss_bound_bytes = bound.bound_bytes;
+  stats.queue_cap_bytes =
+      settings.queue_cap_bytes ? settings.queue_cap_bytes : bound.queue_cap_bytes;
+}
+
 void checkOutOfCoreSettings(const OutOfCoreScene& scene, const OutOfCoreSettings& settings) {
   if (settings.spp < 1) throw Error("", "--spp must be at least 1");
   if (settings.tile_size < 1 || settings.batch_passes < 0)

@@ -70,6 +70,11 @@ struct SampleSums {
   // The pixel's radiance (channel c) over `spp` light samples per pixel, and its mean visibility.
   float radianceMean(int c, int spp) const { return float(radiance[c] / spp); }
   float visibilityMean() const { return vis_n ? float(vis_sum / vis_n) : 0.0f; }
+  // Both into an image's pixel: rgb[0..2] and *visibility (every renderer writes them so).
+  void writeMeans(int spp, float* rgb, float* visibility) const {
+    for (int c = 0; c < 3; ++c) rgb[c] = radianceMean(c, spp);
+    *visibility = visibilityMean();
+  }
 };
 
 // Light samples [first, first + count) of `pass` for one shading point, from the stream keyed

@@ -329,8 +329,7 @@ RenderResult RenderSession::result() const {
   const int taken = std::max(1, s.taken);  // no pass yet: a black image, not a NaN one
   for (size_t i = 0; i < s.num_pixels; ++i) {
     const PixelSums& sums = s.sums[i];
-    for (int c = 0; c < 3; ++c) result.radiance.pixels[i * 3 + c] = sums.radianceMean(c, taken);
-    result.visibility.pixels[i] = sums.visibilityMean();
+    sums.writeMeans(taken, &result.radiance.pixels[i * 3], &result.visibility.pixels[i]);
     result.cost.pixels[i * 3 + 0] = float(sums.rays.proxy);
     result.cost.pixels[i * 3 + 1] = float(sums.rays.original);
     result.cost.pixels[i * 3 + 2] = float(sums.rays.probe);
