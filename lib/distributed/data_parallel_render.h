@@ -9,8 +9,8 @@
 //      pass), in rounds of a few passes;
 //   3. each shadow segment is traced against the rank's own and replicated originals; if they
 //      leave it unblocked, the forwarding policy names the remote ranks that may block it (under
-//      `proxies`, per region the cheaper of the proxies' and the boxes' route: route_choice.h), and
-//      it is sent to them one at a time, nearest first, in batches (one message per rank pair and
+//      `proxies` with --proxy-route measured, per region the cheaper of the proxies' and the
+//      boxes' route: route_choice.h), and it is sent to them one at a time, nearest first, in batches (one message per rank pair and
 //      round) until one blocks it or none is left. `exact` forwards every such segment;
 //      `roulette` forwards a segment that the proxies left undecided with probability q (learned
 //      per screen tile x light from earlier rounds) and weighs the answer by 1/q, otherwise takes
