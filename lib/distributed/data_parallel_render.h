@@ -10,11 +10,11 @@
 //   3. each shadow segment is traced against the rank's own and replicated originals; if they
 //      leave it unblocked, the forwarding policy names the remote ranks that may block it (under
 //      `proxies` with --proxy-route measured, per region the cheaper of the proxies' and the
-//      boxes' route: route_choice.h), and it is sent to them one at a time, nearest first, in batches (one message per rank pair and
-//      round) until one blocks it or none is left. `exact` forwards every such segment;
-//      `roulette` forwards a segment that the proxies left undecided with probability q (learned
-//      per screen tile x light from earlier rounds) and weighs the answer by 1/q, otherwise takes
-//      the proxies' answer (blocked): unbiased for any q > 0;
+//      boxes' route: route_choice.h), and it is sent to them one at a time, nearest first, in
+//      batches (one message per rank pair and round) until one blocks it or none is left. `exact`
+//      forwards every such segment; `roulette` forwards a segment that the proxies left undecided
+//      with probability q (learned per screen tile x light from earlier rounds) and weighs the
+//      answer by 1/q, otherwise takes the proxies' answer (blocked): unbiased for any q > 0;
 //   4. pixel sums in the single-process order; the image is reduced to rank 0.
 // Exact renders equal the single-process exact render bit for bit, at any rank and thread count.
 #include <cstdint>
