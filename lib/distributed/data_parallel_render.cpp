@@ -184,18 +184,19 @@ class RankRender {
     if (scene_.locallyOccluded(ps.segment)) return;  // V = 0
     Route& route = scratch.route;
     Forwarding policy = settings_.forwarding;
-    const uint64_t key = hashKeys(pixel, uint64_t(pass), kRouteStream);
+    bool timed = false;  // only a measured route choice times routes
     if (policy == Forwarding::kProxies) {
-      r.via_proxies[e] = routes_.useProxies(r.region[e], key) ? 1 : 0;
-      if (!r.via_proxies[e]) policy = Forwarding::kInstanceBoxes;
+      r.via_proxies[e] = 1;
+      if (settings_.proxy_route == ProxyRoute::kMeasured) {
+        const uint64_t key = hashKeys(pixel, uint64_t(pass), kRouteStream);
+        r.via_proxies[e] = routes_.useProxies(r.region[e], key) ? 1 : 0;
+        if (!r.via_proxies[e]) policy = Forwarding::kInstanceBoxes;
+        timed = RouteChoice::timed(key);
+      }
     }
-    if (settings_.forwarding == Forwarding::kProxies && RouteChoice::timed(key)) {
-      const double t0 = steadySeconds();
-      scene_.route(policy, ps.segment, scratch.labels, route);
-      r.route_seconds[e] = float(steadySeconds() - t0);
-    } else {
-      scene_.route(policy, ps.segment, scratch.labels, route);
-    }
+    const double t0 = timed ? steadySeconds() : 0.0;
+    scene_.route(policy, ps.segment, scratch.labels, route);
+    if (timed) r.route_seconds[e] = float(steadySeconds() - t0);
     if (route.blocked_by_inside) {  // V = 0, proved by an inside proxy
       r.outcome[e] = kBlockedByInside;
       return;
@@ -365,7 +366,8 @@ class RankRender {
     stats.rank_shaded_pixels.assign(per_rank.begin() + ranks_, per_rank.end());
     stats.rank_peak_rss_bytes =
         *std::max_element(stats.rank_rss_bytes.begin(), stats.rank_rss_bytes.end());
-    std::vector<uint64_t> busiest = {ledger_.itemsSent(), counts_[kBytes], counts_[kMessages]};
+    std::vector<uint64_t> busiest = {ledger_.itemsSent(), ledger_.bytesSent(),
+                                     ledger_.messagesSent()};
     comm_.max(busiest);
     stats.max_rank_forwards = busiest[0];
     stats.max_rank_forward_bytes = busiest[1];

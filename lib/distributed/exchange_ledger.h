@@ -26,7 +26,8 @@ class ExchangeLedger {
   // above plus the CPU time of answering one over `threads`. CPU rather than wall time, as the
   // route's own cost is a few microseconds timed between two clock reads: on a host whose ranks
   // share cores, the answers' wall time counts the time slices other ranks ran and favoured the
-  // proxies' route for work it did not save.
+  // proxies' route for work it did not save. forwardCostUs's last figure when nothing was sent
+  // or answered yet.
   double routeForwardCostUs(const NetworkFabric& fabric, int threads) const;
 
   double exchangeSeconds() const { return exchange_seconds_; }
@@ -47,7 +48,7 @@ class ExchangeLedger {
   std::vector<RoundLoad> loads_;  // per round: the model's request and answer phases
   double last_round_wall_ = 0;
   PhaseLoad batch_;  // the current pass round's messages
-  double last_forward_us_ = 1, last_route_forward_us_ = 1;
+  double last_forward_us_ = 1;
 };
 
 }  // namespace proxyvis
